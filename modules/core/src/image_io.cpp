@@ -1,0 +1,146 @@
+// Image reading and writing through OpenImageIO (the only place core touches OIIO).
+#include <sylva/core/image.hpp>
+
+#include <sylva/core/log.hpp>
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <system_error>
+#include <unistd.h>
+
+namespace sylva {
+namespace {
+
+namespace fs = std::filesystem;
+
+PixelFormat format_from(const OIIO::TypeDesc& type) {
+  switch (type.basetype) {
+    case OIIO::TypeDesc::UINT8:
+    case OIIO::TypeDesc::INT8: return PixelFormat::kU8;
+    case OIIO::TypeDesc::UINT16:
+    case OIIO::TypeDesc::INT16: return PixelFormat::kU16;
+    case OIIO::TypeDesc::HALF: return PixelFormat::kF16;
+    default: return PixelFormat::kF32;
+  }
+}
+
+OIIO::TypeDesc type_from(PixelFormat format) {
+  switch (format) {
+    case PixelFormat::kU8: return OIIO::TypeDesc::UINT8;
+    case PixelFormat::kU16: return OIIO::TypeDesc::UINT16;
+    case PixelFormat::kF16: return OIIO::TypeDesc::HALF;
+    case PixelFormat::kF32: return OIIO::TypeDesc::FLOAT;
+  }
+  return OIIO::TypeDesc::FLOAT;
+}
+
+// OIIO keeps a per-thread error string; fetch it so it does not leak into a later message.
+std::string oiio_error(const OIIO::ImageInput* in) {
+  std::string message = in ? in->geterror() : std::string();
+  const std::string global = OIIO::geterror();
+  if (message.empty()) message = global;
+  if (message.empty()) message = "no details from OpenImageIO";
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  return message;
+}
+
+}  // namespace
+
+Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) {
+  const std::string name = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) {
+    return make_error(ErrorCode::kNotFound, fmt::format("{}: no such file", name));
+  }
+  if (fs::is_directory(path, ec)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: is a folder, not an image", name));
+  }
+  // Keep stored values as they are: no premultiplication by alpha (PNG would otherwise
+  // associate alpha on read), since our alpha channels are masks and coverage, not opacity.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open(name, &config);
+  if (!in) {
+    const std::string why = oiio_error(nullptr);
+    const bool unknown_format = why.find("format") != std::string::npos && why.find("not") != std::string::npos;
+    return make_error(unknown_format ? ErrorCode::kUnsupported : ErrorCode::kCorrupt,
+                      fmt::format("{}: cannot open as an image ({})", name, why));
+  }
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0) {
+    return make_error(ErrorCode::kLimit, fmt::format("{}: image is {}x{} (empty)", name, spec.width, spec.height));
+  }
+  if (spec.width > options.max_side || spec.height > options.max_side) {
+    return make_error(ErrorCode::kLimit, fmt::format("{}: image is {}x{}, larger than the limit of {} per side",
+                                                     name, spec.width, spec.height, options.max_side));
+  }
+  if (spec.depth > 1) {
+    return make_error(ErrorCode::kUnsupported, fmt::format("{}: volume images (depth {}) are not supported", name,
+                                                           spec.depth));
+  }
+  if (spec.nchannels < 1 || spec.nchannels > 4) {
+    return make_error(ErrorCode::kUnsupported,
+                      fmt::format("{}: image has {} channels; 1 to 4 are supported", name, spec.nchannels));
+  }
+  auto image = Image::create(spec.width, spec.height, spec.nchannels, format_from(spec.format));
+  if (!image.ok()) return make_error(image.error().code, fmt::format("{}: {}", name, image.error().message));
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image->data().data())) {
+    return make_error(ErrorCode::kCorrupt, fmt::format("{}: truncated or corrupt image data ({})", name, oiio_error(in.get())));
+  }
+  in->close();
+  if (!options.allow_non_finite) {
+    const NonFiniteReport bad = find_non_finite(*image);
+    if (bad.count > 0) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: {} NaN/Inf values, the first at pixel ({}, {})", name, bad.count,
+                                    bad.first_x, bad.first_y));
+    }
+  }
+  return image;
+}
+
+Status write_image(const fs::path& path, const Image& image) { return write_image(path, image, image.format()); }
+
+Status write_image(const fs::path& path, const Image& image, PixelFormat format) {
+  const std::string name = path.string();
+  if (image.empty()) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: refusing to write an empty image", name));
+  }
+  // Write next to the target (same file system, so rename is atomic) and keep the extension so
+  // OIIO picks the same format plugin.
+  static std::atomic<unsigned> counter{0};
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  const fs::path temp = folder / fmt::format(".{}.{}-{}.tmp{}", path.stem().string(), ::getpid(), counter++,
+                                             path.extension().string());
+  auto out = OIIO::ImageOutput::create(name);
+  if (!out) {
+    return make_error(ErrorCode::kUnsupported,
+                      fmt::format("{}: no image writer for this file type ({})", name, oiio_error(nullptr)));
+  }
+  OIIO::ImageSpec spec(image.width(), image.height(), image.channels(), type_from(format));
+  spec.attribute("oiio:UnassociatedAlpha", 1);
+  if (!out->open(temp.string(), spec)) {
+    std::string why = out->geterror();
+    return make_error(ErrorCode::kIo, fmt::format("{}: cannot create {} ({})", name, temp.string(), why));
+  }
+  const bool written = out->write_image(OIIO::TypeDesc::FLOAT, image.data().data());
+  const bool closed = out->close();
+  std::error_code ec;
+  if (!written || !closed) {
+    std::string why = out->geterror();
+    fs::remove(temp, ec);
+    return make_error(ErrorCode::kIo, fmt::format("{}: write failed ({}); the old file is untouched", name, why));
+  }
+  fs::rename(temp, path, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(temp, ec);
+    return make_error(ErrorCode::kIo, fmt::format("{}: cannot replace the file ({})", name, why));
+  }
+  return ok_status();
+}
+
+}  // namespace sylva

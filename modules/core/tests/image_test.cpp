@@ -1,0 +1,172 @@
+// core images: formats, channels, round trips through OpenImageIO, and bad files.
+#include <sylva/core/image.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using sylva::ErrorCode;
+using sylva::Image;
+using sylva::PixelFormat;
+
+namespace {
+
+fs::path temp_dir() {
+  fs::path dir = fs::temp_directory_path() / ("sylva_image_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+Image gradient(int w, int h, int channels) {
+  Image image(w, h, channels);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < channels; ++c) image.at(x, y, c) = static_cast<float>((x * 7 + y * 13 + c * 29) % 256) / 255.f;
+  return image;
+}
+
+}  // namespace
+
+TEST(Image, CreateRejectsEmptyAndTooManyChannels) {
+  EXPECT_EQ(Image::create(0, 0, 1).error().code, ErrorCode::kLimit);
+  EXPECT_EQ(Image::create(4, 4, 5).error().code, ErrorCode::kUnsupported);
+  EXPECT_TRUE(Image::create(3, 2, 4).ok());
+}
+
+TEST(Image, AccessIsRowMajorTopFirst) {
+  Image image(3, 2, 2);
+  image.at(2, 1, 1) = 0.5f;
+  EXPECT_EQ(image.data()[(1 * 3 + 2) * 2 + 1], 0.5f);
+  EXPECT_EQ(image.at_clamped(10, 10, 1), 0.5f);
+  EXPECT_EQ(image.channel(1).at(2, 1), 0.5f);
+}
+
+using RoundTripCase = std::tuple<const char*, PixelFormat, int>;
+
+std::string round_trip_name(const ::testing::TestParamInfo<RoundTripCase>& info) {
+  const char* ext = std::get<0>(info.param);
+  return std::string(ext + 1) + "_format" + std::to_string(static_cast<int>(std::get<1>(info.param))) + "_c" +
+         std::to_string(std::get<2>(info.param));
+}
+
+class ImageRoundTrip : public ::testing::TestWithParam<std::tuple<const char*, PixelFormat, int>> {};
+
+TEST_P(ImageRoundTrip, PreservesPixelsWithinFormatPrecision) {
+  const auto [ext, format, channels] = GetParam();
+  const fs::path path = temp_dir() / (std::string("rt_") + std::to_string(static_cast<int>(format)) + "_" +
+                                      std::to_string(channels) + ext);
+  const Image original = gradient(17, 9, channels);
+  ASSERT_TRUE(sylva::write_image(path, original, format).ok());
+  auto back = sylva::read_image(path);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  ASSERT_EQ(back->width(), 17);
+  ASSERT_EQ(back->height(), 9);
+  ASSERT_EQ(back->channels(), channels);
+  EXPECT_EQ(back->format(), format);
+  const float tolerance = format == PixelFormat::kF32 ? 0.f : format == PixelFormat::kF16 ? 1e-3f : 0.5f / 255.f;
+  for (std::size_t i = 0; i < original.data().size(); ++i) {
+    ASSERT_NEAR(back->data()[i], original.data()[i], tolerance) << "element " << i;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, ImageRoundTrip,
+                         ::testing::Values(std::make_tuple(".png", PixelFormat::kU8, 1),
+                                           std::make_tuple(".png", PixelFormat::kU8, 3),
+                                           std::make_tuple(".png", PixelFormat::kU8, 4),
+                                           std::make_tuple(".png", PixelFormat::kU16, 1),
+                                           std::make_tuple(".png", PixelFormat::kU16, 2),
+                                           std::make_tuple(".exr", PixelFormat::kF16, 3),
+                                           std::make_tuple(".exr", PixelFormat::kF32, 1),
+                                           std::make_tuple(".tif", PixelFormat::kF32, 4),
+                                           std::make_tuple(".tif", PixelFormat::kU16, 1)),
+                         round_trip_name);
+
+TEST(Image, SixteenBitKeepsEveryLevel) {
+  Image image(256, 256, 1, PixelFormat::kU16);
+  for (int i = 0; i < 65536; ++i) image.data()[static_cast<std::size_t>(i)] = static_cast<float>(i) / 65535.f;
+  const fs::path path = temp_dir() / "levels16.png";
+  ASSERT_TRUE(sylva::write_image(path, image).ok());
+  auto back = sylva::read_image(path);
+  ASSERT_TRUE(back.ok());
+  for (int i = 0; i < 65536; ++i) {
+    ASSERT_EQ(std::lround(back->data()[static_cast<std::size_t>(i)] * 65535.f), i);
+  }
+}
+
+TEST(Image, MissingFileIsNotFoundAndNamesThePath) {
+  auto r = sylva::read_image("/nonexistent/dir/height.png");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kNotFound);
+  EXPECT_NE(r.error().message.find("/nonexistent/dir/height.png"), std::string::npos);
+}
+
+TEST(Image, TruncatedPngIsCorrupt) {
+  const fs::path full = temp_dir() / "full.png";
+  ASSERT_TRUE(sylva::write_image(full, gradient(64, 64, 3), PixelFormat::kU8).ok());
+  std::ifstream in(full, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  const fs::path cut = temp_dir() / "cut.png";
+  std::ofstream(cut, std::ios::binary).write(bytes.data(), static_cast<std::streamsize>(bytes.size() / 2));
+  auto r = sylva::read_image(cut);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(r.error().message.find("cut.png"), std::string::npos);
+}
+
+TEST(Image, GarbageFileIsRejected) {
+  const fs::path junk = temp_dir() / "junk.png";
+  std::ofstream(junk) << "this is not an image";
+  auto r = sylva::read_image(junk);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("junk.png"), std::string::npos);
+}
+
+TEST(Image, AbsurdlyLargeIsRefusedBeforeReading) {
+  const fs::path path = temp_dir() / "wide.png";
+  ASSERT_TRUE(sylva::write_image(path, Image(300, 2, 1, PixelFormat::kU8)).ok());
+  auto r = sylva::read_image(path, {.max_side = 256});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kLimit);
+  EXPECT_NE(r.error().message.find("300x2"), std::string::npos);
+}
+
+TEST(Image, NanInExrIsReportedWithPosition) {
+  Image image(8, 4, 1, PixelFormat::kF32);
+  image.at(5, 2) = std::numeric_limits<float>::quiet_NaN();
+  image.at(6, 3) = std::numeric_limits<float>::infinity();
+  const fs::path path = temp_dir() / "nan.exr";
+  ASSERT_TRUE(sylva::write_image(path, image).ok());
+  EXPECT_TRUE(sylva::read_image(path).ok());
+  auto r = sylva::read_image(path, {.allow_non_finite = false});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("2 NaN/Inf"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("(5, 2)"), std::string::npos) << r.error().message;
+}
+
+TEST(Image, FailedWriteKeepsTheOldFile) {
+  const fs::path path = temp_dir() / "keep.png";
+  ASSERT_TRUE(sylva::write_image(path, gradient(16, 16, 3), PixelFormat::kU8).ok());
+  const auto size_before = fs::file_size(path);
+  // An empty image cannot be written; the old file must be untouched.
+  EXPECT_FALSE(sylva::write_image(path, Image()).ok());
+  // An unknown extension has no writer; nothing may be created or replaced.
+  EXPECT_FALSE(sylva::write_image(temp_dir() / "x.unknownext", gradient(4, 4, 1)).ok());
+  EXPECT_EQ(file_size(path), size_before);
+  EXPECT_TRUE(sylva::read_image(path).ok());
+  // No temporary files are left behind.
+  for (const auto& entry : fs::directory_iterator(temp_dir())) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+}
+
+TEST(Image, WriteIntoMissingFolderFailsCleanly) {
+  auto r = sylva::write_image("/nonexistent/folder/out.png", gradient(4, 4, 3));
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kIo);
+  EXPECT_NE(r.error().message.find("/nonexistent/folder/out.png"), std::string::npos);
+}
