@@ -59,7 +59,7 @@ class RunningStats {
   double stddev() const;
   double min() const;       // NaN when empty
   double max() const;
-  double sum() const { return sum_; }
+  double sum() const { return has_nan_ ? std::numeric_limits<double>::quiet_NaN() : sum_; }
 
  private:
   std::size_t count_ = 0;

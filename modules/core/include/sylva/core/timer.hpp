@@ -8,7 +8,6 @@
 // GPU time is measured with the render module's timer queries, not here.
 
 #include <chrono>
-#include <concepts>
 
 namespace sylva {
 
