@@ -1,15 +1,13 @@
 // Image reading and writing through OpenImageIO (the only place core touches OIIO).
 #include <sylva/core/image.hpp>
 
-#include <sylva/core/log.hpp>
+#include <sylva/core/atomic_file.hpp>
 
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <system_error>
-#include <unistd.h>
 
 namespace sylva {
 namespace {
@@ -109,12 +107,7 @@ Status write_image(const fs::path& path, const Image& image, PixelFormat format)
   if (image.empty()) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: refusing to write an empty image", name));
   }
-  // Write next to the target (same file system, so rename is atomic) and keep the extension so
-  // OIIO picks the same format plugin.
-  static std::atomic<unsigned> counter{0};
-  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  const fs::path temp = folder / fmt::format(".{}.{}-{}.tmp{}", path.stem().string(), ::getpid(), counter++,
-                                             path.extension().string());
+  const fs::path temp = temp_path_beside(path);  // keeps the extension, so OIIO picks the plugin
   auto out = OIIO::ImageOutput::create(name);
   if (!out) {
     return make_error(ErrorCode::kUnsupported,
@@ -134,13 +127,7 @@ Status write_image(const fs::path& path, const Image& image, PixelFormat format)
     fs::remove(temp, ec);
     return make_error(ErrorCode::kIo, fmt::format("{}: write failed ({}); the old file is untouched", name, why));
   }
-  fs::rename(temp, path, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(temp, ec);
-    return make_error(ErrorCode::kIo, fmt::format("{}: cannot replace the file ({})", name, why));
-  }
-  return ok_status();
+  return replace_with_temp(temp, path);
 }
 
 }  // namespace sylva
