@@ -24,9 +24,9 @@ constexpr float kScale1 = 2.0f;
 constexpr float kScale2 = 0.632455532f;
 constexpr float kScale3 = 0.816496581f;
 
-// Exact in float: scaling by a power of two and subtracting a multiple of the period from a value
-// whose ulp is at least as coarse leaves a representable result in [0, 65536].
-inline float wrap_period(float x) { return x - kPeriod * std::floor(x * kInvPeriod); }
+// Lattice index modulo the period, for a whole-number float. Exact: the scaling is by a power of
+// two and the difference of the two integers is an integer in [0, 65536), hence representable.
+inline float wrap_period(float whole) { return whole - kPeriod * std::floor(whole * kInvPeriod); }
 
 inline float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
 inline float mix(float a, float b, float t) { return a + t * (b - a); }
@@ -56,16 +56,18 @@ struct Axis {
   float frac;
 };
 
+// The fraction offset - floor(offset) is exact for |offset| >= 1 (Sterbenz) and the best float
+// otherwise; only the whole part is wrapped, so precision is never lost to the period.
 inline Axis axis_from(std::uint32_t base_cell, float offset) {
-  const float w = wrap_period(offset);
-  const float fl = std::floor(w);
-  return {(base_cell + static_cast<std::uint32_t>(static_cast<std::int32_t>(fl))) & kMask, w - fl};
+  const float fl = std::floor(offset);
+  const auto cell = static_cast<std::uint32_t>(static_cast<std::int32_t>(wrap_period(fl)));
+  return {(base_cell + cell) & kMask, offset - fl};
 }
 
 inline Axis axis_from_double(double p) {
-  const double w = p - kPeriodD * std::floor(p / kPeriodD);
-  const double fl = std::floor(w);
-  return {static_cast<std::uint32_t>(static_cast<std::int32_t>(fl)) & kMask, static_cast<float>(w - fl)};
+  const double fl = std::floor(p);
+  const double cell = fl - kPeriodD * std::floor(fl / kPeriodD);
+  return {static_cast<std::uint32_t>(static_cast<std::int32_t>(cell)) & kMask, static_cast<float>(p - fl)};
 }
 
 float noise1_impl(Axis ax, std::uint32_t seed) {

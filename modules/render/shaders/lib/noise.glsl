@@ -34,7 +34,8 @@ const float SYLVA_NOISE_PERIOD = 65536.0;
 const float SYLVA_NOISE_INV_PERIOD = 1.0 / 65536.0;
 const uint SYLVA_NOISE_MASK = 0xFFFFu;
 
-float sylva_noise_wrap(float x) { return x - SYLVA_NOISE_PERIOD * floor(x * SYLVA_NOISE_INV_PERIOD); }
+// Lattice index modulo the period, for a whole-number float (exact).
+float sylva_noise_wrap(float whole) { return whole - SYLVA_NOISE_PERIOD * floor(whole * SYLVA_NOISE_INV_PERIOD); }
 float sylva_noise_fade(float t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
 float sylva_noise_mix(float a, float b, float t) { return a + t * (b - a); }
 
@@ -59,10 +60,9 @@ float sylva_noise_grad3(uint h, float x, float y, float z) {
 
 // One axis: cell index (base_cell + floor(offset), wrapped) and the fraction inside the cell.
 void sylva_noise_axis(uint base_cell, float offset, out uint cell, out float frac) {
-  float w = sylva_noise_wrap(offset);
-  float fl = floor(w);
-  cell = (base_cell + uint(int(fl))) & SYLVA_NOISE_MASK;
-  frac = w - fl;
+  float fl = floor(offset);
+  cell = (base_cell + uint(int(sylva_noise_wrap(fl)))) & SYLVA_NOISE_MASK;
+  frac = offset - fl;
 }
 
 float sylva_noise1_impl(uint cx, float fx, uint seed) {

@@ -13,9 +13,10 @@
 // (+-1, +-2), (+-2, +-1); 3D uses the 12 cube-edge gradients of Perlin's improved noise.
 //
 // Period. Every noise function is exactly periodic with period kNoisePeriod (65536) cells along
-// each axis: coordinates are first wrapped into [0, 65536), which is exact in float (power-of-two
-// scaling), and corner indices are masked with 0xFFFF. The period is invisible in practice and it
-// is what lets a long-running animation wrap its phase (see split_noise_coord and wind.hpp).
+// each axis: the whole part floor(p) is reduced modulo 65536 (exact in float: it is an integer)
+// and corner indices are masked with 0xFFFF, while the in-cell fraction p - floor(p) keeps full
+// float precision. The period is invisible in practice and it is what lets a long-running
+// animation wrap its phase (see split_noise_coord and wind.hpp).
 //
 // Ranges (documented and tested):
 //   gradient_noise1/2/3 in [-1, 1]. The raw sums are scaled by the analytic bound of Perlin
