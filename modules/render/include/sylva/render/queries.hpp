@@ -68,6 +68,9 @@ class PassQuery {
   void end();
   bool active() const { return active_; }
 
+  // Every result that completed since the last call, oldest first. Never waits unless `wait`
+  // (which stalls until all outstanding slots are done).
+  std::vector<PassQueryResult> collect(bool wait = false);
   // Newest result whose queries have completed, if any new one completed since the last call.
   // Never waits.
   std::optional<PassQueryResult> poll();
@@ -81,9 +84,11 @@ class PassQuery {
   struct Slot {
     GlHandle<QueryDeleter> t0, t1, primitives, samples;
     std::uint64_t frame = 0;
+    std::uint64_t order = 0;
     bool pending = false;
   };
   bool read_slot(Slot& slot, bool wait, PassQueryResult& out);
+  std::uint64_t begun_ = 0;  // begin() calls, orders slots for collect()
 
   std::array<Slot, kRingSize> slots_{};
   int next_ = 0;
@@ -118,13 +123,17 @@ class FrameProfiler {
   std::uint64_t frame() const { return frame_; }
 
  private:
+  struct Pending {
+    FrameStats stats;
+    std::size_t awaiting = 0;             // scopes whose GPU results are still missing
+    std::vector<std::string> top_level;   // scopes begun while no other was open
+    bool ended = false;
+  };
   void collect(bool wait);
 
   std::map<std::string, PassQuery> queries_;
-  std::map<std::uint64_t, FrameStats> in_flight_;  // by frame number
-  std::map<std::uint64_t, std::size_t> awaiting_;  // frame -> scopes whose GPU results are missing
-  std::vector<std::string> top_level_;             // scopes begun while no other was open
-  int open_ = 0;
+  std::map<std::uint64_t, Pending> in_flight_;  // by frame number
+  std::vector<std::string> open_;              // scopes currently open, innermost last
   std::uint64_t frame_ = 0;
   double frame_start_ms_ = 0.0;
   std::optional<FrameStats> latest_;

@@ -7,6 +7,7 @@
 #include <sylva/core/result.hpp>
 #include <sylva/render/camera.hpp>
 #include <sylva/render/lighting.hpp>
+#include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/render/shader_library.hpp>
 #include <sylva/render/vertex_array.hpp>
 
@@ -22,15 +23,17 @@ class SkyRenderer {
   static Result<SkyRenderer> create();
   SkyRenderer() = default;
 
-  // Draws into the bound framebuffer (viewport already set). Leaves depth writes off and
-  // restores the depth function to GL_GREATER.
-  void draw(const Camera& camera, const Lighting& lighting);
+  // Draws into the bound framebuffer (viewport already set) with GL_GEQUAL and no depth
+  // writes, then restores GL_GREATER and depth writes. Updates its own LightingUniforms from
+  // `lighting` and leaves them bound at kLightingBinding.
+  void draw(const Camera& camera, const Lighting& lighting, double time = 0.0);
 
   Program& program() { return program_; }
 
  private:
   Program program_;
   VertexArray vao_;
+  LightingUniforms uniforms_;
 };
 
 }  // namespace sylva::render

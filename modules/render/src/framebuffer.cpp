@@ -1,0 +1,160 @@
+// Render targets with float depth and optional MSAA resolve (framebuffer.hpp).
+#include <sylva/render/framebuffer.hpp>
+
+#include <sylva/core/assert.hpp>
+
+namespace sylva::render {
+namespace {
+
+const char* status_name(GLenum status) {
+  switch (status) {
+    case GL_FRAMEBUFFER_UNDEFINED: return "GL_FRAMEBUFFER_UNDEFINED";
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: return "GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT";
+    case GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER";
+    case GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER: return "GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER";
+    case GL_FRAMEBUFFER_UNSUPPORTED: return "GL_FRAMEBUFFER_UNSUPPORTED";
+    case GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE: return "GL_FRAMEBUFFER_INCOMPLETE_MULTISAMPLE";
+    case GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS: return "GL_FRAMEBUFFER_INCOMPLETE_LAYER_TARGETS";
+    default: return "unknown framebuffer status";
+  }
+}
+
+GLuint create_fbo() {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  return id;
+}
+
+// Attaches colour textures and depth, sets draw buffers and checks completeness.
+Status attach(GLuint fbo, const std::vector<Texture>& color, const Texture& depth, const char* what) {
+  std::vector<GLenum> draw_buffers;
+  for (std::size_t i = 0; i < color.size(); ++i) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+    glNamedFramebufferTexture(fbo, attachment, color[i].id(), 0);
+    draw_buffers.push_back(attachment);
+  }
+  if (depth) glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth.id(), 0);
+  if (draw_buffers.empty()) {
+    glNamedFramebufferDrawBuffer(fbo, GL_NONE);
+    glNamedFramebufferReadBuffer(fbo, GL_NONE);
+  } else {
+    glNamedFramebufferDrawBuffers(fbo, static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
+    glNamedFramebufferReadBuffer(fbo, GL_COLOR_ATTACHMENT0);
+  }
+  const GLenum status = glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    return make_error(ErrorCode::kGl, fmt::format("{} framebuffer incomplete: {}", what, status_name(status)));
+  }
+  return ok_status();
+}
+
+}  // namespace
+
+Result<Framebuffer> Framebuffer::create(const FramebufferDesc& desc) {
+  GLint max_w = 0;
+  GLint max_h = 0;
+  GLint max_samples = 0;
+  GLint max_attachments = 0;
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_WIDTH, &max_w);
+  glGetIntegerv(GL_MAX_FRAMEBUFFER_HEIGHT, &max_h);
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  glGetIntegerv(GL_MAX_COLOR_ATTACHMENTS, &max_attachments);
+  if (desc.width < 1 || desc.height < 1) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("framebuffer size {}x{} must be at least 1x1", desc.width, desc.height));
+  }
+  if (desc.width > max_w || desc.height > max_h) {
+    return make_error(ErrorCode::kLimit, fmt::format("framebuffer {}x{} exceeds the GL limit {}x{}", desc.width,
+                                                     desc.height, max_w, max_h));
+  }
+  if (desc.samples < 0 || desc.samples > max_samples) {
+    return make_error(ErrorCode::kLimit, fmt::format("framebuffer samples={} outside 0..{}", desc.samples, max_samples));
+  }
+  if (static_cast<GLint>(desc.color_formats.size()) > max_attachments) {
+    return make_error(ErrorCode::kLimit, fmt::format("{} colour attachments exceed GL_MAX_COLOR_ATTACHMENTS {}",
+                                                     desc.color_formats.size(), max_attachments));
+  }
+  Framebuffer fb;
+  fb.desc_ = desc;
+  fb.fbo_ = GlHandle<FramebufferDeleter>(create_fbo());
+  const bool msaa = desc.samples > 1;
+  for (GLenum format : desc.color_formats) {
+    fb.color_.push_back(msaa ? Texture::create_2d_multisample(desc.width, desc.height, format, desc.samples)
+                             : Texture::create_2d(desc.width, desc.height, format));
+  }
+  if (desc.depth_format != GL_NONE) {
+    fb.depth_ = msaa ? Texture::create_2d_multisample(desc.width, desc.height, desc.depth_format, desc.samples)
+                     : Texture::create_2d(desc.width, desc.height, desc.depth_format);
+  }
+  SYLVA_TRY(attach(fb.fbo_.get(), fb.color_, fb.depth_, msaa ? "MSAA" : "single-sample"));
+  if (msaa) {
+    fb.resolve_fbo_ = GlHandle<FramebufferDeleter>(create_fbo());
+    for (GLenum format : desc.color_formats) {
+      fb.resolve_color_.push_back(Texture::create_2d(desc.width, desc.height, format));
+    }
+    if (desc.depth_format != GL_NONE) fb.resolve_depth_ = Texture::create_2d(desc.width, desc.height, desc.depth_format);
+    SYLVA_TRY(attach(fb.resolve_fbo_.get(), fb.resolve_color_, fb.resolve_depth_, "MSAA resolve"));
+  }
+  return fb;
+}
+
+void Framebuffer::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, id());
+  glViewport(0, 0, desc_.width, desc_.height);
+}
+
+void Framebuffer::bind_default(int width, int height) {
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, width, height);
+}
+
+void Framebuffer::clear(const glm::vec4& color, float depth) const {
+  // Clears obey the write masks; force them on and restore them afterwards.
+  GLboolean depth_mask = GL_TRUE;
+  GLboolean color_mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
+  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  for (std::size_t i = 0; i < color_.size(); ++i) {
+    glClearNamedFramebufferfv(id(), GL_COLOR, static_cast<GLint>(i), &color.x);
+  }
+  if (depth_) glClearNamedFramebufferfv(id(), GL_DEPTH, 0, &depth);
+  glDepthMask(depth_mask);
+  glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
+}
+
+void Framebuffer::resolve() const {
+  if (!multisampled()) return;
+  const GLint w = desc_.width;
+  const GLint h = desc_.height;
+  for (std::size_t i = 0; i < color_.size(); ++i) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
+    glNamedFramebufferReadBuffer(id(), attachment);
+    glNamedFramebufferDrawBuffer(resolve_fbo_.get(), attachment);
+    glBlitNamedFramebuffer(id(), resolve_fbo_.get(), 0, 0, w, h, 0, 0, w, h, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  }
+  if (depth_) {
+    glBlitNamedFramebuffer(id(), resolve_fbo_.get(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+  }
+  if (!color_.empty()) {
+    std::vector<GLenum> draw_buffers;
+    for (std::size_t i = 0; i < color_.size(); ++i) draw_buffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+    glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0);
+    glNamedFramebufferDrawBuffers(resolve_fbo_.get(), static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
+  }
+}
+
+const Texture& Framebuffer::color_texture(int i) const {
+  const std::vector<Texture>& list = multisampled() ? resolve_color_ : color_;
+  SYLVA_ASSERT(i >= 0 && i < static_cast<int>(list.size()), "colour attachment {} of {}", i, list.size());
+  return list[static_cast<std::size_t>(i)];
+}
+
+const Texture& Framebuffer::depth_texture() const { return multisampled() ? resolve_depth_ : depth_; }
+
+GLuint Framebuffer::read_id() const { return multisampled() ? resolve_fbo_.get() : fbo_.get(); }
+
+}  // namespace sylva::render
+
