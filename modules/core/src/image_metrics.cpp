@@ -46,7 +46,7 @@ constexpr double kSigma = 1.5;
 constexpr double kK1 = 0.01;
 constexpr double kK2 = 0.03;
 
-std::array<float, kWindow> gaussian_taps() {
+std::array<double, kWindow> gaussian_taps() {
   std::array<double, kWindow> w{};
   double sum = 0.0;
   for (int i = 0; i < kWindow; ++i) {
@@ -54,8 +54,8 @@ std::array<float, kWindow> gaussian_taps() {
     w[static_cast<std::size_t>(i)] = std::exp(-(x * x) / (2.0 * kSigma * kSigma));
     sum += w[static_cast<std::size_t>(i)];
   }
-  std::array<float, kWindow> taps{};
-  for (int i = 0; i < kWindow; ++i) taps[static_cast<std::size_t>(i)] = static_cast<float>(w[static_cast<std::size_t>(i)] / sum);
+  std::array<double, kWindow> taps{};
+  for (int i = 0; i < kWindow; ++i) taps[static_cast<std::size_t>(i)] = w[static_cast<std::size_t>(i)] / sum;
   return taps;
 }
 
@@ -97,33 +97,34 @@ double plane_mean(const Plane& p) {
 }
 
 // Separable Gaussian filtering of the five moments x, y, x^2, y^2, xy and the SSIM map of one
-// plane pair. The planes are shifted by their global means first so that the variance terms
-// E[x^2] - E[x]^2 do not cancel catastrophically in float.
+// plane pair, accumulated in double. The planes are shifted by their global means first so that
+// the variance terms E[x^2] - E[x]^2 do not cancel catastrophically, and rounding-negative
+// variances are clamped to 0 so HDR values stay finite.
 std::vector<float> ssim_plane(const Plane& px, const Plane& py, SsimBorder border, double dynamic_range,
                               int out_w, int out_h) {
-  static const std::array<float, kWindow> taps = gaussian_taps();
+  static const std::array<double, kWindow> taps = gaussian_taps();
   const int w = px.width;
   const int h = px.height;
-  const float ox = static_cast<float>(plane_mean(px));
-  const float oy = static_cast<float>(plane_mean(py));
+  const double ox = plane_mean(px);
+  const double oy = plane_mean(py);
   const bool valid = border == SsimBorder::kValid;
   // Output pixel (u, v) is centred on input (u + shift, v + shift).
   const int shift = valid ? kRadius : 0;
 
   // Horizontal pass: 5 moments for out_w columns x h rows.
   const std::size_t hsize = static_cast<std::size_t>(out_w) * static_cast<std::size_t>(h);
-  std::array<std::vector<float>, 5> hm;
-  for (auto& m : hm) m.assign(hsize, 0.0f);
+  std::array<std::vector<double>, 5> hm;
+  for (auto& m : hm) m.assign(hsize, 0.0);
   for (int y = 0; y < h; ++y) {
     for (int u = 0; u < out_w; ++u) {
       const int cx = u + shift;
       const int lo = std::max(-kRadius, -cx);
       const int hi = std::min(kRadius, w - 1 - cx);
-      float sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, wsum = 0;
+      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, wsum = 0;
       for (int k = lo; k <= hi; ++k) {
-        const float t = taps[static_cast<std::size_t>(k + kRadius)];
-        const float a = px.at(cx + k, y) - ox;
-        const float b = py.at(cx + k, y) - oy;
+        const double t = taps[static_cast<std::size_t>(k + kRadius)];
+        const double a = static_cast<double>(px.at(cx + k, y)) - ox;
+        const double b = static_cast<double>(py.at(cx + k, y)) - oy;
         sx += t * a;
         sy += t * b;
         sxx += t * a * a;
@@ -131,7 +132,7 @@ std::vector<float> ssim_plane(const Plane& px, const Plane& py, SsimBorder borde
         sxy += t * a * b;
         wsum += t;
       }
-      const float inv = valid ? 1.0f : 1.0f / wsum;
+      const double inv = valid ? 1.0 : 1.0 / wsum;
       const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(out_w) + static_cast<std::size_t>(u);
       hm[0][i] = sx * inv;
       hm[1][i] = sy * inv;
@@ -161,13 +162,13 @@ std::vector<float> ssim_plane(const Plane& px, const Plane& py, SsimBorder borde
         for (double& q : m) q /= wsum;
       const double mx = m[0] + ox;
       const double my = m[1] + oy;
-      const double vx = m[2] - m[0] * m[0];
-      const double vy = m[3] - m[1] * m[1];
+      const double vx = std::max(0.0, m[2] - m[0] * m[0]);
+      const double vy = std::max(0.0, m[3] - m[1] * m[1]);
       const double cxy = m[4] - m[0] * m[1];
       const double num = (2.0 * mx * my + c1) * (2.0 * cxy + c2);
       const double den = (mx * mx + my * my + c1) * (vx + vy + c2);
       map[static_cast<std::size_t>(v) * static_cast<std::size_t>(out_w) + static_cast<std::size_t>(u)] =
-          static_cast<float>(num / den);
+          static_cast<float>(std::clamp(num / den, -1.0, 1.0));
     }
   }
   return map;
