@@ -1,0 +1,82 @@
+#pragma once
+// Per-blade culling and LOD formulas (CPU reference; shaders/cull.comp evaluates the same
+// expressions and the GL tests compare the two).
+//
+// Order of tests for one blade (the first that fails names the reason):
+//  1. density   rank >= density_scale                       (quality knob; seed 001 eq. 4.1 reads
+//               a random r1 against the map, here the map already set the count, see generator.hpp)
+//  2. distance  rank >= keep(d) * density_scale, d = |root - camera|, where
+//               keep(d) = 1 before thinning_start, falls linearly to thinning_min_keep at
+//               near_distance, and is 0 beyond (seed 001 eq. 4.3: start 0 and min_keep 0 give
+//               exactly 1 - d/d_max). Ranks are low-discrepancy within a tile, so the survivors
+//               stay evenly spread, and each blade has a fixed fade distance: no flicker.
+//  3. frustum   the blade's bounding sphere (hull of v0, v1, v2 plus half its drawn width) is
+//               outside one of the four side planes or behind the camera. Conservative: it
+//               never removes a visible pixel.
+//  4. orientation  |dot(view dir, width dir)| > orientation_threshold (Jahrmann & Wimmer 2017
+//               §5.1 use 0.9) AND the edge-on width w * sqrt(1 - dot^2) projects to fewer than
+//               orientation_max_px pixels; the second clause (ours) keeps near blades whose
+//               sliver is still visible, so the image changes by less than a pixel per blade.
+// Survivors are widened by 1 / keep (blend width_compensation, at most 4x) so that thinning
+// keeps the covered area, which is what the eye integrates at a distance.
+//
+// Tessellation: segments = clamp(ceil(projected blade height [px] / pixels_per_segment), 1,
+// max_tess_level), i.e. seed 001 eq. 2.3 driven by screen size instead of linear distance.
+
+#include <sylva/grass/blade.hpp>
+#include <sylva/grass/generator.hpp>
+#include <sylva/grass/settings.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace sylva::grass {
+
+// What the cull stage sees of the camera, in BladeSet-local coordinates.
+struct CullView {
+  glm::vec4 planes[4];          // left, right, bottom, top; inside: dot(p, n) + w >= 0, |n| = 1
+  glm::vec3 camera{0.0f};       // camera position
+  glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit view direction
+  float pixels_per_radian = 1.0f;        // viewport_height / (2 tan(fov_y / 2))
+};
+
+// From a BladeSet-local view-projection matrix (any depth convention: only the side planes are
+// taken from it) and the camera in the same frame.
+CullView make_cull_view(const glm::mat4& view_projection, const glm::vec3& camera, const glm::vec3& forward,
+                        float viewport_height_px, float fov_y_radians);
+
+enum class CullResult : std::uint8_t { kVisible = 0, kDensity, kDistance, kFrustum, kOrientation };
+const char* to_string(CullResult result);
+
+// keep(d) of step 2 (without density_scale), in [0, 1].
+float distance_keep(float distance, const CullSettings& settings);
+// Width multiplier for a blade that survived with keep fraction `keep` (> 0).
+float width_scale(float keep, const CullSettings& settings);
+
+CullResult cull_blade(const Blade& blade, const CullView& view, const CullSettings& settings);
+
+// Segments along the blade for the tessellator, >= 1.
+int tessellation_segments(const Blade& blade, const CullView& view, const CullSettings& settings);
+
+// Tile-level test (CPU, before any blade is looked at): the tile's box intersects the frustum
+// and its nearest point is closer than near_distance.
+bool tile_visible(const GrassTile& tile, const CullView& view, const CullSettings& settings);
+
+// Tallies of one pass, by reason.
+struct CullCounts {
+  std::uint64_t considered = 0;
+  std::uint64_t visible = 0;
+  std::uint64_t density = 0;
+  std::uint64_t distance = 0;
+  std::uint64_t frustum = 0;
+  std::uint64_t orientation = 0;
+  std::uint64_t segments = 0;  // sum of tessellation segments of the visible blades
+  void add(CullResult r);
+};
+
+// cull_blade over every blade of the visible tiles (tiles failing tile_visible count as frustum
+// or distance culls for all their blades).
+CullCounts cull_blade_set(const BladeSet& set, const CullView& view, const CullSettings& settings);
+
+}  // namespace sylva::grass

@@ -1,0 +1,149 @@
+#pragma once
+// Settings of a grass field, each struct listing its fields once through visit() (DESIGN.md §2).
+// Units are SI (metres, seconds, radians unless a field says degrees). The ranges in visit()
+// are the ranges the module is tested over; values outside them are rejected by the parameter
+// system with a message naming the path (e.g. "grass.blade.height_max").
+//
+// What a change needs (DESIGN.md §2b): GrassFieldSettings and BladeSettings -> regenerate the
+// blades (CPU + GPU buffers); PhysicsSettings, CullSettings, ShadingSettings, FarFieldSettings
+// -> nothing, they are read every frame.
+
+#include <sylva/core/params.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+
+namespace sylva::grass {
+
+// Placement: how many blades, where (seed 001 §2.6 "Density": blades per unit area times the
+// density map; §3.4 tiles). Tiles are anchored to the world grid, so a blade's identity depends
+// only on (seed, tile, index), never on the camera or the field's extent.
+struct GrassFieldSettings {
+  float density = 300.0f;     // blades per square metre where the density map is 1 [1/m^2]
+  float tile_size = 4.0f;     // side of a placement / culling tile [m]
+  std::uint32_t seed = 1;     // changes every blade of the field
+  float up_normal_blend = 0.0f;  // 0: blades grow along world up on height fields; 1: along the ground normal
+
+  template <class V>
+  void visit(V& v) {
+    v(density, "density", {.min = 0.0f, .max = 5000.0f, .unit = "1/m^2",
+                           .help = "Blades per square metre where the density map is white", .rebuild = Rebuild::kOffline});
+    v(tile_size, "tile_size", {.min = 0.25f, .max = 64.0f, .unit = "m",
+                               .help = "Side of a placement and culling tile", .rebuild = Rebuild::kOffline});
+    v(seed, "seed", {.min = 0.0f, .max = 4294967295.0, .help = "Random seed of the field", .rebuild = Rebuild::kOffline});
+    v(up_normal_blend, "up_normal_blend", {.min = 0.0f, .max = 1.0f,
+                                           .help = "On height fields: 0 = blades grow vertically, 1 = along the ground normal", .rebuild = Rebuild::kOffline});
+  }
+};
+
+// Per-blade random ranges (seed 001 §3.5 table of r0..r7, eq. 2.1 and 2.2; Jahrmann & Wimmer
+// 2017 §3 blade model: height, width, bend, stiffness).
+struct BladeSettings {
+  float height_min = 0.25f;   // [m] before the height map scales it
+  float height_max = 0.55f;   // [m]
+  float width_min = 0.008f;   // [m] at the root
+  float width_max = 0.016f;   // [m]
+  float min_height = 0.02f;   // a painted height map never makes a blade shorter than this [m]
+  float bend = 0.3f;          // rest bend: the tip's sideways offset as a share of the height (seed's b)
+  float stiffness_min = 40.0f;   // recovery rate towards the rest pose [1/s]
+  float stiffness_max = 80.0f;   // [1/s]
+  float height_width_correlation = 0.5f;  // 0: independent randoms; 1: seed 001's single random for both
+  glm::vec3 base_color{0.045f, 0.16f, 0.035f};  // linear RGB at the root
+  glm::vec3 tip_color{0.28f, 0.55f, 0.12f};     // linear RGB at the tip
+  float color_variation = 0.15f;  // per-blade multiplicative jitter of each channel (seed's r5..r7)
+
+  template <class V>
+  void visit(V& v) {
+    v(height_min, "height_min", {.min = 0.01f, .max = 10.0f, .unit = "m", .help = "Shortest blade", .rebuild = Rebuild::kOffline});
+    v(height_max, "height_max", {.min = 0.01f, .max = 10.0f, .unit = "m", .help = "Tallest blade", .rebuild = Rebuild::kOffline});
+    v(width_min, "width_min", {.min = 0.0005f, .max = 1.0f, .unit = "m", .help = "Narrowest blade at the root", .rebuild = Rebuild::kOffline});
+    v(width_max, "width_max", {.min = 0.0005f, .max = 1.0f, .unit = "m", .help = "Widest blade at the root", .rebuild = Rebuild::kOffline});
+    v(min_height, "min_height", {.min = 0.001f, .max = 1.0f, .unit = "m",
+                                 .help = "Lower bound on height after the height map scales it", .rebuild = Rebuild::kOffline});
+    v(bend, "bend", {.min = 0.0f, .max = 0.95f, .help = "Rest bend: tip offset as a share of the height", .rebuild = Rebuild::kOffline});
+    v(stiffness_min, "stiffness_min", {.min = 0.0f, .max = 1.0e6f, .unit = "1/s", .help = "Softest blade", .rebuild = Rebuild::kOffline});
+    v(stiffness_max, "stiffness_max", {.min = 0.0f, .max = 1.0e6f, .unit = "1/s", .help = "Stiffest blade", .rebuild = Rebuild::kOffline});
+    v(height_width_correlation, "height_width_correlation",
+      {.min = 0.0f, .max = 1.0f, .help = "1 = tall blades are wide (seed 001), 0 = independent", .rebuild = Rebuild::kOffline});
+    v(base_color, "base_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the root", .rebuild = Rebuild::kOffline});
+    v(tip_color, "tip_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the tip", .rebuild = Rebuild::kOffline});
+    v(color_variation, "color_variation", {.min = 0.0f, .max = 1.0f, .help = "Per-blade colour jitter", .rebuild = Rebuild::kOffline});
+  }
+};
+
+// Blade physics after Jahrmann & Wimmer 2017 §4, integrated unconditionally stably (see
+// physics.hpp for the scheme).
+struct PhysicsSettings {
+  float gravity = 9.81f;         // environmental gravity [m/s^2]
+  float front_gravity = 0.25f;   // share of |g| pulling along the blade's front (paper: 1/4)
+  float wind_response = 6.0f;    // tip speed per wind speed in the overdamped model [dimensionless]
+  float collision_recovery = 1.5f;  // time constant of the decay of a blade's collision strength [s]
+  float max_substep = 1.0f / 60.0f; // longest sub-step [s]; accuracy only, stability never depends on it
+  int max_substeps = 4;          // upper bound on sub-steps per frame (cost bound)
+
+  template <class V>
+  void visit(V& v) {
+    v(gravity, "gravity", {.min = 0.0f, .max = 100.0f, .unit = "m/s^2", .help = "Gravity pulling blade tips down"});
+    v(front_gravity, "front_gravity", {.min = 0.0f, .max = 4.0f, .help = "Share of gravity along the blade front"});
+    v(wind_response, "wind_response", {.min = 0.0f, .max = 100.0f, .help = "How strongly wind pushes the tips"});
+    v(collision_recovery, "collision_recovery", {.min = 0.01f, .max = 60.0f, .unit = "s",
+                                                 .help = "How long a trampled blade stays weakened"});
+    v(max_substep, "max_substep", {.min = 0.001f, .max = 1.0f, .unit = "s", .help = "Longest physics sub-step"});
+    v(max_substeps, "max_substeps", {.min = 1.0f, .max = 64.0f, .help = "Most sub-steps per frame"});
+  }
+};
+
+// Culling and blade LOD (seed 001 §3.7 eq. 2.3 and 4.3, §3.12; Jahrmann & Wimmer 2017 §5).
+struct CullSettings {
+  bool frustum = true;
+  bool orientation = true;
+  float orientation_threshold = 0.9f;  // |dot(view, width dir)| above this is "edge-on" (paper: 0.9)
+  float orientation_max_px = 0.75f;    // ... and only culled when its edge-on width is below this [px]
+  bool distance_thinning = true;
+  float near_distance = 50.0f;         // blades end here (d_max of seed 001) [m]
+  float thinning_start = 12.0f;        // thinning starts here; 0 gives seed 001's 1 - d/d_max [m]
+  float thinning_min_keep = 0.08f;     // share of blades still kept just before near_distance
+  float width_compensation = 1.0f;     // 0..1: widen survivors by 1/keep so coverage stays
+  float density_scale = 1.0f;          // global quality knob: share of each tile's blades used
+  float max_tess_level = 8.0f;         // most segments along a blade (seed's smoothness factor s)
+  float pixels_per_segment = 6.0f;     // one segment per this many projected pixels of blade height
+
+  template <class V>
+  void visit(V& v) {
+    v(frustum, "frustum", {.help = "Cull blades outside the view frustum"});
+    v(orientation, "orientation", {.help = "Cull thin edge-on blades"});
+    v(orientation_threshold, "orientation_threshold", {.min = 0.0f, .max = 1.0f,
+                                                       .help = "|cos| between view and blade width above which a blade is edge-on"});
+    v(orientation_max_px, "orientation_max_px", {.min = 0.0f, .max = 100.0f, .unit = "px",
+                                                 .help = "Edge-on blades wider than this on screen are kept"});
+    v(distance_thinning, "distance_thinning", {.help = "Thin blades out with distance"});
+    v(near_distance, "near_distance", {.min = 0.5f, .max = 5000.0f, .unit = "m", .help = "Where blades end"});
+    v(thinning_start, "thinning_start", {.min = 0.0f, .max = 5000.0f, .unit = "m", .help = "Where thinning starts"});
+    v(thinning_min_keep, "thinning_min_keep", {.min = 0.0f, .max = 1.0f, .help = "Share kept just before the end"});
+    v(width_compensation, "width_compensation", {.min = 0.0f, .max = 1.0f,
+                                                 .help = "Widen surviving blades so thinning keeps coverage"});
+    v(density_scale, "density_scale", {.min = 0.0f, .max = 1.0f, .help = "Share of blades used (quality)"});
+    v(max_tess_level, "max_tess_level", {.min = 1.0f, .max = 64.0f, .help = "Most segments per blade"});
+    v(pixels_per_segment, "pixels_per_segment", {.min = 0.5f, .max = 200.0f, .unit = "px",
+                                                 .help = "Projected blade height per segment"});
+  }
+};
+
+// Blade shading: two-sided diffuse with translucency, root darkening, per-blade colour.
+struct ShadingSettings {
+  float translucency = 0.5f;   // share of back light passing through a blade
+  float ambient = 0.35f;       // ambient light level
+  float root_occlusion = 0.7f; // how much darker the root is than the tip (0 = none)
+  float specular = 0.15f;      // strength of a soft sheen
+
+  template <class V>
+  void visit(V& v) {
+    v(translucency, "translucency", {.min = 0.0f, .max = 1.0f, .help = "Light passing through blades"});
+    v(ambient, "ambient", {.min = 0.0f, .max = 2.0f, .help = "Ambient light"});
+    v(root_occlusion, "root_occlusion", {.min = 0.0f, .max = 1.0f, .help = "Darkening towards the root"});
+    v(specular, "specular", {.min = 0.0f, .max = 1.0f, .help = "Sheen strength"});
+  }
+};
+
+}  // namespace sylva::grass

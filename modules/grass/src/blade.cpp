@@ -1,0 +1,87 @@
+#include <sylva/grass/blade.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <cmath>
+
+namespace sylva::grass {
+
+void tangent_frame(const glm::vec3& up, glm::vec3& t1, glm::vec3& t2) {
+  // Duff et al., "Building an Orthonormal Basis, Revisited" (JCGT 2017), rotated so that for
+  // up = +y the frame is (+x, -z): orientation 0 points along +x on a height field.
+  const glm::vec3 n(up.x, up.z, up.y);  // treat y as the "z" axis of the paper's frame
+  const float sign = std::copysign(1.0f, n.z);
+  const float a = -1.0f / (sign + n.z);
+  const float b = n.x * n.y * a;
+  const glm::vec3 b1(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  const glm::vec3 b2(b, sign + n.y * n.y * a, -n.y);
+  // Back to y-up coordinates.
+  t1 = glm::vec3(b1.x, b1.z, b1.y);
+  t2 = -glm::vec3(b2.x, b2.z, b2.y);
+}
+
+glm::vec3 blade_width_dir(const glm::vec3& up, float orientation) {
+  glm::vec3 t1, t2;
+  tangent_frame(up, t1, t2);
+  return std::cos(orientation) * t1 + std::sin(orientation) * t2;
+}
+
+glm::vec3 blade_front_dir(const glm::vec3& up, float orientation) {
+  return glm::normalize(glm::cross(blade_width_dir(up, orientation), up));
+}
+
+glm::vec3 bezier_point(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, float t) {
+  const glm::vec3 a = p0 + t * (p1 - p0);
+  const glm::vec3 b = p1 + t * (p2 - p1);
+  return a + t * (b - a);
+}
+
+float bezier_length(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
+  // B'(t) = 2 (A + t B) with A = p1 - p0, B = p2 - 2 p1 + p0. Length = 2 * int_0^1 |A + tB| dt,
+  // integrated in closed form in double precision.
+  const glm::dvec3 A = glm::dvec3(p1) - glm::dvec3(p0);
+  const glm::dvec3 B = glm::dvec3(p2) - 2.0 * glm::dvec3(p1) + glm::dvec3(p0);
+  const double a = glm::dot(B, B);
+  const double b = glm::dot(A, B);
+  const double c = glm::dot(A, A);
+  const double chord = glm::length(glm::dvec3(p2) - glm::dvec3(p0));
+  if (a < 1e-18 * std::max(c, 1e-30)) return static_cast<float>(chord);  // straight, uniform speed
+  // int_0^1 sqrt(a t^2 + 2 b t + c) dt with u = t + b/a, k = c/a - (b/a)^2 >= 0.
+  const double k = std::max(c / a - (b / a) * (b / a), 0.0);
+  auto F = [&](double u) {
+    const double s = std::sqrt(u * u + k);
+    const double log_term = (k > 1e-300) ? k * std::log(std::max(u + s, 1e-300)) : 0.0;
+    return 0.5 * (u * s + log_term);
+  };
+  const double u0 = b / a;
+  const double u1 = 1.0 + b / a;
+  double integral;
+  if (k <= 1e-14 * std::max(1.0, u0 * u0)) {
+    // Collinear control points: |A + tB| = sqrt(a) |u|.
+    auto G = [](double u) { return 0.5 * u * std::abs(u); };
+    integral = std::sqrt(a) * (G(u1) - G(u0));
+  } else if (u0 < 0.0 && u1 <= 0.0) {
+    // Mirror to keep u + s away from cancellation.
+    integral = std::sqrt(a) * (F(-u0) - F(-u1));
+  } else {
+    integral = std::sqrt(a) * (F(u1) - F(u0));
+  }
+  const double length = 2.0 * integral;
+  return static_cast<float>(std::isfinite(length) ? std::max(length, chord) : chord);
+}
+
+float pack_color(const glm::vec3& rgb) {
+  // 8 bits per channel in a 24-bit integer stored as an exact float value (never NaN or a
+  // denormal, so no driver or CPU path can flush or canonicalise it).
+  const glm::vec3 c = glm::clamp(rgb, 0.0f, 1.0f);
+  const auto q = [](float v) { return static_cast<std::uint32_t>(std::lround(v * 255.0f)); };
+  return static_cast<float>(q(c.r) | (q(c.g) << 8u) | (q(c.b) << 16u));
+}
+
+glm::vec3 unpack_color(float packed) {
+  const auto bits = static_cast<std::uint32_t>(std::clamp(packed, 0.0f, 16777215.0f));
+  return glm::vec3(static_cast<float>(bits & 255u), static_cast<float>((bits >> 8u) & 255u),
+                   static_cast<float>((bits >> 16u) & 255u)) / 255.0f;
+}
+
+}  // namespace sylva::grass

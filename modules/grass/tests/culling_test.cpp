@@ -1,0 +1,180 @@
+// Culling formulas: seed 001's thinning law, conservative frustum culling, orientation culling,
+// tile tests that agree with blade tests, tessellation levels.
+#include <sylva/grass/culling.hpp>
+#include <sylva/grass/generator.hpp>
+
+#include "support/fields.hpp"
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sylva::grass {
+namespace {
+
+struct View {
+  glm::mat4 vp;
+  CullView cull;
+};
+
+View make_view(const glm::vec3& eye, const glm::vec3& target, float fov_deg = 60.0f, float aspect = 16.0f / 9.0f,
+               float height_px = 144.0f) {
+  const glm::mat4 proj = glm::perspective(glm::radians(fov_deg), aspect, 0.05f, 500.0f);
+  const glm::mat4 view = glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+  View v;
+  v.vp = proj * view;
+  v.cull = make_cull_view(v.vp, eye, glm::normalize(target - eye), height_px, glm::radians(fov_deg));
+  return v;
+}
+
+BladeSet make_field(float density = 40.0f) {
+  GrassFieldSettings field;
+  field.density = density;
+  const HeightField ground = testing::make_ground(-40.0, 100.0);
+  return generate_blades(field, BladeSettings{}, GrassMaps::uniform({{0, 0}, {60, 60}}), ground, {0, 0, 0}).value();
+}
+
+TEST(GrassCulling, Seed001ThinningLaw) {
+  CullSettings s;
+  s.thinning_start = 0.0f;
+  s.thinning_min_keep = 0.0f;
+  s.near_distance = 80.0f;
+  for (float d = 0.0f; d < 100.0f; d += 3.7f) EXPECT_NEAR(distance_keep(d, s), std::max(0.0f, 1.0f - d / 80.0f), 1e-6f);
+  s.thinning_start = 20.0f;
+  s.thinning_min_keep = 0.1f;
+  EXPECT_EQ(distance_keep(10.0f, s), 1.0f);
+  EXPECT_NEAR(distance_keep(50.0f, s), 0.55f, 1e-6f);
+  EXPECT_EQ(distance_keep(80.0f, s), 0.0f);
+  s.distance_thinning = false;
+  EXPECT_EQ(distance_keep(79.0f, s), 1.0f);
+  EXPECT_EQ(distance_keep(81.0f, s), 0.0f);
+  // Width compensation keeps keep * width ~ constant until the 4x cap.
+  s.width_compensation = 1.0f;
+  EXPECT_NEAR(width_scale(0.5f, s), 2.0f, 1e-6f);
+  EXPECT_NEAR(width_scale(0.1f, s), 4.0f, 1e-6f);
+  s.width_compensation = 0.0f;
+  EXPECT_EQ(width_scale(0.1f, s), 1.0f);
+}
+
+TEST(GrassCulling, MeasuredThinningMatchesTheLaw) {
+  const BladeSet set = make_field(60.0f);
+  CullSettings s;
+  s.frustum = false;
+  s.orientation = false;
+  s.thinning_start = 5.0f;
+  s.near_distance = 40.0f;
+  s.thinning_min_keep = 0.0f;
+  const glm::vec3 cam(30.0f, 1.7f, 30.0f);
+  const View v = make_view(cam, cam + glm::vec3(0, 0, -1));
+  // Kept share in distance rings versus keep(d).
+  for (float r0 = 0.0f; r0 < 30.0f; r0 += 5.0f) {
+    int total = 0, kept = 0;
+    double keep_sum = 0.0;
+    for (const Blade& b : set.blades) {
+      const float d = glm::length(b.root() - cam);
+      if (d < r0 || d >= r0 + 5.0f) continue;
+      ++total;
+      keep_sum += distance_keep(d, s);
+      kept += cull_blade(b, v.cull, s) == CullResult::kVisible;
+    }
+    ASSERT_GT(total, 500);
+    EXPECT_NEAR(static_cast<double>(kept) / total, keep_sum / total, 0.02) << "ring " << r0;
+  }
+}
+
+TEST(GrassCulling, FrustumCullingIsConservative) {
+  const BladeSet set = make_field(30.0f);
+  CullSettings s;
+  s.orientation = false;
+  s.distance_thinning = false;
+  s.near_distance = 1000.0f;
+  const View v = make_view({30.0f, 1.7f, 30.0f}, {38.0f, 0.5f, 22.0f});
+  int culled = 0;
+  for (const Blade& b : set.blades) {
+    if (cull_blade(b, v.cull, s) != CullResult::kFrustum) continue;
+    ++culled;
+    // Every point of the blade (centre curve +- half width) is outside the view volume.
+    const glm::vec3 wd = blade_width_dir(b.up_dir(), b.orientation()) * (0.5f * b.width());
+    for (int i = 0; i <= 8; ++i) {
+      const glm::vec3 c = bezier_point(b.root(), b.control(), b.tip(), i / 8.0f);
+      for (const glm::vec3& p : {c - wd, c + wd}) {
+        const glm::vec4 clip = v.vp * glm::vec4(p, 1.0f);
+        const bool inside = clip.w > 0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
+        ASSERT_FALSE(inside) << "a frustum-culled blade has a visible point";
+      }
+    }
+  }
+  EXPECT_GT(culled, static_cast<int>(set.blades.size() / 2)) << "a typical view culls most of the field";
+}
+
+TEST(GrassCulling, OrientationCullsOnlyThinEdgeOnBlades) {
+  Blade b{};
+  b.v0 = glm::vec4(0, 0, 0, 0.0f);  // orientation 0: width along +x
+  b.v1 = glm::vec4(0, 0.4f, 0, 0.4f);
+  b.v2 = glm::vec4(0, 0.4f, 0.0f, 0.01f);
+  b.up = glm::vec4(0, 1, 0, 50.0f);
+  b.attr = glm::vec4(0.1f, 0, 0, 0);
+  CullSettings s;
+  s.frustum = false;
+  s.distance_thinning = false;
+  // Looking along +x from 20 m: edge-on and thin -> culled.
+  View far = make_view({-20, 0.2f, 0}, {0, 0.2f, 0});
+  EXPECT_EQ(cull_blade(b, far.cull, s), CullResult::kOrientation);
+  // Looking along +z from 20 m: face-on -> kept.
+  View face = make_view({0, 0.2f, -20}, {0, 0.2f, 0});
+  EXPECT_EQ(cull_blade(b, face.cull, s), CullResult::kVisible);
+  // Edge-on but close at a high resolution: the sliver is wider than orientation_max_px -> kept.
+  View near = make_view({-0.3f, 0.2f, 0.02f}, {0, 0.2f, 0}, 60.0f, 16.0f / 9.0f, 2160.0f);
+  EXPECT_EQ(cull_blade(b, near.cull, s), CullResult::kVisible);
+}
+
+TEST(GrassCulling, TileTestNeverHidesAVisibleBlade) {
+  const BladeSet set = make_field(20.0f);
+  CullSettings s;
+  s.near_distance = 25.0f;
+  for (const glm::vec3& target : {glm::vec3(50, 0, 50), glm::vec3(0, 0, 30), glm::vec3(30, -10, 30)}) {
+    const View v = make_view({30.0f, 3.0f, 30.0f}, target);
+    int tiles_culled = 0;
+    for (const GrassTile& t : set.tiles) {
+      if (tile_visible(t, v.cull, s)) continue;
+      ++tiles_culled;
+      for (std::uint32_t i = t.first; i < t.first + t.count; ++i) {
+        const CullResult r = cull_blade(set.blades[i], v.cull, s);
+        ASSERT_TRUE(r == CullResult::kFrustum || r == CullResult::kDistance || r == CullResult::kDensity) << to_string(r);
+      }
+    }
+    EXPECT_GT(tiles_culled, 0);
+  }
+  const View v = make_view({30.0f, 3.0f, 30.0f}, {50, 0, 50});
+  const CullCounts counts = cull_blade_set(set, v.cull, s);
+  EXPECT_EQ(counts.considered, set.blades.size());
+  EXPECT_EQ(counts.visible + counts.density + counts.distance + counts.frustum + counts.orientation, counts.considered);
+  EXPECT_GT(counts.visible, 0u);
+  EXPECT_GE(counts.segments, counts.visible);
+}
+
+TEST(GrassCulling, TessellationFollowsProjectedSize) {
+  Blade b{};
+  b.v0 = glm::vec4(0, 0, 0, 0);
+  b.v1 = glm::vec4(0, 0.5f, 0, 0.5f);
+  b.v2 = glm::vec4(0, 0.5f, 0, 0.01f);
+  b.up = glm::vec4(0, 1, 0, 1);
+  CullSettings s;
+  s.pixels_per_segment = 5.0f;
+  s.max_tess_level = 8.0f;
+  int prev = 100;
+  for (const float d : {0.3f, 1.0f, 3.0f, 10.0f, 30.0f, 100.0f}) {
+    const View v = make_view({0, 0.25f, d}, {0, 0.25f, 0});
+    const int n = tessellation_segments(b, v.cull, s);
+    EXPECT_LE(n, prev);
+    EXPECT_GE(n, 1);
+    EXPECT_LE(n, 8);
+    const float px = 0.5f * v.cull.pixels_per_radian / d;
+    EXPECT_EQ(n, std::clamp(static_cast<int>(std::ceil(px / 5.0f)), 1, 8)) << d;
+    prev = n;
+  }
+}
+
+}  // namespace
+}  // namespace sylva::grass

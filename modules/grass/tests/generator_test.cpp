@@ -1,0 +1,247 @@
+// Blade placement: density fidelity (count per tile = density-map integral within +-1 %),
+// determinism, world anchoring, per-blade ranges, meshes and bad input.
+#include <sylva/grass/generator.hpp>
+#include <sylva/grass/physics.hpp>
+
+#include "support/fields.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <numbers>
+#include <tuple>
+
+namespace sylva::grass {
+namespace {
+
+struct Fixture {
+  GrassFieldSettings field;
+  BladeSettings blade;
+  Image density = testing::make_density_image(48, 40);
+  HeightField ground = testing::make_ground(-40.0, 120.0);
+  Rect rect{{-3.0, 2.0}, {93.0, 82.0}};
+  GrassMaps maps() const { return GrassMaps::from_images(rect, &density, nullptr, nullptr).value(); }
+};
+
+TEST(GrassGenerator, DensityFidelityPerTileAndTotal) {
+  Fixture f;
+  f.field.density = 60.0f;
+  f.field.tile_size = 4.0f;
+  const GrassMaps maps = f.maps();
+  auto set = generate_blades(f.field, f.blade, maps, f.ground, {0, 0, 0});
+  ASSERT_TRUE(set.ok()) << set.error().message;
+  int big_tiles = 0;
+  for (const GrassTile& t : set->tiles) {
+    // Every tile: within one blade of its density-map integral (stochastic rounding).
+    EXPECT_LT(std::abs(static_cast<double>(t.count) - t.expected), 1.0) << t.key.x << "," << t.key.z;
+    EXPECT_NEAR(t.expected, tile_expected_blades(f.field, maps, t.key), 1e-9);
+    if (t.expected >= 100.0) {
+      ++big_tiles;
+      EXPECT_LE(std::abs(t.count - t.expected), 0.01 * t.expected);
+    }
+  }
+  EXPECT_GT(big_tiles, 100);
+  const double expected = maps.density_integral(maps.rect()) * f.field.density;
+  EXPECT_NEAR(set->expected_total(), expected, 1e-6 * expected);
+  EXPECT_NEAR(static_cast<double>(set->blades.size()), expected, 0.01 * expected);
+  // The empty strip of the map (z in 0.8..0.9 of the rectangle, minus the bilinear ramp) is bare.
+  for (const Blade& b : set->blades) {
+    const double z = b.root().z;
+    EXPECT_FALSE(z > f.rect.min.y + 0.82 * 80.0 && z < f.rect.min.y + 0.88 * 80.0) << z;
+  }
+}
+
+TEST(GrassGenerator, BladesFollowTheDensityInsideTiles) {
+  // One 16 m tile over a 16-pixel map whose density is a sharp left/right split: the sub-tile
+  // CDF must put the blades where the map says, not uniformly over the tile.
+  GrassFieldSettings field;
+  field.tile_size = 16.0f;
+  field.density = 200.0f;
+  Image img(16, 16, 1);
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 16; ++i) img.at(i, j) = i < 4 ? 1.0f : 0.1f;
+  const GrassMaps maps = GrassMaps::from_images({{0, 0}, {16, 16}}, &img, nullptr, nullptr).value();
+  const HeightField ground(17, 17, 1.0);
+  std::vector<Blade> blades;
+  generate_tile(field, BladeSettings{}, maps, ground, {0, 0, 0}, {0, 0, 0}, blades);
+  // Compare counts in 4 x 4 cells with the exact cell integrals.
+  for (int cz = 0; cz < 4; ++cz) {
+    for (int cx = 0; cx < 4; ++cx) {
+      const Rect cell{{cx * 4.0, cz * 4.0}, {cx * 4.0 + 4.0, cz * 4.0 + 4.0}};
+      const double expected = maps.density_integral(cell) * field.density;
+      int count = 0;
+      for (const Blade& b : blades) {
+        const glm::vec3 p = b.root();
+        if (p.x >= cell.min.x && p.x < cell.max.x && p.z >= cell.min.y && p.z < cell.max.y) ++count;
+      }
+      EXPECT_NEAR(count, expected, 0.03 * expected + 2.0) << "cell " << cx << "," << cz;
+    }
+  }
+}
+
+TEST(GrassGenerator, DeterministicBitForBit) {
+  Fixture f;
+  f.field.density = 20.0f;
+  const GrassMaps maps = f.maps();
+  auto a = generate_blades(f.field, f.blade, maps, f.ground, {1.0, 2.0, 3.0});
+  auto b = generate_blades(f.field, f.blade, maps, f.ground, {1.0, 2.0, 3.0});
+  ASSERT_TRUE(a.ok() && b.ok());
+  ASSERT_EQ(a->blades.size(), b->blades.size());
+  EXPECT_EQ(std::memcmp(a->blades.data(), b->blades.data(), a->blades.size() * sizeof(Blade)), 0);
+  f.field.seed = 2;
+  auto c = generate_blades(f.field, f.blade, maps, f.ground, {1.0, 2.0, 3.0});
+  ASSERT_TRUE(c.ok());
+  int same = 0;
+  const std::size_t n = std::min(a->blades.size(), c->blades.size());
+  for (std::size_t i = 0; i < n; ++i) same += a->blades[i].v0 == c->blades[i].v0;
+  EXPECT_LT(same, static_cast<int>(n / 100)) << "a new seed must move the blades";
+}
+
+TEST(GrassGenerator, WorldAnchoredAcrossExtentsAndOrigins) {
+  // Field A covers [0, 32]^2, field B [-16, 48]^2 with the same (uniform) density and a different
+  // origin: every tile inside both must hold the same blades at the same world positions.
+  GrassFieldSettings field;
+  field.density = 30.0f;
+  const BladeSettings blade;
+  const HeightField ground = testing::make_ground(-40.0, 80.0);
+  const GrassMaps ma = GrassMaps::uniform({{0, 0}, {32, 32}});
+  const GrassMaps mb = GrassMaps::uniform({{-16, -16}, {48, 48}});
+  const glm::dvec3 oa(0, 0, 0), ob(1.0e5, -20.0, -3.0e4);
+  auto a = generate_blades(field, blade, ma, ground, oa);
+  auto b = generate_blades(field, blade, mb, ground, ob);
+  ASSERT_TRUE(a.ok() && b.ok());
+  std::map<std::tuple<int, int>, const GrassTile*> tiles_b;
+  for (const GrassTile& t : b->tiles) tiles_b[{t.key.x, t.key.z}] = &t;
+  int compared = 0;
+  for (const GrassTile& ta : a->tiles) {
+    const GrassTile* tb = tiles_b.at({ta.key.x, ta.key.z});
+    ASSERT_EQ(ta.count, tb->count);
+    for (std::uint32_t i = 0; i < ta.count; ++i) {
+      const Blade& ba = a->blades[ta.first + i];
+      const Blade& bb = b->blades[tb->first + i];
+      const glm::dvec3 wa = oa + glm::dvec3(ba.root());
+      const glm::dvec3 wb = ob + glm::dvec3(bb.root());
+      ASSERT_LT(glm::length(wa - wb), 0.02) << "tile " << ta.key.x << "," << ta.key.z << " blade " << i;
+      EXPECT_EQ(ba.orientation(), bb.orientation());
+      EXPECT_EQ(ba.height(), bb.height());
+      EXPECT_EQ(ba.width(), bb.width());
+      EXPECT_EQ(ba.stiffness(), bb.stiffness());
+      EXPECT_EQ(ba.attr, bb.attr);
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 20000);
+}
+
+TEST(GrassGenerator, PerBladeRangesAndRestPose) {
+  Fixture f;
+  f.field.density = 15.0f;
+  Image height(4, 4, 1);
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) height.at(i, j) = 0.5f;
+  const GrassMaps maps = GrassMaps::from_images(f.rect, &f.density, &height, nullptr).value();
+  auto set = generate_blades(f.field, f.blade, maps, f.ground, {0, 0, 0});
+  ASSERT_TRUE(set.ok());
+  ASSERT_GT(set->blades.size(), 10000u);
+  double mean_orient = 0.0;
+  for (const Blade& b : set->blades) {
+    EXPECT_GE(b.orientation(), 0.0f);
+    EXPECT_LT(b.orientation(), 2.0f * std::numbers::pi_v<float>);
+    EXPECT_GE(b.height(), 0.5f * f.blade.height_min - 1e-6f);
+    EXPECT_LE(b.height(), 0.5f * f.blade.height_max + 1e-6f);
+    EXPECT_GE(b.width(), 0.5f * f.blade.width_min - 1e-7f);
+    EXPECT_LE(b.width(), 0.5f * f.blade.width_max + 1e-7f);
+    EXPECT_GE(b.stiffness(), f.blade.stiffness_min);
+    EXPECT_LE(b.stiffness(), f.blade.stiffness_max);
+    EXPECT_GE(b.rank(), 0.0f);
+    EXPECT_LT(b.rank(), 1.0f);
+    // Root on the ground, rest pose valid and equal to the current pose.
+    EXPECT_NEAR(b.root().y, f.ground.height(b.root().x, b.root().z), 1e-4);
+    const BladeInvariants inv = check_blade(b);
+    EXPECT_TRUE(inv.finite);
+    EXPECT_LT(inv.length_error, 1e-4f);
+    EXPECT_GT(inv.tip_height, 0.5f);
+    EXPECT_LT(glm::length(b.tip() - b.root() - glm::vec3(b.rest)), 1e-6f);
+    mean_orient += b.orientation();
+  }
+  mean_orient /= static_cast<double>(set->blades.size());
+  EXPECT_NEAR(mean_orient, std::numbers::pi, 0.05);
+}
+
+TEST(GrassGenerator, GrassOnASphereMesh) {
+  const testing::SphereMesh sphere = testing::make_sphere(5.0f, 24, 48);
+  GrassFieldSettings field;
+  field.density = 80.0f;
+  auto set = generate_blades_on_mesh(field, BladeSettings{}, sphere.view(), {100.0, 0.0, 0.0});
+  ASSERT_TRUE(set.ok()) << set.error().message;
+  const double expected = sphere.area() * field.density;
+  EXPECT_NEAR(set->expected_total(), expected, 1e-6 * expected);
+  EXPECT_NEAR(static_cast<double>(set->blades.size()), expected, 0.01 * expected);
+  std::uint32_t in_tiles = 0;
+  for (const GrassTile& t : set->tiles) in_tiles += t.count;
+  EXPECT_EQ(in_tiles, set->blades.size());
+  for (const Blade& b : set->blades) {
+    const glm::vec3 p = b.root();
+    EXPECT_NEAR(glm::length(p), 5.0f, 0.06f);               // on the (faceted) surface
+    EXPECT_GT(glm::dot(b.up_dir(), glm::normalize(p)), 0.99f);  // growing outwards
+    EXPECT_GT(check_blade(b).tip_height, 0.5f);
+  }
+  // Anchored on geometry: re-indexing the triangles (reversed order) keeps the same blade multiset.
+  testing::SphereMesh shuffled = sphere;
+  std::vector<std::uint32_t> rev;
+  for (std::size_t t = shuffled.indices.size(); t >= 3; t -= 3)
+    rev.insert(rev.end(), {shuffled.indices[t - 3], shuffled.indices[t - 2], shuffled.indices[t - 1]});
+  shuffled.indices = rev;
+  auto set2 = generate_blades_on_mesh(field, BladeSettings{}, shuffled.view(), {100.0, 0.0, 0.0});
+  ASSERT_TRUE(set2.ok());
+  ASSERT_EQ(set2->blades.size(), set->blades.size());
+  double sum_a = 0.0, sum_b = 0.0;
+  for (std::size_t i = 0; i < set->blades.size(); ++i) {
+    sum_a += set->blades[i].orientation() + set->blades[i].root().x;
+    sum_b += set2->blades[i].orientation() + set2->blades[i].root().x;
+  }
+  EXPECT_NEAR(sum_a, sum_b, 1e-6 * std::abs(sum_a) + 1e-3);
+}
+
+TEST(GrassGenerator, BadInputGivesClearErrors) {
+  Fixture f;
+  const GrassMaps maps = f.maps();
+  BladeSettings bad = f.blade;
+  bad.height_min = 2.0f;
+  bad.height_max = 1.0f;
+  auto a = generate_blades(f.field, bad, maps, f.ground, {0, 0, 0});
+  ASSERT_FALSE(a.ok());
+  EXPECT_NE(a.error().message.find("grass.blade.height_min"), std::string::npos) << a.error().message;
+
+  GrassFieldSettings dense = f.field;
+  dense.density = 5000.0f;
+  const GrassMaps huge = GrassMaps::uniform({{0, 0}, {1000, 1000}});
+  auto b = generate_blades(dense, f.blade, huge, f.ground, {0, 0, 0});
+  ASSERT_FALSE(b.ok());
+  EXPECT_EQ(b.error().code, ErrorCode::kLimit);
+  EXPECT_NE(b.error().message.find("grass.field.density"), std::string::npos);
+
+  GrassFieldSettings neg = f.field;
+  neg.density = -1.0f;
+  auto c = generate_blades(neg, f.blade, maps, f.ground, {0, 0, 0});
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error().message.find("grass.field.density"), std::string::npos) << c.error().message;
+
+  const std::vector<glm::vec3> pos = {{0, 0, 0}, {1, 0, 0}, {0, 0, 1}};
+  const std::vector<std::uint32_t> idx = {0, 1, 3};
+  auto d = generate_blades_on_mesh(f.field, f.blade, {pos, {}, idx, {}}, {0, 0, 0});
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error().message.find("out of range"), std::string::npos);
+  const std::vector<std::uint32_t> idx2 = {0, 1};
+  EXPECT_FALSE(generate_blades_on_mesh(f.field, f.blade, {pos, {}, idx2, {}}, {0, 0, 0}).ok());
+  const std::vector<glm::vec3> nan_pos = {{0, 0, 0}, {NAN, 0, 0}, {0, 0, 1}};
+  const std::vector<std::uint32_t> idx_ok = {0, 1, 2};
+  auto e = generate_blades_on_mesh(f.field, f.blade, {nan_pos, {}, idx_ok, {}}, {0, 0, 0});
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("not finite"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace sylva::grass
