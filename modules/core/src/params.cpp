@@ -115,11 +115,19 @@ Status store_integer(void* dst, const Number& n, std::string_view where) {
       value = static_cast<I>(n.u);
       break;
     case Number::Kind::kDouble: {
+      if (n.integer_overflow) return range_error();
       if (!std::isfinite(n.d)) return param_error(where, fmt::format("{} is not a finite number", n.d));
       if (std::trunc(n.d) != n.d) return param_error(where, fmt::format("expected an integer, got {}", n.d));
       // long double holds every int64/uint64 exactly on x86-64; the bounds are compared there.
       const long double d = n.d;
       if (d < static_cast<long double>(L::min()) || d > static_cast<long double>(L::max())) return range_error();
+      // Beyond 2^53 a double has already been rounded (e.g. JSON's -9223372036854775809 parses
+      // as -2^63), so the integer the user meant is unknown: refuse rather than guess.
+      if (std::fabs(n.d) > 9007199254740992.0) {
+        return param_error(where, fmt::format("{} is not exact: an integer written as a floating-point number must be "
+                                              "at most 2^53 in magnitude; write all its digits",
+                                              n.to_string()));
+      }
       value = static_cast<I>(d);
       break;
     }
@@ -164,6 +172,17 @@ Result<Number> parse_number_text(std::string_view text, std::string_view where) 
   }
   double d = 0.0;
   const auto r = std::from_chars(b, e, d);
+  const bool integer_literal =
+      std::all_of(s.begin() + (s[0] == '-' ? 1 : 0), s.end(), [](char c) { return c >= '0' && c <= '9'; }) &&
+      s.size() > (s[0] == '-' ? 1u : 0u);
+  if (integer_literal && r.ec == std::errc() && r.ptr == e) {
+    // Digits only, yet neither int64 nor uint64 took it: beyond 64 bits.
+    n.kind = Number::Kind::kDouble;
+    n.d = d;
+    n.integer_overflow = true;
+    n.text = std::string(s);
+    return n;
+  }
   if (r.ptr == e && r.ec == std::errc::result_out_of_range) {
     return param_error(where, fmt::format("{} is outside the range of a double", s));
   }
@@ -226,7 +245,7 @@ std::string Number::to_string() const {
   switch (kind) {
     case Kind::kInt: return fmt::format("{}", i);
     case Kind::kUInt: return fmt::format("{}", u);
-    case Kind::kDouble: return fmt::format("{}", d);
+    case Kind::kDouble: return integer_overflow ? text : fmt::format("{}", d);
   }
   return {};
 }
@@ -292,7 +311,8 @@ Status store_number(ParamType type, void* dst, const Number& n, std::string_view
     case ParamType::kFloat: {
       const double d = as_double(n);
       if (!std::isfinite(d)) return param_error(where, fmt::format("{} is not a finite number", d));
-      if (std::fabs(d) > static_cast<double>(std::numeric_limits<float>::max())) {
+      // Doubles below FLT_MAX + half an ulp round to FLT_MAX; from there on they round to inf.
+      if (std::fabs(d) >= 0x1.ffffffp+127) {
         return param_error(where, fmt::format("{} is too large for a float (largest is {})", n.to_string(),
                                               std::numeric_limits<float>::max()));
       }

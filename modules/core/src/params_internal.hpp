@@ -18,6 +18,10 @@ struct Number {
   std::int64_t i = 0;
   std::uint64_t u = 0;
   double d = 0.0;
+  // Set for an integer literal outside the 64-bit range: d holds its approximate value for
+  // float targets, integer targets report it as not fitting, and messages echo the text.
+  bool integer_overflow = false;
+  std::string text;
 
   std::string to_string() const;
 };

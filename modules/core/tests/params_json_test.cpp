@@ -174,6 +174,10 @@ TEST(ParamsJson, RangeAndNumberErrors) {
             "grass.density: 1e+39 is too large for a float (largest is 3.4028235e+38)");
   EXPECT_EQ(load_error(s, json::parse(R"({"grass": {"name": ""}})")),
             "grass.name: a string of length 0 is shorter than the minimum length 1");
+  // nlohmann reads -9223372036854775809 as the double -2^63: the lost digit must not become INT64_MIN.
+  EXPECT_EQ(load_error(s, json::parse(R"({"terrain": {"offset": -9223372036854775809}})")),
+            "terrain.offset: -9.223372036854776e+18 is not exact: an integer written as a floating-point number "
+            "must be at most 2^53 in magnitude; write all its digits");
   // NaN and Inf cannot be written in JSON text but can be put into a json value by code.
   json j;
   j["terrain"]["world_scale"] = std::numeric_limits<double>::quiet_NaN();

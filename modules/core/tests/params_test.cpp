@@ -229,7 +229,17 @@ TEST(Params, NonFiniteAndHugeNumbersAreRejected) {
   EXPECT_EQ(set_error(s, "terrain.seed", "-1"), "terrain.seed: -1 does not fit in uint32 (0 to 4294967295)");
   EXPECT_EQ(set_error(s, "terrain.seed", "4294967296"), "terrain.seed: 4294967296 does not fit in uint32 (0 to 4294967295)");
   EXPECT_EQ(set_error(s, "terrain.hash", "18446744073709551616"),
-            "terrain.hash: 1.8446744073709552e+19 does not fit in uint64 (0 to 18446744073709551615)");
+            "terrain.hash: 18446744073709551616 does not fit in uint64 (0 to 18446744073709551615)");
+  EXPECT_EQ(set_error(s, "terrain.offset", "-9223372036854775809"),
+            "terrain.offset: -9223372036854775809 does not fit in int64 (-9223372036854775808 to 9223372036854775807)");
+  // An integer in floating-point form beyond 2^53 has lost digits already: refused, not guessed.
+  EXPECT_EQ(set_error(s, "terrain.hash", "1e18"),
+            "terrain.hash: 1e+18 is not exact: an integer written as a floating-point number must be at most 2^53 "
+            "in magnitude; write all its digits");
+  EXPECT_TRUE(sylva::set_param(s, "terrain.hash", "1000000000000000000").ok());
+  EXPECT_EQ(s.terrain.hash, 1000000000000000000u);
+  EXPECT_TRUE(sylva::set_param(s, "terrain.hash", "9007199254740992.0").ok());
+  EXPECT_EQ(s.terrain.hash, 9007199254740992u);
   EXPECT_EQ(set_error(s, "terrain.hash", "-1"), "terrain.hash: -1 does not fit in uint64 (0 to 18446744073709551615)");
   EXPECT_EQ(set_error(s, "terrain.offset", "1e13"), "terrain.offset: 10000000000000 is above the maximum 1000000000000");
 }
