@@ -131,6 +131,11 @@ bool advance_comment_state(const std::string& line, bool& in_block) {
   return started_inside;
 }
 
+// First #line number of file `index`: files get disjoint line ranges, so a reported line
+// number alone identifies the file (Mesa's compiler resets the source-string number to 0 for
+// most messages even after "#line N S", so S cannot be trusted).
+int line_base(int index) { return index * kShaderLineStride; }
+
 struct Preprocessor {
   std::vector<std::string> files;  // source-string number -> name
   std::vector<std::string> stack;  // include chain, for cycle detection
@@ -163,7 +168,7 @@ struct Preprocessor {
     stack.push_back(name);
     done.push_back(name);
     const int index = file_index(name);
-    out += fmt::format("#line 1 {}\n", index);
+    out += fmt::format("#line {} {}\n", line_base(index) + 1, index);
     const std::vector<std::string> lines = split_lines(*text);
     bool in_block = false;
     for (std::size_t i = 0; i < lines.size(); ++i) {
@@ -212,7 +217,7 @@ struct Preprocessor {
         SYLVA_TRY(expand(resolved, false));
       }
       // Back in this file: the next line is line_no + 1.
-      out += fmt::format("#line {} {}\n", line_no + 1, index);
+      out += fmt::format("#line {} {}\n", line_base(index) + line_no + 1, index);
     }
     stack.pop_back();
     return ok_status();
@@ -438,13 +443,16 @@ std::string map_shader_log(std::string_view log, std::span<const std::string> fi
     int line_no = 0;
     int col = -1;
     const std::size_t used = parse_location(line, at, file, line_no, col);
-    if (used > 0 && file >= 0 && static_cast<std::size_t>(file) < files.size()) {
+    // The line number carries the file (see line_base); the printed source number is ignored.
+    file = line_no / kShaderLineStride;
+    line_no = line_no % kShaderLineStride;
+    if (used > 0 && static_cast<std::size_t>(file) < files.size()) {
       out += line.substr(0, at);
       out += files[static_cast<std::size_t>(file)];
       out += fmt::format(":{}", line_no);
       if (col >= 0) out += fmt::format("({})", col);
       std::string_view rest = line.substr(at + used);
-      if (!rest.empty() && rest.front() != ':') out += ':';
+      if (!rest.empty() && rest.front() != ':' && rest.front() != ' ') out += ':';
       out += rest;
     } else {
       out += line;

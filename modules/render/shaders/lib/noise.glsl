@@ -10,6 +10,9 @@
 // The split overloads (int cell + float offset) take far positions or long-running time offsets
 // computed in double on the CPU (sylva::split_noise_coord) without losing float precision.
 
+#ifndef SYLVA_RENDER_NOISE_GLSL
+#define SYLVA_RENDER_NOISE_GLSL
+
 // PCG hash (Jarzynski & Olano 2020): uint wrap-around arithmetic, bit-exact with the CPU.
 uint sylva_pcg_hash(uint v) {
   uint state = v * 747796405u + 2891336453u;
@@ -220,3 +223,5 @@ float sylva_ridged3(vec3 p, int octaves, float persistence, float lacunarity, fl
   }
   return sum / norm;
 }
+
+#endif  // SYLVA_RENDER_NOISE_GLSL

@@ -10,7 +10,9 @@
 // Preprocessing: `#include "render/lib/x.glsl"` (a full name, or a path relative to the
 // including file) is expanded with once-semantics (a file included twice in one stage is
 // expanded once; include cycles are errors) and `#line` directives, so compile errors name the
-// original file and line: "render/lib/fog.glsl:12(3): error: ...". Defines are inserted after
+// original file and line: "render/lib/fog.glsl:12(3): error: ...". File i of a stage gets the
+// #line range i * kShaderLineStride + line, because Mesa reports source-string number 0 for
+// most errors even after `#line N S`; the line number alone then identifies the file. Defines are inserted after
 // the #version line. The stage is taken from the extension: .vert .tesc .tese .geom .frag .comp.
 //
 // Hot reload: when enabled (default on in builds configured with SYLVA_HOT_RELOAD, which
@@ -73,6 +75,9 @@ Result<std::string> shader_source(std::string_view name);
 // GL stage for a name's extension (GL_VERTEX_SHADER ...), or 0 if unknown.
 GLenum shader_stage_for(std::string_view name);
 
+// Line-number stride between the files of one preprocessed stage (files are < 100000 lines).
+inline constexpr int kShaderLineStride = 100000;
+
 using ShaderDefines = std::vector<std::pair<std::string, std::string>>;  // #define first second
 
 struct PreprocessedShader {
@@ -83,8 +88,9 @@ struct PreprocessedShader {
 // Expands includes and inserts defines. Errors as described at the top.
 Result<PreprocessedShader> preprocess_shader(std::string_view name, const ShaderDefines& defines = {});
 
-// Rewrites driver messages "S:L(C): ..." / "S(L) : ..." (S = source-string number) into
-// "file:L(C): ..." using `files`. Lines without a location are kept as they are.
+// Rewrites driver messages "S:L(C): ..." / "S(L) : ..." into "file:line(C): ..." using `files`
+// (file = L / kShaderLineStride, line = L % kShaderLineStride; S is ignored). Lines without a
+// location, or naming a file index outside `files`, are kept as they are.
 std::string map_shader_log(std::string_view log, std::span<const std::string> files);
 
 struct ProgramDeleter {
