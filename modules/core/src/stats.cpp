@@ -23,6 +23,9 @@ double sorted_percentile(std::span<const double> sorted, double p) {
   const std::size_t lo = static_cast<std::size_t>(std::floor(h));
   const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
   const double t = h - static_cast<double>(lo);
+  // Exact ranks and equal neighbours return the sample itself (also keeps an infinite neighbour
+  // from turning 0 * inf into NaN).
+  if (t == 0.0 || sorted[lo] == sorted[hi]) return sorted[lo];
   return sorted[lo] + t * (sorted[hi] - sorted[lo]);
 }
 
