@@ -10,8 +10,11 @@
 namespace sylva::render::test {
 
 std::filesystem::path output_dir() {
-  std::filesystem::path dir = std::filesystem::current_path() / "test_output" / "render";
+  // Beside the test executable (not the working directory, which may be the source tree).
   std::error_code ec;
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path base = ec ? std::filesystem::current_path() : exe.parent_path();
+  std::filesystem::path dir = base / "test_output" / "render";
   std::filesystem::create_directories(dir, ec);
   return dir;
 }

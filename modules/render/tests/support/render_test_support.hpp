@@ -11,7 +11,7 @@
 
 namespace sylva::render::test {
 
-// <working dir>/test_output/render: where tests leave PNGs for a person to look at.
+// <test executable dir>/test_output/render: where tests leave PNGs for a person to look at.
 std::filesystem::path output_dir();
 
 // Writes an image as PNG into output_dir() (failures only logged: inspection aid, not a check).
