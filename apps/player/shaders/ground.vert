@@ -1,0 +1,19 @@
+#version 450 core
+// The player's default ground: positions relative to the mesh origin, drawn camera-relative.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+
+uniform mat4 u_view_projection;  // projection * rotation-only view
+uniform mat4 u_model;            // translate(mesh origin - camera), computed in double on the CPU
+
+out vec3 v_rel_position;  // camera-relative position [m], for fog
+out vec3 v_normal;
+out float v_height;       // world height [m], for the material
+
+void main() {
+  vec4 rel = u_model * vec4(a_position, 1.0);
+  v_rel_position = rel.xyz;
+  v_normal = a_normal;
+  v_height = a_position.y;
+  gl_Position = u_view_projection * rel;
+}

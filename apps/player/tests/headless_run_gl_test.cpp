@@ -1,0 +1,121 @@
+// sylva-player end to end: a headless run of the default scene gives a non-blank PNG (sky above
+// ground) and valid stats JSON; bad arguments give a clear message and a non-zero exit.
+#include <sylva/core/image.hpp>
+#include <sylva/core/params_json.hpp>
+#include <sylva/core/atomic_file.hpp>
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+RunResult run_player(const std::string& args) {
+  const std::string command = std::string(SYLVA_PLAYER_EXE) + " " + args + " 2>&1";
+  RunResult result;
+  FILE* pipe = ::popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 512> buffer{};
+  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
+  const int status = ::pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+fs::path out_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("sylva_player_run_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+double luminance(const sylva::Image& image, int x, int y) {
+  return 0.2126 * image.at(x, y, 0) + 0.7152 * image.at(x, y, 1) + 0.0722 * image.at(x, y, 2);
+}
+
+}  // namespace
+
+TEST(PlayerHeadless, DefaultSceneRendersSkyAboveGroundAndWritesStats) {
+  const fs::path png = out_dir() / "demo.png";
+  const fs::path stats = out_dir() / "stats.json";
+  const RunResult run = run_player("--headless --size 160x96 --frames 4 --screenshot " + png.string() +
+                                   " --stats " + stats.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find(png.string()), std::string::npos) << "the player prints the PNG path";
+
+  auto image = sylva::read_image(png);
+  ASSERT_TRUE(image.ok()) << image.error().message;
+  ASSERT_EQ(image->width(), 160);
+  ASSERT_EQ(image->height(), 96);
+  // Non-blank: the picture has real variance.
+  double sum = 0, sum2 = 0;
+  for (int y = 0; y < 96; ++y)
+    for (int x = 0; x < 160; ++x) {
+      const double l = luminance(*image, x, y);
+      sum += l;
+      sum2 += l * l;
+    }
+  const double n = 160.0 * 96.0;
+  EXPECT_GT(sum2 / n - (sum / n) * (sum / n), 1e-3) << "image is nearly uniform";
+  // Sky above ground: the top row is bluer than it is green-brown, the bottom row is not sky.
+  const double top_blue = image->at(80, 1, 2) - image->at(80, 1, 0);
+  const double bottom_blue = image->at(80, 94, 2) - image->at(80, 94, 0);
+  EXPECT_GT(top_blue, 0.05) << "top of the frame should be sky";
+  EXPECT_LT(bottom_blue, top_blue - 0.05) << "bottom of the frame should be ground";
+
+  auto text = sylva::read_file(stats);
+  ASSERT_TRUE(text.ok());
+  auto json = sylva::parse_json_text(*text, stats.string());
+  ASSERT_TRUE(json.ok()) << json.error().message;
+  EXPECT_EQ((*json)["frames"], 4);
+  EXPECT_EQ((*json)["size"], nlohmann::json::array({160, 96}));
+  for (const char* key : {"cpu_ms", "gpu_ms"}) {
+    ASSERT_TRUE(json->contains(key)) << key;
+    EXPECT_GE((*json)[key]["count"].get<int>(), 1) << key;
+    EXPECT_GT((*json)[key]["mean"].get<double>(), 0.0) << key;
+    EXPECT_TRUE((*json)[key].contains("p50"));
+    EXPECT_TRUE((*json)[key].contains("p99"));
+  }
+  ASSERT_TRUE((*json)["passes"].contains("opaque"));
+  EXPECT_GT((*json)["passes"]["opaque"]["triangles"].get<std::uint64_t>(), 100000u);
+  EXPECT_GT((*json)["passes"]["opaque"]["samples"].get<std::uint64_t>(), 1000u);
+  EXPECT_GT((*json)["modules"]["ground"]["triangles"].get<std::uint64_t>(), 0u);
+}
+
+TEST(PlayerHeadless, BadArgumentsExitNonZeroWithAMessage) {
+  const RunResult unknown = run_player("--frobnicate");
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.output.find("--frobnicate"), std::string::npos) << unknown.output;
+
+  const RunResult missing_scene = run_player("/nonexistent/scene.json --headless --frames 1");
+  EXPECT_EQ(missing_scene.exit_code, 2);
+  EXPECT_NE(missing_scene.output.find("/nonexistent/scene.json"), std::string::npos) << missing_scene.output;
+
+  const RunResult bad_set = run_player("--headless --frames 1 --set ground.resolution=abc");
+  EXPECT_EQ(bad_set.exit_code, 2);
+  EXPECT_NE(bad_set.output.find("ground.resolution"), std::string::npos) << bad_set.output;
+
+  const RunResult bad_output = run_player("--headless --size 32x32 --frames 1 --screenshot /nonexistent/dir/x.png");
+  EXPECT_EQ(bad_output.exit_code, 1);
+  EXPECT_NE(bad_output.output.find("/nonexistent/dir/x.png"), std::string::npos) << bad_output.output;
+}
+
+TEST(PlayerHeadless, HelpAndListModulesSucceed) {
+  const RunResult help = run_player("--help");
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("usage: sylva-player"), std::string::npos);
+  const RunResult modules = run_player("--list-modules");
+  EXPECT_EQ(modules.exit_code, 0);
+  EXPECT_NE(modules.output.find("render"), std::string::npos);
+}
