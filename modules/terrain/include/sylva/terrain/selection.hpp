@@ -1,0 +1,78 @@
+#pragma once
+// Per-frame chunk selection (seed 002 §2.3 and Ulrich 2002), GL-free.
+//
+// Traverses the chunk tree from the root. A chunk outside the view frustum is skipped; a chunk
+// is drawn when it is detailed enough (or a leaf), otherwise its children are examined.
+//   kScreenSpaceError: rho = K * error_bound / D <= tau, D = distance from the camera to the
+//     nearest point of the chunk's box. Every drawn chunk then has a projected error of at most
+//     tau pixels (error_bound >= the measured max vertical error; D <= the distance of any point).
+//   kSeedDistance: spacing * lod_distance / d <= 1 with d the distance to the chunk's centre, as
+//     in the seed; no error bound, no morphing.
+// After the traversal each drawn chunk learns, for each edge, whether the chunk across it is
+// coarser, and which one: the seams are built from that.
+
+#include <sylva/terrain/chunk_tree.hpp>
+#include <sylva/terrain/lod_view.hpp>
+#include <sylva/terrain/settings.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace sylva::terrain {
+
+inline constexpr std::uint32_t kNoChunk = 0xFFFFFFFFu;
+
+struct SelectedChunk {
+  std::uint32_t index = kNoChunk;
+  // For each Edge: the drawn chunk across it when that chunk is coarser, else kNoChunk (same
+  // level, finer, culled or outside the field).
+  std::array<std::uint32_t, 4> coarser_neighbour{kNoChunk, kNoChunk, kNoChunk, kNoChunk};
+  // For each Edge: the largest vertical deviation from the field of the drawn chunks across it
+  // (their parent's error bound, since they may be morphing towards it), for the skirt depth.
+  std::array<float, 4> neighbour_error{0.0f, 0.0f, 0.0f, 0.0f};
+};
+
+struct SelectionStats {
+  double cpu_ms = 0.0;              // traversal + neighbour pass
+  std::uint32_t chunks = 0;         // drawn chunks
+  std::uint32_t culled = 0;         // chunks rejected by the frustum test
+  std::uint32_t visited = 0;        // chunks examined
+  std::uint64_t triangles = 0;      // body triangles of the drawn chunks (seams/skirts excluded)
+  int max_level_difference = 0;     // largest LOD difference across a drawn edge
+  std::vector<std::uint32_t> chunks_per_level;
+};
+
+struct Selection {
+  std::vector<SelectedChunk> chunks;
+  SelectionStats stats;
+  bool morph = false;               // morphing is in effect this frame
+  // morph_fraction <= the tree's max_morph_fraction, so the tau bound holds while morphing.
+  bool bound_certified = true;
+};
+
+class LodSelector {
+ public:
+  explicit LodSelector(const ChunkTree& tree);
+
+  // The returned reference stays valid until the next call.
+  const Selection& select(const LodView& view, const LodSettings& settings);
+
+  // The drawn chunk that contains root-grid cell (cx, cz) (cell = [cx, cx+1] x [cz, cz+1]) after
+  // the last select(), or kNoChunk.
+  std::uint32_t drawn_chunk_at_cell(std::int64_t cx, std::int64_t cz) const;
+
+  const ChunkTree& tree() const { return *tree_; }
+
+ private:
+  enum State : std::uint8_t { kUnseen = 0, kDrawn = 1, kRefined = 2, kCulled = 3 };
+  bool accept(std::uint32_t index, const LodView& view, const LodSettings& settings) const;
+
+  const ChunkTree* tree_;
+  std::vector<std::uint8_t> state_;
+  std::vector<std::uint32_t> touched_;
+  std::vector<std::uint32_t> stack_;
+  Selection selection_;
+};
+
+}  // namespace sylva::terrain

@@ -1,0 +1,104 @@
+#pragma once
+// Settings of the height-field chunk tree (built offline) and of the per-frame LOD selection.
+// Each struct lists its fields once through visit() (DESIGN.md §2), which drives JSON, --set,
+// the editor and sylva-bench sweeps.
+
+#include <sylva/core/params.hpp>
+
+#include <array>
+#include <cstdint>
+
+namespace sylva::terrain {
+
+// Offline build of the chunk quadtree (seed 002 §2.2, Ulrich 2002). Changing any of these
+// means rebuilding the tree (Rebuild::kOffline).
+struct ChunkTreeSettings {
+  // Vertices per side of a chunk at its own level (the seed's -dimension): 2^k + 1 in [3, 257].
+  // Every level has the same dimension; the sample spacing doubles per coarser level.
+  int leaf_dimension = 33;
+  // Flat-ground reduction: a vertex is dropped from a level's mesh when removing it changes the
+  // surface by at most flat_tolerance * (that level's sample spacing in metres). 0 keeps every
+  // vertex of the level's grid. The resulting error is measured, never assumed.
+  float flat_tolerance = 0.02f;
+  // The error of a parent is raised to at least child_error / (1 - max_morph_fraction), so a
+  // morph over up to this share of a LOD range keeps the screen-space bound (see lod_selection.md
+  // in the README). LodSettings::morph_fraction above this relaxes the bound (reported).
+  float max_morph_fraction = 0.25f;
+  // Worker threads for the build; 0 = all hardware threads.
+  int threads = 0;
+  // Keep the chunk meshes in memory. false keeps only the per-chunk metadata (error, bounds,
+  // triangle counts), enough for selection statistics on fields too big to hold as meshes.
+  bool keep_meshes = true;
+  // Reorder each chunk's triangles and vertices for the post-transform cache (meshoptimizer).
+  bool optimize_vertex_cache = true;
+  // Refuse to build when the error grid would need more bytes than this (a clear kLimit error
+  // instead of running the machine out of memory).
+  double max_build_bytes = 3.0e9;
+
+  template <class V>
+  void visit(V& v) {
+    v(leaf_dimension, "leaf_dimension", {.min = 3, .max = 257, .help = "Vertices per chunk side, 2^k+1",
+      .rebuild = Rebuild::kOffline});
+    v(flat_tolerance, "flat_tolerance", {.min = 0.0, .max = 10.0, .unit = "m/m",
+      .help = "Allowed vertical change per metre of level spacing when dropping flat vertices",
+      .rebuild = Rebuild::kOffline});
+    v(max_morph_fraction, "max_morph_fraction", {.min = 0.0, .max = 0.9,
+      .help = "Largest morph fraction for which the pixel-error bound is certified", .rebuild = Rebuild::kOffline});
+    v(threads, "threads", {.min = 0, .max = 256, .help = "Build threads (0 = all cores)"});
+    v(keep_meshes, "keep_meshes", {.help = "Keep chunk meshes (false: statistics only)", .rebuild = Rebuild::kOffline});
+    v(optimize_vertex_cache, "optimize_vertex_cache", {.help = "meshoptimizer vertex-cache order",
+      .rebuild = Rebuild::kOffline});
+    v(max_build_bytes, "max_build_bytes", {.min = 1e6, .max = 1e12, .unit = "B",
+      .help = "Memory cap of the build's error grid", .log_scale = true});
+  }
+};
+
+// Which test decides that a chunk is detailed enough.
+enum class LodCriterion : std::uint8_t {
+  // Ulrich 2002: rho = K * delta / D <= tau, K = viewport_width / (2 tan(fov_x / 2)), D = distance
+  // from the camera to the nearest point of the chunk's bounding box, delta = measured error.
+  kScreenSpaceError,
+  // Seed 002 §2.3: chunk_error * lod_distance / d <= 1, chunk_error = the chunk's sample spacing,
+  // d = distance to the chunk centre. Kept for comparison; it does not bound the pixel error.
+  kSeedDistance,
+};
+constexpr std::array<EnumName<LodCriterion>, 2> enum_names(LodCriterion) {
+  return {{{LodCriterion::kScreenSpaceError, "screen_space_error"}, {LodCriterion::kSeedDistance, "seed_distance"}}};
+}
+
+// How chunks of different LOD are joined.
+enum class CrackFix : std::uint8_t {
+  kSeams,   // zero-width seam fans built by the finer side: bit-identical shared edges (default)
+  kSkirts,  // vertical skirts hanging below every chunk edge, depth from the chunks' errors
+  kNone,    // nothing: for demonstrating the cracks
+};
+constexpr std::array<EnumName<CrackFix>, 3> enum_names(CrackFix) {
+  return {{{CrackFix::kSeams, "seams"}, {CrackFix::kSkirts, "skirts"}, {CrackFix::kNone, "none"}}};
+}
+
+// Per-frame selection (Rebuild::kNone: read every frame).
+struct LodSettings {
+  float max_pixel_error = 1.0f;  // tau [px]
+  // Share of a chunk's LOD range over which its new vertices move to the parent surface
+  // (CDLOD-style). 0 = no morphing (LOD switches pop).
+  float morph_fraction = 0.25f;
+  LodCriterion criterion = LodCriterion::kScreenSpaceError;
+  float lod_distance = 100.0f;   // the seed's -distance (only for kSeedDistance)
+  CrackFix crack_fix = CrackFix::kSeams;
+  bool frustum_cull = true;
+
+  template <class V>
+  void visit(V& v) {
+    v(max_pixel_error, "max_pixel_error", {.min = 0.05, .max = 64.0, .unit = "px",
+      .help = "Largest allowed projected height error (tau)", .log_scale = true});
+    v(morph_fraction, "morph_fraction", {.min = 0.0, .max = 1.0,
+      .help = "Share of a LOD range used to morph towards the parent"});
+    v(criterion, "criterion", {.help = "screen_space_error (Ulrich) or seed_distance (seed 002)"});
+    v(lod_distance, "lod_distance", {.min = 0.01, .max = 1e6, .unit = "m",
+      .help = "Seed criterion: distance per metre of sample spacing", .log_scale = true});
+    v(crack_fix, "crack_fix", {.help = "seams, skirts or none"});
+    v(frustum_cull, "frustum_cull", {.help = "Skip chunks outside the view frustum"});
+  }
+};
+
+}  // namespace sylva::terrain

@@ -1,0 +1,121 @@
+#include "rtin.hpp"
+
+#include "parallel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::terrain::detail {
+namespace {
+
+struct ErrorPass {
+  const HeightGrid& hg;
+  ErrorGrid& eg;
+  std::int32_t n;
+
+  float h(std::int32_t x, std::int32_t z) const { return hg.at(x, z); }
+  float& e(std::int32_t x, std::int32_t z) const {
+    return eg.err[static_cast<std::size_t>(z) * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(x)];
+  }
+  float e_or0(std::int32_t x, std::int32_t z) const {
+    if (x < 0 || z < 0 || x > n || z > n) return 0.0f;
+    return e(x, z);
+  }
+  static float own(float hm, float ha, float hb) {
+    // Computed in double: the mean of two floats is exact there, so the error is the true one.
+    return static_cast<float>(std::fabs(static_cast<double>(hm) - 0.5 * (static_cast<double>(ha) + hb)));
+  }
+
+  // Side midpoints of cells of size t on row z.
+  void sides(std::int32_t t, std::int32_t z) const {
+    const std::int32_t half = t / 2, quarter = t / 4;
+    if (z % t == 0) {  // horizontal sides: x = t/2 mod t
+      for (std::int32_t x = half; x <= n; x += t) {
+        float err = own(h(x, z), h(x - half, z), h(x + half, z));
+        if (quarter > 0) {
+          err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
+                          e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
+        }
+        e(x, z) = err;
+      }
+    } else if (z % t == half) {  // vertical sides: x = 0 mod t
+      for (std::int32_t x = 0; x <= n; x += t) {
+        float err = own(h(x, z), h(x, z - half), h(x, z + half));
+        if (quarter > 0) {
+          err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
+                          e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
+        }
+        e(x, z) = err;
+      }
+    }
+  }
+
+  // Cell centres of cells of size t on row z (z = t/2 mod t).
+  void centres(std::int32_t t, std::int32_t z) const {
+    const std::int32_t half = t / 2;
+    const std::int32_t cz = (z - half) / t;
+    for (std::int32_t x = half; x <= n; x += t) {
+      const std::int32_t cx = (x - half) / t;
+      float ha, hb;
+      if (((cx + cz) & 1) == 0) {
+        ha = h(x - half, z - half);
+        hb = h(x + half, z + half);
+      } else {
+        ha = h(x + half, z - half);
+        hb = h(x - half, z + half);
+      }
+      float err = own(h(x, z), ha, hb);
+      err = std::max({err, e(x - half, z), e(x + half, z), e(x, z - half), e(x, z + half)});
+      e(x, z) = err;
+    }
+  }
+};
+
+}  // namespace
+
+ErrorGrid compute_errors(const HeightGrid& heights, int threads) {
+  ErrorGrid eg;
+  eg.n = heights.n;
+  const std::size_t side = static_cast<std::size_t>(heights.n) + 1;
+  eg.err.assign(side * side, 0.0f);
+  ErrorPass pass{heights, eg, heights.n};
+  for (std::int32_t t = 2; t <= heights.n; t *= 2) {
+    // Rows of side midpoints: z multiple of t/2. Each row writes only its own points and reads
+    // the finer pass, so rows are independent.
+    const std::size_t side_rows = static_cast<std::size_t>(heights.n / (t / 2)) + 1;
+    parallel_for(side_rows, threads, [&](std::size_t r) { pass.sides(t, static_cast<std::int32_t>(r) * (t / 2)); },
+                 nullptr, 16);
+    const std::size_t centre_rows = static_cast<std::size_t>(heights.n / t);
+    parallel_for(centre_rows, threads,
+                 [&](std::size_t r) { pass.centres(t, t / 2 + static_cast<std::int32_t>(r) * t); }, nullptr, 16);
+  }
+  return eg;
+}
+
+double level_surface_height(const ActiveRule& rule, const HeightGrid& heights, int level, Pt p) {
+  const std::int32_t n = heights.n;
+  Tri t = (p.x >= p.z) ? Tri{{0, 0}, {n, n}, {n, 0}} : Tri{{n, n}, {0, 0}, {0, n}};
+  for (;;) {
+    const Pt m = midpoint(t.a, t.b);
+    if ((t.a.x - t.b.x) % 2 != 0 || (t.a.z - t.b.z) % 2 != 0) break;  // unit triangle
+    if (!rule.active(m, level)) break;
+    // The split line runs from c to m; the child (c, a, m) holds the a side (ties go there).
+    const std::int64_t side_p = area2(t.c, m, p);
+    const std::int64_t side_a = area2(t.c, m, t.a);
+    if (side_p == 0 || (side_p > 0) == (side_a > 0)) {
+      t = Tri{t.c, t.a, m};
+    } else {
+      t = Tri{t.b, t.c, m};
+    }
+  }
+  if (p == t.a) return heights.at(t.a);
+  if (p == t.b) return heights.at(t.b);
+  if (p == t.c) return heights.at(t.c);
+  const double total = static_cast<double>(area2(t.a, t.b, t.c));
+  const double wa = static_cast<double>(area2(p, t.b, t.c)) / total;
+  const double wb = static_cast<double>(area2(t.a, p, t.c)) / total;
+  const double wc = 1.0 - wa - wb;
+  return wa * heights.at(t.a) + wb * heights.at(t.b) + wc * heights.at(t.c);
+}
+
+}  // namespace sylva::terrain::detail
