@@ -51,20 +51,12 @@ PassStats& PassStats::operator+=(const PassStats& o) {
 PassQuery PassQuery::create(bool counters) {
   PassQuery q;
   q.counters_ = counters;
-  for (Slot& s : q.slots_) {
-    // Timestamp queries exist only once issued; glCreateQueries gives ready-made objects.
-    s.t0 = GlHandle<QueryDeleter>(new_query(GL_TIMESTAMP));
-    s.t1 = GlHandle<QueryDeleter>(new_query(GL_TIMESTAMP));
-    if (counters) {
-      s.primitives = GlHandle<QueryDeleter>(new_query(GL_PRIMITIVES_GENERATED));
-      s.samples = GlHandle<QueryDeleter>(new_query(GL_SAMPLES_PASSED));
-    }
-  }
+  q.created_ = true;  // query objects are made per use in begin()
   return q;
 }
 
 void PassQuery::begin(std::uint64_t frame) {
-  SYLVA_ASSERT(slots_[0].t0, "PassQuery used before create()");
+  SYLVA_ASSERT(created_, "PassQuery used before create()");
   SYLVA_ASSERT(!active_, "PassQuery::begin twice without end (frame {})", frame);
   Slot& slot = slots_[static_cast<std::size_t>(next_)];
   if (slot.pending) {
@@ -77,6 +69,15 @@ void PassQuery::begin(std::uint64_t frame) {
                  frame);
     ++g_counting_scopes;
   }
+  // Fresh query objects for every use. Re-begun counter queries on Mesa llvmpipe (22.3)
+  // came back late and with samples of later frames added in (tests/queries_gl_test.cpp
+  // RingDeliversResultsWithoutWaiting caught it); new objects are cheap and always correct.
+  if (counters_) {
+    slot.primitives = GlHandle<QueryDeleter>(new_query(GL_PRIMITIVES_GENERATED));
+    slot.samples = GlHandle<QueryDeleter>(new_query(GL_SAMPLES_PASSED));
+  }
+  slot.t0 = GlHandle<QueryDeleter>(new_query(GL_TIMESTAMP));
+  slot.t1 = GlHandle<QueryDeleter>(new_query(GL_TIMESTAMP));
   slot.frame = frame;
   slot.order = ++begun_;
   glQueryCounter(slot.t0.get(), GL_TIMESTAMP);

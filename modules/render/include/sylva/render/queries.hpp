@@ -4,7 +4,8 @@
 // A PassQuery measures one named piece of GPU work per frame: GPU time from two GL_TIMESTAMP
 // queries (timestamps nest, so a module's scope may sit inside a pass's scope), and optionally
 // GL_PRIMITIVES_GENERATED and GL_SAMPLES_PASSED (these do not nest: at most one counting scope
-// is active at a time, asserted). Each frame uses the next slot of a ring of query objects;
+// is active at a time, asserted). Each frame uses the next slot of a ring (the slot gets fresh
+// query objects each time: re-begun objects gave wrong counts on llvmpipe);
 // poll() reads only slots whose results are available (GL_QUERY_RESULT_AVAILABLE), so results
 // arrive a few frames late and the CPU never waits for the GPU. wait_all() is the one
 // deliberate stall, for tests and the end of a benchmark run.
@@ -95,6 +96,7 @@ class PassQuery {
   int current_ = -1;
   bool active_ = false;
   bool counters_ = true;
+  bool created_ = false;
   std::uint64_t dropped_ = 0;
 };
 
