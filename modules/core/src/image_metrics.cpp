@@ -63,29 +63,25 @@ struct Plane {
   int width = 0;
   int height = 0;
   std::vector<float> v;
-  float at(int x, int y) const { return v[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; }
 };
 
 // Extracts the planes SSIM compares.
 std::vector<Plane> ssim_planes(const Image& image, SsimChannels mode) {
-  const int w = image.width();
-  const int h = image.height();
-  const int ch = image.channels();
+  const std::size_t pixels = image.pixel_count();
+  const auto ch = static_cast<std::size_t>(image.channels());
+  const std::span<const float> src = image.data();
   std::vector<Plane> planes;
   auto make_plane = [&](auto value_of) {
-    Plane p{w, h, std::vector<float>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h))};
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) p.v[static_cast<std::size_t>(y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] = value_of(x, y);
+    Plane p{image.width(), image.height(), std::vector<float>(pixels)};
+    for (std::size_t i = 0; i < pixels; ++i) p.v[i] = value_of(src.data() + i * ch);
     planes.push_back(std::move(p));
   };
   if (mode == SsimChannels::kPerChannel) {
-    for (int c = 0; c < ch; ++c) make_plane([&](int x, int y) { return image.at(x, y, c); });
+    for (std::size_t c = 0; c < ch; ++c) make_plane([c](const float* px) { return px[c]; });
   } else if (ch >= 3) {
-    make_plane([&](int x, int y) {
-      return 0.2126f * image.at(x, y, 0) + 0.7152f * image.at(x, y, 1) + 0.0722f * image.at(x, y, 2);
-    });
+    make_plane([](const float* px) { return 0.2126f * px[0] + 0.7152f * px[1] + 0.0722f * px[2]; });
   } else {
-    make_plane([&](int x, int y) { return image.at(x, y, 0); });
+    make_plane([](const float* px) { return px[0]; });
   }
   return planes;
 }
@@ -111,64 +107,94 @@ std::vector<float> ssim_plane(const Plane& px, const Plane& py, SsimBorder borde
   // Output pixel (u, v) is centred on input (u + shift, v + shift).
   const int shift = valid ? kRadius : 0;
 
-  // Horizontal pass: 5 moments for out_w columns x h rows.
-  const std::size_t hsize = static_cast<std::size_t>(out_w) * static_cast<std::size_t>(h);
-  std::array<std::vector<double>, 5> hm;
-  for (auto& m : hm) m.assign(hsize, 0.0);
-  for (int y = 0; y < h; ++y) {
-    for (int u = 0; u < out_w; ++u) {
-      const int cx = u + shift;
-      const int lo = std::max(-kRadius, -cx);
-      const int hi = std::min(kRadius, w - 1 - cx);
-      double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0, wsum = 0;
-      for (int k = lo; k <= hi; ++k) {
-        const double t = taps[static_cast<std::size_t>(k + kRadius)];
-        const double a = static_cast<double>(px.at(cx + k, y)) - ox;
-        const double b = static_cast<double>(py.at(cx + k, y)) - oy;
-        sx += t * a;
-        sy += t * b;
-        sxx += t * a * a;
-        syy += t * b * b;
-        sxy += t * a * b;
-        wsum += t;
+  // Horizontal pass: 5 moments for out_w columns x h rows. Each row of moments is written into
+  // zero-padded buffers (kRadius zeros on both sides) so the filter is a plain contiguous
+  // convolution; in kTruncated mode the zeros drop out of the sum and hnorm renormalises.
+  const auto width = static_cast<std::size_t>(out_w);
+  const auto in_w = static_cast<std::size_t>(w);
+  std::vector<double> hnorm(width, 1.0);
+  if (!valid) {
+    for (std::size_t u = 0; u < width; ++u) {
+      double wsum = 0.0;
+      for (int k = -kRadius; k <= kRadius; ++k) {
+        const long x = static_cast<long>(u) + k;
+        if (x >= 0 && x < static_cast<long>(in_w)) wsum += taps[static_cast<std::size_t>(k + kRadius)];
       }
-      const double inv = valid ? 1.0 : 1.0 / wsum;
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(out_w) + static_cast<std::size_t>(u);
-      hm[0][i] = sx * inv;
-      hm[1][i] = sy * inv;
-      hm[2][i] = sxx * inv;
-      hm[3][i] = syy * inv;
-      hm[4][i] = sxy * inv;
+      hnorm[u] = 1.0 / wsum;
     }
   }
+  std::array<std::vector<double>, 5> padded;
+  for (auto& row : padded) row.assign(in_w + 2 * kRadius, 0.0);
+  // Horizontal rows live in a ring of kWindow rows (all the vertical window needs), so the
+  // working set stays in cache instead of streaming five full-image planes.
+  std::array<std::vector<double>, 5> ring;
+  for (auto& m : ring) m.assign(width * kWindow, 0.0);
+  const auto start = static_cast<std::size_t>(shift);  // padded index of the first window
+  auto horizontal_row = [&](int y) {
+    const float* ra = px.v.data() + static_cast<std::size_t>(y) * in_w;
+    const float* rb = py.v.data() + static_cast<std::size_t>(y) * in_w;
+    for (std::size_t x = 0; x < in_w; ++x) {
+      const double a = static_cast<double>(ra[x]) - ox;
+      const double b = static_cast<double>(rb[x]) - oy;
+      const std::size_t i = x + kRadius;
+      padded[0][i] = a;
+      padded[1][i] = b;
+      padded[2][i] = a * a;
+      padded[3][i] = b * b;
+      padded[4][i] = a * b;
+    }
+    const std::size_t slot = static_cast<std::size_t>(y % kWindow) * width;
+    for (std::size_t q = 0; q < 5; ++q) {
+      double* dst = ring[q].data() + slot;
+      std::fill(dst, dst + width, 0.0);
+      const double* src = padded[q].data() + start;
+      for (int k = 0; k < kWindow; ++k) {
+        const double t = taps[static_cast<std::size_t>(k)];
+        const double* sk = src + k;
+        for (std::size_t u = 0; u < width; ++u) dst[u] += t * sk[u];
+      }
+      if (!valid)
+        for (std::size_t u = 0; u < width; ++u) dst[u] *= hnorm[u];
+    }
+  };
+  int rows_done = 0;
 
   const double c1 = (kK1 * dynamic_range) * (kK1 * dynamic_range);
   const double c2 = (kK2 * dynamic_range) * (kK2 * dynamic_range);
   std::vector<float> map(static_cast<std::size_t>(out_w) * static_cast<std::size_t>(out_h));
+  // Vertical pass row by row (contiguous, vectorisable): acc[q][u] = sum_k tap_k * ring[q][row + k].
+  std::array<std::vector<double>, 5> acc;
+  for (auto& a : acc) a.resize(width);
   for (int v = 0; v < out_h; ++v) {
     const int cy = v + shift;
     const int lo = std::max(-kRadius, -cy);
     const int hi = std::min(kRadius, h - 1 - cy);
-    for (int u = 0; u < out_w; ++u) {
-      double m[5] = {0, 0, 0, 0, 0};
-      double wsum = 0;
-      for (int k = lo; k <= hi; ++k) {
-        const double t = taps[static_cast<std::size_t>(k + kRadius)];
-        const std::size_t i = static_cast<std::size_t>(cy + k) * static_cast<std::size_t>(out_w) + static_cast<std::size_t>(u);
-        for (int q = 0; q < 5; ++q) m[q] += t * hm[static_cast<std::size_t>(q)][i];
-        wsum += t;
+    while (rows_done <= cy + hi) horizontal_row(rows_done++);
+    for (auto& a : acc) std::fill(a.begin(), a.end(), 0.0);
+    double wsum = 0.0;
+    for (int k = lo; k <= hi; ++k) {
+      const double t = taps[static_cast<std::size_t>(k + kRadius)];
+      const std::size_t row = static_cast<std::size_t>((cy + k) % kWindow) * width;
+      for (std::size_t q = 0; q < 5; ++q) {
+        const double* src = ring[q].data() + row;
+        double* dst = acc[q].data();
+        for (std::size_t u = 0; u < width; ++u) dst[u] += t * src[u];
       }
-      if (!valid)
-        for (double& q : m) q /= wsum;
-      const double mx = m[0] + ox;
-      const double my = m[1] + oy;
-      const double vx = std::max(0.0, m[2] - m[0] * m[0]);
-      const double vy = std::max(0.0, m[3] - m[1] * m[1]);
-      const double cxy = m[4] - m[0] * m[1];
+      wsum += t;
+    }
+    const double inv = valid ? 1.0 : 1.0 / wsum;
+    float* out = map.data() + static_cast<std::size_t>(v) * width;
+    for (std::size_t u = 0; u < width; ++u) {
+      const double m0 = acc[0][u] * inv;
+      const double m1 = acc[1][u] * inv;
+      const double mx = m0 + ox;
+      const double my = m1 + oy;
+      const double vx = std::max(0.0, acc[2][u] * inv - m0 * m0);
+      const double vy = std::max(0.0, acc[3][u] * inv - m1 * m1);
+      const double cxy = acc[4][u] * inv - m0 * m1;
       const double num = (2.0 * mx * my + c1) * (2.0 * cxy + c2);
       const double den = (mx * mx + my * my + c1) * (vx + vy + c2);
-      map[static_cast<std::size_t>(v) * static_cast<std::size_t>(out_w) + static_cast<std::size_t>(u)] =
-          static_cast<float>(std::clamp(num / den, -1.0, 1.0));
+      out[u] = static_cast<float>(std::clamp(num / den, -1.0, 1.0));
     }
   }
   return map;
