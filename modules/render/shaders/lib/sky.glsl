@@ -13,11 +13,12 @@ vec3 sky_gradient(vec3 dir) {
   return mix(sylva_horizon_color.rgb, sylva_ground_color.rgb, clamp(-y * 8.0, 0.0, 1.0));
 }
 
-// Sun disk (about 0.53 degrees across, soft edge) plus a glow around it.
+// Sun disk (about 0.5 degrees across, soft edge) plus a glow around it that fades within a
+// few degrees (no tone mapping yet, so it must not saturate the whole view).
 vec3 sun_glow(vec3 dir) {
   float c = dot(dir, sun_direction());
-  float disk = smoothstep(0.99996, 0.99998, c);
-  float glow = pow(max(c, 0.0), 256.0) * 0.5 + pow(max(c, 0.0), 16.0) * 0.06;
+  float disk = smoothstep(0.99998, 0.99999, c);
+  float glow = pow(max(c, 0.0), 1024.0) * 0.25 + pow(max(c, 0.0), 32.0) * 0.03;
   return sun_radiance() * (disk * 20.0 + glow);
 }
 
