@@ -211,7 +211,8 @@ struct ParamDescriptor {
   // Validates the current value (range, finite, named enum value).
   Status check() const;
 
-  // Typed access for widgets; asserts T is exactly the parameter's type.
+  // Typed access for widgets; asserts T is exactly the parameter's type. Writing through the
+  // reference bypasses validation: call check() afterwards (and revert on failure) or use set().
   template <ParamLeaf T>
   T& value() const {
     T probe{};
@@ -250,6 +251,7 @@ class ParamCollector {
   ParamCollector(std::vector<ParamDescriptor>& out, std::string prefix)
       : out_(&out), prefix_(std::move(prefix)) {}
 
+  // For a nested struct the info is accepted (e.g. for its help text) but not recorded.
   template <class T>
   void operator()(T& field, const char* name, const ParamInfo& info = {}) {
     detail::check_param_name(name);
