@@ -36,6 +36,7 @@ Result<BlockId> BlockPalette::add(BlockType type) {
     return make_error(ErrorCode::kLimit, fmt::format("block palette: more than 65535 types adding '{}'", type.name));
   }
   const auto id = static_cast<BlockId>(types_.size());
+  if (type.render == RenderClass::kAlphaCut && id < first_alpha_cut_) first_alpha_cut_ = id;
   opaque_.push_back(type.render == RenderClass::kOpaque ? 1 : 0);
   render_.push_back(static_cast<std::uint8_t>(type.render));
   types_.push_back(std::move(type));

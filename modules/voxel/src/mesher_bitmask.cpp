@@ -1,14 +1,23 @@
-// Binary greedy meshing. Occupancy is kept as 64-bit column masks along x (one per padded (y, z)
-// row) and along y (one per padded (x, z) column). For a face direction and slice, each row of
-// visible faces is a single expression, e.g. +Y at height s, row z:
-//     faces = nonair_x[s][z] & ~opaque_x[s + 1][z]
-// so visibility of 64 faces costs one AND-NOT and no neighbour lookups. Visible faces are then
-// bucketed by key (block, AO) into per-slice bit planes, and each plane is merged into rectangles
-// with count-trailing-zeros / count-trailing-ones on its rows.
+// Binary greedy meshing.
 //
-// The public binary greedy mesher (cgerikj/binary-greedy-meshing) uses 62^3 chunks so its padded
-// columns fit in 64 bits; here columns hold only the n <= 64 interior bits and the padding comes
-// from neighbouring rows, so 64^3 chunks work too.
+// 1. Occupancy as 64-bit masks. Every padded row along x (one per padded (y, z)) becomes a
+//    "non-air" and an "opaque" mask of its n interior bits, plus the opaque bits of its two
+//    padding ends (x = -1, x = n) kept apart, so chunks of 64 work although 66 bits do not fit.
+//    Rows are classified 16 blocks at a time with SSE2 compares; only ids at or above the
+//    palette's first alpha-cut id need a table lookup. Masks along y come from the x masks by
+//    64x64 bit-matrix transposes (Hacker's Delight §7-3) instead of per-block scatter.
+// 2. Visible faces of a whole row in one expression, e.g. +Y at height s, row z:
+//        faces = nonair_x[s][z] & ~opaque_x[s + 1][z]
+// 3. Ambient occlusion of a whole row in bit-planes: the eight neighbours in front of the face
+//    are the three neighbouring rows shifted by -1, 0, +1 bit; per corner the count
+//    s1 + s2 + c is summed with bitwise adders, ao = 3 - count (0 when both sides are set), and
+//    "all four corners equal" is an XOR test. No per-face neighbour lookups remain.
+// 4. Faces are bucketed by key (block, face, uniform AO) into per-slice bit planes and merged into
+//    rectangles with count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs
+//    between corners stay unit quads, so every mesher shades identically.
+//
+// The public binary greedy mesher (cgerikj/binary-greedy-meshing) pads 62^3 chunks into 64-bit
+// columns and has no AO merging rule; this one also handles 64^3 chunks.
 
 #include <sylva/core/assert.hpp>
 
@@ -17,8 +26,34 @@
 #include <algorithm>
 #include <bit>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace sylva::voxel::detail {
 namespace {
+
+// Transposes the top-left `width` x `width` bit block (width 32 or 64) in place:
+// afterwards bit y of a[x] equals the former bit x of a[y].
+void transpose_bits(std::uint64_t* a, int width) {
+  static constexpr std::uint64_t kMasks[6] = {0x5555555555555555ULL, 0x3333333333333333ULL, 0x0F0F0F0F0F0F0F0FULL,
+                                              0x00FF00FF00FF00FFULL, 0x0000FFFF0000FFFFULL, 0x00000000FFFFFFFFULL};
+  for (int level = width == 64 ? 5 : 4; level >= 0; --level) {
+    const int j = 1 << level;
+    const std::uint64_t m = kMasks[level];
+    for (int k = 0; k < width; k = ((k | j) + 1) & ~j) {
+      const std::uint64_t t = ((a[k] >> j) ^ a[k | j]) & m;
+      a[k] ^= t << j;
+      a[k | j] ^= t;
+    }
+  }
+}
+
+struct AoPlanes {
+  std::uint64_t hi[4];
+  std::uint64_t lo[4];
+  std::uint64_t uniform;
+};
 
 class BitmaskMesher final : public Mesher {
  public:
@@ -28,90 +63,261 @@ class BitmaskMesher final : public Mesher {
     SYLVA_ASSERT(blocks.n >= 1 && blocks.n <= 64, "chunk size {}", blocks.n);
     out.clear();
     n_ = blocks.n;
+    p_ = n_ + 2;
+    full_ = n_ == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n_) - 1;
     build_masks(blocks, palette);
-    const AoSampler ao(blocks, palette.opaque_table());
     const std::uint8_t* render = palette.render_table().data();
     const BlockId* ids = blocks.ids.data();
-    const int n = n_;
-    const int p = n + 2;
-    const auto alpha_class = static_cast<std::uint8_t>(RenderClass::kAlphaCut);
-
-    for (int f = 0; f < 6; ++f) {
-      const int front = ao.front_offset(f);
-      for (int s = 0; s < n; ++s) {
-        slot_count_ = 0;
-        int last_slot = -1;
-        for (int r = 0; r < n; ++r) {
-          std::uint64_t faces = 0;
-          switch (f) {
-            case 0: faces = ay_[(s + 1) * p + r + 1] & ~oy_[(s + 2) * p + r + 1]; break;
-            case 1: faces = ay_[(s + 1) * p + r + 1] & ~oy_[s * p + r + 1]; break;
-            case 2: faces = ax_[(s + 1) * p + r + 1] & ~ox_[(s + 2) * p + r + 1]; break;
-            case 3: faces = ax_[(s + 1) * p + r + 1] & ~ox_[s * p + r + 1]; break;
-            case 4: faces = ax_[(r + 1) * p + s + 1] & ~ox_[(r + 1) * p + s + 2]; break;
-            default: faces = ax_[(r + 1) * p + s + 1] & ~ox_[(r + 1) * p + s]; break;
-          }
-          while (faces) {
-            const int b = std::countr_zero(faces);
-            faces &= faces - 1;
-            int x, y, z;
-            origin(f, s, r, b, x, y, z);
-            const int idx = ao.index(x, y, z);
-            const BlockId self = ids[idx];
-            const bool alpha = render[self] == alpha_class;
-            if (alpha && ids[idx + front] == self && palette.culls_same(self)) continue;
-            const std::uint32_t aob = ao.face_bits(idx, f);
-            const std::uint32_t key = pack_word1(self, f, aob);
-            if (!ao_uniform(aob)) {
-              (alpha ? out.alpha_cut : out.opaque).push_back(PackedQuad{pack_word0(x, y, z, 1, 1), key});
-              continue;
-            }
-            if (last_slot < 0 || keys_[static_cast<std::size_t>(last_slot)] != key) last_slot = find_slot(key);
-            rows_[static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r)] |= std::uint64_t{1} << b;
-          }
-        }
-        for (int k = 0; k < slot_count_; ++k) merge_slot(k, f, s, render, out);
-      }
-    }
+    mesh_face<0>(ids, palette, render, out);
+    mesh_face<1>(ids, palette, render, out);
+    mesh_face<2>(ids, palette, render, out);
+    mesh_face<3>(ids, palette, render, out);
+    mesh_face<4>(ids, palette, render, out);
+    mesh_face<5>(ids, palette, render, out);
   }
 
  private:
+  // One face direction, specialised so the axis mapping is resolved at compile time.
+  template <int F>
+  void mesh_face(const BlockId* ids, const BlockPalette& palette, const std::uint8_t* render, ChunkMesh& out) {
+    constexpr int kAxis = F >> 1;
+    constexpr int kSign = (F & 1) ? -1 : 1;
+    const int n = n_;
+    const int p = p_;
+    const int stride[3] = {1, p * p, p};
+    const int front = kSign * stride[kAxis];
+    // Stride between consecutive bits of a row, in the padded id array: bits run along y for
+    // +-X faces and along x otherwise.
+    const int bit_stride = kAxis == 0 ? p * p : 1;
+    const auto alpha_class = static_cast<std::uint8_t>(RenderClass::kAlphaCut);
+    for (int s = 0; s < n; ++s) {
+      slot_count_ = 0;
+      int last_slot = -1;
+      const int layer = s + kSign;  // the slice in front of the faces, in [-1, n]
+      for (int r = 0; r < n; ++r) {
+        std::uint64_t faces;
+        if constexpr (kAxis == 0) {
+          faces = ay_[idx2(s, r)] & ~oy_[idx2(layer, r)];
+        } else if constexpr (kAxis == 1) {
+          faces = ax_[idx2(s, r)] & ~ox_[idx2(layer, r)];
+        } else {
+          faces = ax_[idx2(r, s)] & ~ox_[idx2(r, layer)];
+        }
+        if (!faces) continue;
+        AoPlanes ao;
+        ao_planes(F, layer, r, ao);
+        int x0, y0, z0;
+        origin(F, s, r, 0, x0, y0, z0);
+        const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
+        std::uint64_t* slot_row = nullptr;
+        while (faces) {
+          const int b = std::countr_zero(faces);
+          faces &= faces - 1;
+          const int idx = row_base + b * bit_stride;
+          const BlockId self = ids[idx];
+          const bool alpha = render[self] == alpha_class;
+          if (alpha && ids[idx + front] == self && palette.culls_same(self)) continue;
+          if ((ao.uniform >> b) & 1u) {
+            const auto level = static_cast<std::uint32_t>(((ao.hi[0] >> b) & 1u) << 1 | ((ao.lo[0] >> b) & 1u));
+            const std::uint32_t key = pack_word1(self, F, level * 0x55u);
+            if (last_slot < 0 || keys_[static_cast<std::size_t>(last_slot)] != key) {
+              last_slot = find_slot(key);
+              slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
+            } else if (slot_row == nullptr) {
+              slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
+            }
+            *slot_row |= std::uint64_t{1} << b;
+          } else {
+            std::uint32_t bits = 0;
+            for (int k = 0; k < 4; ++k) {
+              bits |= static_cast<std::uint32_t>(((ao.hi[k] >> b) & 1u) << 1 | ((ao.lo[k] >> b) & 1u)) << (2 * k);
+            }
+            int x, y, z;
+            origin(F, s, r, b, x, y, z);
+            (alpha ? out.alpha_cut : out.opaque).push_back(PackedQuad{pack_word0(x, y, z, 1, 1), pack_word1(self, F, bits)});
+          }
+        }
+      }
+      for (int k = 0; k < slot_count_; ++k) merge_slot(k, F, s, render, out);
+    }
+  }
+
+  // Index of padded (a, b) in [-1, n]^2 for the P x P mask arrays.
+  int idx2(int a, int b) const { return (a + 1) * p_ + (b + 1); }
+
   void build_masks(const PaddedBlocks& blocks, const BlockPalette& palette) {
     const int n = n_;
-    const int p = n + 2;
+    const int p = p_;
     const auto pp = static_cast<std::size_t>(p * p);
     ax_.assign(pp, 0);
     ox_.assign(pp, 0);
     ay_.assign(pp, 0);
     oy_.assign(pp, 0);
+    xlo_.assign(pp, 0);
+    xhi_.assign(pp, 0);
+    ylo_.assign(pp, 0);
+    yhi_.assign(pp, 0);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const BlockId* ids = blocks.ids.data();
+    const BlockId first_special = palette.first_alpha_cut();
+    // Rows along x, indexed (y, z).
     for (int yy = 0; yy < p; ++yy) {
-      const int y = yy - 1;
-      const bool y_inside = y >= 0 && y < n;
       for (int zz = 0; zz < p; ++zz) {
         const BlockId* row = ids + static_cast<std::ptrdiff_t>(zz + p * yy) * p;
-        std::uint64_t a = 0;
-        std::uint64_t o = 0;
-        for (int x = 0; x < n; ++x) {
-          const BlockId id = row[x + 1];
-          a |= static_cast<std::uint64_t>(id != kAir) << x;
-          o |= static_cast<std::uint64_t>(opaque[id]) << x;
+        const auto k = static_cast<std::size_t>(yy * p + zz);
+        std::uint64_t nonair = 0;
+        std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
+        classify_row(row + 1, n, first_special, nonair, special);
+        std::uint64_t alpha = 0;
+        for (std::uint64_t m = special; m;) {
+          const int b = std::countr_zero(m);
+          m &= m - 1;
+          if (!opaque[row[1 + b]]) alpha |= std::uint64_t{1} << b;
         }
-        ax_[static_cast<std::size_t>(yy * p + zz)] = a;
-        ox_[static_cast<std::size_t>(yy * p + zz)] = o;
-        if (y_inside) {
-          for (int xx = 0; xx < p; ++xx) {
-            const BlockId id = row[xx];
-            ay_[static_cast<std::size_t>(xx * p + zz)] |= static_cast<std::uint64_t>(id != kAir) << y;
-            oy_[static_cast<std::size_t>(xx * p + zz)] |= static_cast<std::uint64_t>(opaque[id]) << y;
-          }
+        ax_[k] = nonair;
+        ox_[k] = nonair & ~alpha;
+        xlo_[k] = opaque[row[0]];
+        xhi_[k] = opaque[row[n + 1]];
+      }
+    }
+    // Columns along y for interior x: transpose each z-slab of the x rows (rows y in [0, n)).
+    const int width = n <= 32 ? 32 : 64;
+    std::uint64_t a[64];
+    std::uint64_t o[64];
+    for (int zz = 0; zz < p; ++zz) {
+      std::fill(a, a + 64, 0);
+      std::fill(o, o + 64, 0);
+      std::uint64_t any = 0;
+      bool same = true;  // opaque == non-air (no alpha-cut block in the slab): one transpose
+      for (int y = 0; y < n; ++y) {
+        a[y] = ax_[static_cast<std::size_t>((y + 1) * p + zz)];
+        o[y] = ox_[static_cast<std::size_t>((y + 1) * p + zz)];
+        any |= a[y];
+        same = same && a[y] == o[y];
+      }
+      if (any) {
+        transpose_bits(a, width);
+        if (same) {
+          std::copy(a, a + 64, o);
+        } else {
+          transpose_bits(o, width);
+        }
+        for (int x = 0; x < n; ++x) {
+          ay_[static_cast<std::size_t>((x + 1) * p + zz)] = a[x];
+          oy_[static_cast<std::size_t>((x + 1) * p + zz)] = o[x];
+        }
+      }
+      // Padding columns x = -1 and x = n come from the rows' end bits.
+      std::uint64_t lo = 0, hi = 0;
+      for (int y = 0; y < n; ++y) {
+        lo |= static_cast<std::uint64_t>(xlo_[static_cast<std::size_t>((y + 1) * p + zz)]) << y;
+        hi |= static_cast<std::uint64_t>(xhi_[static_cast<std::size_t>((y + 1) * p + zz)]) << y;
+      }
+      oy_[static_cast<std::size_t>(zz)] = lo;
+      oy_[static_cast<std::size_t>((n + 1) * p + zz)] = hi;
+      // Column end bits (y = -1 and y = n) for every padded x.
+      const auto bottom = static_cast<std::size_t>(zz);              // row y = -1
+      const auto top = static_cast<std::size_t>((n + 1) * p + zz);    // row y = n
+      for (int xx = 0; xx < p; ++xx) {
+        const auto c = static_cast<std::size_t>(xx * p + zz);
+        if (xx == 0) {
+          ylo_[c] = xlo_[bottom];
+          yhi_[c] = xlo_[top];
+        } else if (xx == n + 1) {
+          ylo_[c] = xhi_[bottom];
+          yhi_[c] = xhi_[top];
+        } else {
+          ylo_[c] = static_cast<std::uint8_t>((ox_[bottom] >> (xx - 1)) & 1u);
+          yhi_[c] = static_cast<std::uint8_t>((ox_[top] >> (xx - 1)) & 1u);
         }
       }
     }
   }
 
-  // Block coordinates of bit b in row r of slice s for face f (see the face-row table above).
+  // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special.
+  static void classify_row(const BlockId* row, int n, BlockId first_special, std::uint64_t& nonair,
+                           std::uint64_t& special) {
+    int x = 0;
+#if defined(__SSE2__)
+    {
+      const __m128i zero = _mm_setzero_si128();
+      const int limit_id = std::min<int>(first_special, 0x8000) - 1;
+      const __m128i limit = _mm_set1_epi16(static_cast<short>(limit_id));
+      for (; x + 16 <= n; x += 16) {
+        const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
+        const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
+        const int air = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero)));
+        // Ids >= 0x8000 compare as negative: they are caught as "special" through the sign.
+        const __m128i s0 = _mm_or_si128(_mm_cmpgt_epi16(v0, limit), _mm_cmplt_epi16(v0, zero));
+        const __m128i s1 = _mm_or_si128(_mm_cmpgt_epi16(v1, limit), _mm_cmplt_epi16(v1, zero));
+        const int spec = _mm_movemask_epi8(_mm_packs_epi16(s0, s1));
+        nonair |= static_cast<std::uint64_t>(~air & 0xffff) << x;
+        special |= static_cast<std::uint64_t>(spec & 0xffff) << x;
+      }
+    }
+#endif
+    for (; x < n; ++x) {
+      nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
+      special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
+    }
+  }
+
+  // Opaque mask of padded row r of `layer` for face f, with its two end bits.
+  void layer_row(int f, int layer, int r, std::uint64_t& m, std::uint64_t& lo, std::uint64_t& hi) const {
+    std::size_t k;
+    switch (f >> 1) {
+      case 0:  // layer is x; rows z; bits y
+        k = static_cast<std::size_t>(idx2(layer, r));
+        m = oy_[k];
+        lo = ylo_[k];
+        hi = yhi_[k];
+        return;
+      case 1:  // layer is y; rows z; bits x
+        k = static_cast<std::size_t>(idx2(layer, r));
+        break;
+      default:  // layer is z; rows y; bits x
+        k = static_cast<std::size_t>(idx2(r, layer));
+        break;
+    }
+    m = ox_[k];
+    lo = xlo_[k];
+    hi = xhi_[k];
+  }
+
+  void ao_planes(int f, int layer, int r, AoPlanes& out) const {
+    // occ[dr + 1][db + 1]: opaque neighbour at row offset dr and bit offset db, per face bit.
+    std::uint64_t occ[3][3];
+    for (int dr = -1; dr <= 1; ++dr) {
+      std::uint64_t m, lo, hi;
+      layer_row(f, layer, r + dr, m, lo, hi);
+      occ[dr + 1][0] = ((m << 1) | lo) & full_;            // value at b - 1
+      occ[dr + 1][1] = m;                                   // value at b
+      occ[dr + 1][2] = (m >> 1) | (hi << (n_ - 1));         // value at b + 1
+    }
+    // Face axes: for +-Y the u axis runs along rows and v along bits; otherwise u along bits.
+    const bool u_is_row = (f >> 1) == 1;
+    auto at = [&](int du, int dv) -> std::uint64_t {
+      const int db = u_is_row ? dv : du;
+      const int dr = u_is_row ? du : dv;
+      return occ[dr + 1][db + 1];
+    };
+    static constexpr int kCorner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+    for (int k = 0; k < 4; ++k) {
+      const std::uint64_t s1 = at(kCorner[k][0], 0);
+      const std::uint64_t s2 = at(0, kCorner[k][1]);
+      const std::uint64_t c = at(kCorner[k][0], kCorner[k][1]);
+      // count = s1 + s2 + c as two bit-planes; ao = 3 - count = ~count; both sides -> 0.
+      const std::uint64_t sum0 = s1 ^ s2 ^ c;
+      const std::uint64_t sum1 = (s1 & s2) | (c & (s1 ^ s2));
+      const std::uint64_t both = s1 & s2;
+      out.hi[k] = ~sum1 & ~both;
+      out.lo[k] = ~sum0 & ~both;
+    }
+    out.uniform = ~((out.hi[0] ^ out.hi[1]) | (out.hi[0] ^ out.hi[2]) | (out.hi[0] ^ out.hi[3]) |
+                    (out.lo[0] ^ out.lo[1]) | (out.lo[0] ^ out.lo[2]) | (out.lo[0] ^ out.lo[3]));
+  }
+
+  // Block coordinates of bit b in row r of slice s for face f.
   static void origin(int f, int s, int r, int b, int& x, int& y, int& z) {
     switch (f >> 1) {
       case 0: x = s; y = b; z = r; break;
@@ -161,7 +367,10 @@ class BitmaskMesher final : public Mesher {
   }
 
   int n_ = 0;
+  int p_ = 0;
+  std::uint64_t full_ = 0;
   std::vector<std::uint64_t> ax_, ox_, ay_, oy_;
+  std::vector<std::uint8_t> xlo_, xhi_, ylo_, yhi_;
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> rows_;
   int slot_count_ = 0;

@@ -80,11 +80,15 @@ class BlockPalette {
   bool is_opaque(BlockId id) const { return opaque_[id] != 0; }
   RenderClass render(BlockId id) const { return static_cast<RenderClass>(render_[id]); }
   bool culls_same(BlockId id) const { return types_[id].cull_same; }
+  // Smallest alpha-cut id (0xffff when there is none): ids below it are air or opaque, which lets
+  // the bitmask mesher classify whole rows with SIMD compares.
+  BlockId first_alpha_cut() const { return first_alpha_cut_; }
 
  private:
   std::vector<BlockType> types_;
   std::vector<std::uint8_t> opaque_;
   std::vector<std::uint8_t> render_;
+  BlockId first_alpha_cut_ = 0xffff;
 };
 
 }  // namespace sylva::voxel
