@@ -37,36 +37,32 @@ glm::vec3 bezier_point(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3
 }
 
 float bezier_length(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2) {
-  // B'(t) = 2 (A + t B) with A = p1 - p0, B = p2 - 2 p1 + p0. Length = 2 * int_0^1 |A + tB| dt,
-  // integrated in closed form in double precision.
+  // B'(t) = 2 (A + t B) with A = p1 - p0, B = p2 - 2 p1 + p0, so the length is
+  // 2 int_0^1 sqrt(a t^2 + 2 b t + c) dt with a = B.B, b = A.B, c = A.A. Substituting u = t + b/a
+  // gives 2 sqrt(a) [F(u1) - F(u0)], F(u) = (u s + k ln(u + s)) / 2, s = sqrt(u^2 + k). Written to
+  // avoid cancellation (shaders/physics.comp evaluates the same expressions in float):
+  //  - k = (ac - b^2) / a^2 = |A x B|^2 / a^2 (Lagrange's identity) instead of a difference;
+  //  - ln(u + s) = ln(k) - ln(s - u) for u < 0, where u + s would cancel.
   const glm::dvec3 A = glm::dvec3(p1) - glm::dvec3(p0);
   const glm::dvec3 B = glm::dvec3(p2) - 2.0 * glm::dvec3(p1) + glm::dvec3(p0);
   const double a = glm::dot(B, B);
-  const double b = glm::dot(A, B);
   const double c = glm::dot(A, A);
   const double chord = glm::length(glm::dvec3(p2) - glm::dvec3(p0));
-  if (a < 1e-18 * std::max(c, 1e-30)) return static_cast<float>(chord);  // straight, uniform speed
-  // int_0^1 sqrt(a t^2 + 2 b t + c) dt with u = t + b/a, k = c/a - (b/a)^2 >= 0.
-  const double k = std::max(c / a - (b / a) * (b / a), 0.0);
-  auto F = [&](double u) {
-    const double s = std::sqrt(u * u + k);
-    const double log_term = (k > 1e-300) ? k * std::log(std::max(u + s, 1e-300)) : 0.0;
-    return 0.5 * (u * s + log_term);
-  };
+  if (!(a > 1e-12 * c) || a <= 0.0) return static_cast<float>(chord);  // (nearly) uniform speed: a straight line
+  const double b = glm::dot(A, B);
+  const double k = glm::dot(glm::cross(A, B), glm::cross(A, B)) / (a * a);
   const double u0 = b / a;
   const double u1 = 1.0 + b / a;
   double integral;
-  if (k <= 1e-14 * std::max(1.0, u0 * u0)) {
+  if (k <= 1e-14 * std::max({1.0, u0 * u0, u1 * u1})) {
     // Collinear control points: |A + tB| = sqrt(a) |u|.
-    auto G = [](double u) { return 0.5 * u * std::abs(u); };
-    integral = std::sqrt(a) * (G(u1) - G(u0));
-  } else if (u0 < 0.0 && u1 <= 0.0) {
-    // Mirror to keep u + s away from cancellation.
-    integral = std::sqrt(a) * (F(-u0) - F(-u1));
+    integral = 0.5 * (u1 * std::abs(u1) - u0 * std::abs(u0));
   } else {
-    integral = std::sqrt(a) * (F(u1) - F(u0));
+    const double s0 = std::sqrt(u0 * u0 + k), s1 = std::sqrt(u1 * u1 + k);
+    const auto log_us = [k](double u, double s) { return u >= 0.0 ? std::log(u + s) : std::log(k) - std::log(s - u); };
+    integral = 0.5 * ((u1 * s1 - u0 * s0) + k * (log_us(u1, s1) - log_us(u0, s0)));
   }
-  const double length = 2.0 * integral;
+  const double length = 2.0 * std::sqrt(a) * integral;
   return static_cast<float>(std::isfinite(length) ? std::max(length, chord) : chord);
 }
 

@@ -133,7 +133,9 @@ TEST(GrassPhysics, BezierLengthClosedForm) {
   const glm::vec3 cases[][3] = {{{0, 0, 0}, {0, 1, 0}, {0, 2, 0}},
                                 {{0, 0, 0}, {0, 1, 0}, {0, 0.2f, 0}},
                                 {{0, 0, 0}, {0, 0.5f, 0}, {0.4f, 0.3f, 0.1f}},
-                                {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}}};
+                                {{1, 1, 1}, {1, 1, 1}, {1, 1, 1}},
+                                {{0, 0, 0}, {0, 0.999f, 0}, {0.002f, 0.9999f, 0}},   // nearly straight, sharp top
+                                {{0, 0, 0}, {0, 0.05f, 0}, {0.9f, 0.01f, 0.2f}}};    // lying flat
   for (const auto& c : cases) {
     double poly = 0.0;
     glm::dvec3 prev = glm::dvec3(c[0]);

@@ -49,8 +49,6 @@ struct BladeSettings {
   float stiffness_min = 40.0f;   // recovery rate towards the rest pose [1/s]
   float stiffness_max = 80.0f;   // [1/s]
   float height_width_correlation = 0.5f;  // 0: independent randoms; 1: seed 001's single random for both
-  glm::vec3 base_color{0.045f, 0.16f, 0.035f};  // linear RGB at the root
-  glm::vec3 tip_color{0.28f, 0.55f, 0.12f};     // linear RGB at the tip
   float color_variation = 0.15f;  // per-blade multiplicative jitter of each channel (seed's r5..r7)
 
   template <class V>
@@ -66,8 +64,6 @@ struct BladeSettings {
     v(stiffness_max, "stiffness_max", {.min = 0.0f, .max = 1.0e6f, .unit = "1/s", .help = "Stiffest blade", .rebuild = Rebuild::kOffline});
     v(height_width_correlation, "height_width_correlation",
       {.min = 0.0f, .max = 1.0f, .help = "1 = tall blades are wide (seed 001), 0 = independent", .rebuild = Rebuild::kOffline});
-    v(base_color, "base_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the root", .rebuild = Rebuild::kOffline});
-    v(tip_color, "tip_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the tip", .rebuild = Rebuild::kOffline});
     v(color_variation, "color_variation", {.min = 0.0f, .max = 1.0f, .help = "Per-blade colour jitter", .rebuild = Rebuild::kOffline});
   }
 };

@@ -1,0 +1,164 @@
+#pragma once
+// GrassField: the GL renderer of one field of blades (a render::Drawable).
+//
+// Per frame (update): the CPU tests each tile's box against the frustum and near_distance and
+// lists the visible tiles; grass/physics.comp advances the blades of those tiles (a tile that
+// was out of view catches up with one larger step when it comes back, which the unconditionally
+// stable integrator allows); grass/cull.comp culls blade by blade and appends the survivors to
+// an index list whose length is the count of an indirect draw command. draw(kOpaque) then issues
+// one glDrawArraysIndirect of GL_PATCHES (one vertex per blade) through blade.vert/.tesc/.tese/
+// .frag. The far field (billboards and ground layer of seed 003) is a separate drawable,
+// far_field.hpp, fed by the same settings.
+//
+// Ownership: the field owns its GPU buffers and a copy of the tiles; the blade array is moved to
+// the GPU (read_blades() reads it back for tests). Needs a current GL 4.5 context for every
+// call, including destruction. The lighting uniform block (render::LightingUniforms) must be
+// bound by the caller before draw(), as for every module.
+//
+// Failure: create() returns kGl when a shader does not compile (message names file:line) and
+// kLimit when the blades exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+
+#include <sylva/core/params.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/core/wind.hpp>
+#include <sylva/grass/culling.hpp>
+#include <sylva/grass/generator.hpp>
+#include <sylva/grass/physics.hpp>
+#include <sylva/grass/settings.hpp>
+#include <sylva/render/buffer.hpp>
+#include <sylva/render/camera.hpp>
+#include <sylva/render/drawable.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/render/shader_library.hpp>
+#include <sylva/render/vertex_array.hpp>
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+namespace sylva::grass {
+
+// Blade outline (Jahrmann & Wimmer 2017 shape functions) applied on seed 001's two splines.
+enum class BladeShape { kQuad, kTriangle, kQuadratic, kTriangleTip };
+constexpr std::array<EnumName<BladeShape>, 4> enum_names(BladeShape) {
+  return {{{BladeShape::kQuad, "quad"},
+           {BladeShape::kTriangle, "triangle"},
+           {BladeShape::kQuadratic, "quadratic"},
+           {BladeShape::kTriangleTip, "triangle_tip"}}};
+}
+
+// Everything the renderer reads per frame (no rebuild needed when it changes).
+struct GrassRenderSettings {
+  PhysicsSettings physics;
+  CullSettings cull;
+  ShadingSettings shading;
+  BladeShape shape = BladeShape::kQuadratic;
+  glm::vec3 base_color{0.045f, 0.16f, 0.035f};  // linear RGB at the root
+  glm::vec3 tip_color{0.28f, 0.55f, 0.12f};     // linear RGB at the tip
+  bool simulate = true;                         // physics on/off (off: blades keep their pose)
+
+  template <class V>
+  void visit(V& v) {
+    v(physics, "physics");
+    v(cull, "cull");
+    v(shading, "shading");
+    v(shape, "shape", {.help = "Blade outline: quad, triangle, quadratic or triangle_tip"});
+    v(base_color, "base_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the root"});
+    v(tip_color, "tip_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the tip"});
+    v(simulate, "simulate", {.help = "Run the blade physics"});
+  }
+};
+
+// Counters of one frame (GPU counters are read back on request, see read_frame_stats()).
+struct GrassFrameStats {
+  std::uint64_t blades_total = 0;
+  std::uint64_t tiles_total = 0;
+  std::uint64_t tiles_visible = 0;
+  CullCounts counts;               // per-blade results of cull.comp (considered = blades in visible tiles)
+  std::uint64_t blades_in_culled_tiles = 0;
+  std::uint64_t overflow = 0;      // survivors that did not fit the visible list (always 0)
+};
+
+class GrassField : public render::Drawable {
+ public:
+  GrassField() = default;
+  // Uploads `blades` and builds the programs. The blades are moved to the GPU.
+  static Result<GrassField> create(BladeSet blades, const GrassRenderSettings& settings = {});
+
+  GrassField(GrassField&&) noexcept = default;
+  GrassField& operator=(GrassField&&) noexcept = default;
+
+  GrassRenderSettings& settings() { return settings_; }
+  const GrassRenderSettings& settings() const { return settings_; }
+
+  // Colliders in world coordinates (converted to blade-set local). At most kMaxColliders.
+  static constexpr std::size_t kMaxColliders = 64;
+  void set_colliders(std::span<const glm::dvec3> centers, std::span<const float> radii);
+
+  // CPU tile culling, physics and blade culling on the GPU (see the header comment).
+  void update(const render::FrameContext& frame) override;
+  // kOpaque: the blades; kShadow and kTransparent draw nothing yet (no shadow caster API).
+  void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+
+  // Same as update() with explicit inputs (tools and tests without a scene).
+  void update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind);
+  void draw_blades(const render::Camera& camera, render::PassStats* stats = nullptr);
+
+  const glm::dvec3& origin() const { return origin_; }
+  const std::vector<GrassTile>& tiles() const { return tiles_; }
+  std::size_t blade_count() const { return blade_count_; }
+  float max_height() const { return max_height_; }
+
+  // Stalling read-backs for tests and benchmarks.
+  std::vector<Blade> read_blades() const;
+  GrassFrameStats read_frame_stats() const;
+  // GPU time of the last completed frames' passes [ms] (non-stalling; nullopt until available).
+  struct GpuTimes {
+    double simulate_ms = 0.0;
+    double cull_ms = 0.0;
+    double draw_ms = 0.0;
+    std::uint64_t primitives = 0;  // GL_PRIMITIVES_GENERATED by the blade draw
+  };
+  std::optional<GpuTimes> gpu_times(bool wait = false);
+
+ private:
+  struct TileJob {
+    std::uint32_t first;
+    std::uint32_t count;
+    float dt;
+    std::uint32_t flags;
+  };
+  void set_cull_uniforms(const render::Program& program, const CullView& view) const;
+
+  GrassRenderSettings settings_;
+  glm::dvec3 origin_{0.0};
+  std::vector<GrassTile> tiles_;
+  std::vector<double> tile_sim_time_;  // last time each tile was simulated; < 0: never
+  std::size_t blade_count_ = 0;
+  float max_height_ = 0.0f;
+
+  render::Buffer blades_;
+  render::Buffer visible_;
+  render::Buffer jobs_;
+  render::Buffer command_;
+  render::Buffer spheres_;
+  render::Buffer wind_;
+  render::VertexArray vao_;
+  render::Program physics_;
+  render::Program cull_;
+  render::Program draw_;
+  render::PassQuery sim_query_;
+  render::PassQuery cull_query_;
+  render::PassQuery draw_query_;
+  std::uint64_t frame_ = 0;
+  int sphere_count_ = 0;
+  std::size_t job_count_ = 0;
+  std::uint64_t blades_in_culled_tiles_ = 0;
+  CullView view_{};
+  float ppr_ = 1.0f;
+  glm::vec3 camera_local_{0.0f};
+};
+
+}  // namespace sylva::grass

@@ -1,0 +1,38 @@
+#version 450 core
+// grass/blade.frag: two-sided blade shading: diffuse on the lit face, translucency (light
+// through the blade) on the other, hemisphere ambient, root darkening, per-blade colour and a
+// soft sheen; distance fog. Linear RGB out, like the rest of the render core.
+#include "render/lib/lighting.glsl"
+#include "render/lib/fog.glsl"
+
+in vec3 te_rel_pos;
+in vec3 te_normal;
+in vec2 te_uv;
+flat in vec3 te_color_mult;
+flat in float te_shade;
+
+uniform vec3 u_base_color;
+uniform vec3 u_tip_color;
+uniform vec4 u_shading;   // x translucency, y ambient, z root_occlusion, w specular
+
+out vec4 o_color;
+
+void main() {
+  vec3 view = normalize(-te_rel_pos);
+  vec3 n = normalize(te_normal);
+  if (dot(n, view) < 0.0) n = -n;  // two-sided: the face towards the eye
+  vec3 l = sun_direction();
+  float v = te_uv.y;
+  vec3 albedo = mix(u_base_color, u_tip_color, pow(v, 0.8)) * te_color_mult;
+  float ao = mix(1.0 - u_shading.z, 1.0, smoothstep(0.0, 1.0, v));
+  float ndl = dot(n, l);
+  float diffuse = max(ndl, 0.0);
+  // Light through the blade: the unlit face glows, strongest when looking towards the sun.
+  float through = max(-ndl, 0.0) * (0.5 + 0.5 * max(dot(-view, l), 0.0));
+  vec3 transmitted = u_shading.x * through * vec3(1.0, 1.05, 0.55);
+  vec3 direct = sun_radiance() * (diffuse + transmitted);
+  vec3 ambient = hemisphere_ambient(n) * u_shading.y * (0.8 + 0.4 * te_shade);
+  float sheen = u_shading.w * blinn_phong(n, view, l, 24.0) * v;
+  vec3 color = (albedo * (direct + ambient) + sheen * sun_radiance() * 0.04) * ao;
+  o_color = vec4(apply_fog(color, te_rel_pos), 1.0);
+}

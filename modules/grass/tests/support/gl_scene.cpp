@@ -1,0 +1,45 @@
+#include "support/gl_scene.hpp"
+
+#include <sylva/core/log.hpp>
+#include <sylva/render/readback.hpp>
+
+#include <epoxy/gl.h>
+
+namespace sylva::grass::testing {
+
+GlScene GlScene::create(int width, int height) {
+  GlScene s;
+  render::FramebufferDesc desc;
+  desc.width = width;
+  desc.height = height;
+  s.target = render::Framebuffer::create(desc).value();
+  s.lighting_ubo = render::LightingUniforms::create();
+  s.lighting.fog_density = 0.0f;
+  s.camera.set_aspect(width, height);
+  s.camera.perspective().near_plane = 0.05f;
+  return s;
+}
+
+void GlScene::begin(double time) {
+  target.bind();
+  target.clear(clear_color, 0.0f);
+  lighting_ubo.update(lighting, camera.position().y, time);
+  lighting_ubo.bind();
+}
+
+Image GlScene::read() const { return render::read_color(target).value(); }
+
+Image GlScene::render(GrassField& field, double time, float dt) {
+  begin(time);
+  field.update(camera, size(), time, dt, wind);
+  target.bind();
+  field.draw_blades(camera);
+  return read();
+}
+
+void save_png(const Image& image, const std::string& name) {
+  const Status s = write_image(name + ".png", image);
+  if (!s.ok()) log_warn("could not save {}: {}", name, s.error().message);
+}
+
+}  // namespace sylva::grass::testing
