@@ -60,10 +60,25 @@ Chunk& World::insert(const ChunkCoord& c, Chunk chunk) {
 }
 
 bool World::erase(const ChunkCoord& c) {
-  if (slots_.erase(c) == 0) return false;
+  auto it = slots_.find(c);
+  if (it == slots_.end()) return false;
+  if (!it->second.plants.empty()) ++plant_epoch_;
+  slots_.erase(it);
   mark_ring(c);
   ++mesh_epoch_;
   return true;
+}
+
+void World::set_plants(const ChunkCoord& c, std::vector<PlantInstance> plants) {
+  auto it = slots_.find(c);
+  if (it == slots_.end()) return;
+  it->second.plants = std::move(plants);
+  ++plant_epoch_;
+}
+
+const std::vector<PlantInstance>* World::plants(const ChunkCoord& c) const {
+  auto it = slots_.find(c);
+  return it == slots_.end() ? nullptr : &it->second.plants;
 }
 
 void World::mark_ring(const ChunkCoord& c) {

@@ -10,6 +10,7 @@
 #include <sylva/voxel/block.hpp>
 #include <sylva/voxel/chunk.hpp>
 #include <sylva/voxel/coords.hpp>
+#include <sylva/voxel/flora.hpp>
 #include <sylva/voxel/mesher.hpp>
 
 #include <functional>
@@ -59,10 +60,17 @@ class World {
   // Mesh revision of a chunk: bumped whenever its own blocks or its border ring change.
   std::uint64_t revision(const ChunkCoord& c) const;
 
+  // L-system plants standing in a loaded chunk (instanced, not voxels). Setting them bumps
+  // plant_epoch(). Plants of chunks that are not loaded are dropped.
+  void set_plants(const ChunkCoord& c, std::vector<PlantInstance> plants);
+  const std::vector<PlantInstance>* plants(const ChunkCoord& c) const;
+  std::uint64_t plant_epoch() const { return plant_epoch_; }
+
  private:
   struct Slot {
     Chunk chunk;
     ChunkMesh mesh;
+    std::vector<PlantInstance> plants;
     bool dirty = true;
     std::uint64_t revision = 0;  // bumped with every change affecting the mesh
   };
@@ -71,6 +79,7 @@ class World {
   const BlockPalette* palette_;
   std::unordered_map<ChunkCoord, Slot, ChunkCoordHash> slots_;
   std::uint64_t mesh_epoch_ = 0;
+  std::uint64_t plant_epoch_ = 0;
 };
 
 }  // namespace sylva::voxel
