@@ -216,7 +216,7 @@ TEST_F(WindGlsl, WindMatchesTheCpuAtManyPointsTimesAndOrigins) {
 
 TEST_F(WindGlsl, FieldPicture) {
   // A 256x144 top-down view of the GPU wind (x, z components as red/green around the mean) and
-  // of GPU fBm, written next to the test for a visual check.
+  // of GPU fBm, written for a visual check.
   WindSettings s;
   s.strength = 4.0f;
   s.gust_amplitude = 3.0f;
@@ -242,8 +242,11 @@ TEST_F(WindGlsl, FieldPicture) {
     }
   }
   EXPECT_GT(variance / (256.0 * 144.0), 0.05) << "the wind picture is flat";
-  const Status written = write_image("wind_glsl_field.png", img, PixelFormat::kU8);
+  // Into the test temp folder, so running the test from a source checkout leaves no files.
+  const std::string path = ::testing::TempDir() + "sylva_wind_glsl_field.png";
+  const Status written = write_image(path, img, PixelFormat::kU8);
   EXPECT_TRUE(written.ok()) << written.error().describe();
+  std::printf("wrote %s\n", path.c_str());
 }
 
 }  // namespace
