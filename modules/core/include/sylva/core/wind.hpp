@@ -30,8 +30,10 @@
 // because the noise is periodic) plus a small float offset: WindField::frame(t, origin). The
 // per-sample part (WindField::evaluate(frame, local)) is float arithmetic on the position relative
 // to `origin` and is exactly what render/lib/wind.glsl computes from the same WindGpuParams,
-// so the CPU and the GPU agree to float rounding. Gust phase resolution is better than
-// 1e-6 gust periods at any t; turbulence resolves 2^-24 * |local| / turbulence_scale cells.
+// so the CPU and the GPU agree to float rounding (measured on llvmpipe: <= 1e-7 of max_speed).
+// At the origin the gust phase resolves 2^-24 gust periods and the turbulence 2^-24 cells at any
+// t; a local offset adds float rounding of |local| / (c * gust_period) periods and of
+// |local| / turbulence_scale cells, so keep local positions camera-relative.
 // Time is continuous: the split moves whole cells into the integer part without changing the sum.
 //
 // Failure: settings outside the documented ranges are clamped into them by WindField (hurricane
