@@ -20,8 +20,10 @@
 // side neighbours s1, s2 and a corner neighbour c in the layer in front of the face,
 // ao = (s1 && s2) ? 0 : 3 - (s1 + s2 + c); only opaque blocks occlude.
 
+#include <sylva/core/params.hpp>
 #include <sylva/voxel/block.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -82,6 +84,9 @@ struct ChunkMesh {
 };
 
 enum class MesherKind : std::uint8_t { kCulled, kGreedy, kBitmask };
+constexpr std::array<EnumName<MesherKind>, 3> enum_names(MesherKind) {
+  return {{{MesherKind::kCulled, "culled"}, {MesherKind::kGreedy, "greedy"}, {MesherKind::kBitmask, "bitmask"}}};
+}
 std::string_view to_string(MesherKind kind);
 // Parses "culled", "greedy" or "bitmask"; kInvalidArgument naming the value otherwise.
 Result<MesherKind> parse_mesher_kind(std::string_view name);

@@ -1,0 +1,141 @@
+#pragma once
+// GL renderer of a voxel World (seed 004 §1-§3): a render::Drawable.
+//
+//  * Chunk meshes are drawn by vertex pulling: each chunk's PackedQuads sit in one shader
+//    storage buffer, 6 vertices per quad are generated from gl_VertexID. Opaque quads first with
+//    back-face culling and a fragment shader without discard (early-z), then alpha-cut quads
+//    without culling and with an alpha test (seed §2.1, §2.2, §3.7.1).
+//  * Block textures come from a texture array of procedurally generated tiles (diffuse sRGB +
+//    specular map), one layer per TextureId; the top/side/bottom layer of a block comes from a
+//    block table in a storage buffer (seed §1.3's three-part grass block).
+//  * Phong lighting (seed §2.3): ambient (hemisphere, scaled by per-vertex AO), sun diffuse,
+//    specular from the specular map, and up to max_point_lights point lights from emissive
+//    blocks nearest the camera with attenuation 1 / (Kc + Kl d + Kq d^2) (Kc = 1, Kl = 0.045,
+//    Kq = 0.0075). Shadows are a plug-in (set_shadow_receiver) for the render core's cascades.
+//  * Camera-relative: every chunk is drawn with the offset (chunk origin - camera position)
+//    computed in double, so chunks 1e6 blocks from the origin render exactly like at the origin.
+//  * Chunk frustum culling on the CPU against the chunk box grown by its plants' bounds.
+//  * L-system plants: one instance per turtle-placed block (position, size, rotation, block),
+//    batched per chunk, drawn as instanced cubes (the seed's flyweight, §1.4).
+// One block = 1 world unit (metre).
+
+#include <sylva/core/result.hpp>
+#include <sylva/render/buffer.hpp>
+#include <sylva/render/drawable.hpp>
+#include <sylva/render/shader_library.hpp>
+#include <sylva/render/texture.hpp>
+#include <sylva/render/vertex_array.hpp>
+#include <sylva/voxel/mesher.hpp>
+#include <sylva/voxel/world.hpp>
+#include <sylva/voxel/worldgen.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace sylva::voxel {
+
+struct VoxelRenderSettings {
+  float alpha_cutoff = 0.5f;        // alpha-cut threshold (the seed used 0.05 for its textures)
+  int max_point_lights = 16;        // emissive blocks lit per frame, nearest first (<= 32)
+  float light_kc = 1.0f;            // attenuation 1 / (Kc + Kl d + Kq d^2), seed §2.3.3.2
+  float light_kl = 0.045f;
+  float light_kq = 0.0075f;
+  float light_range = 64.0f;        // blocks: lights farther than this from the camera are skipped
+  float ao_strength = 0.75f;        // 0 = no ambient occlusion, 1 = fully dark in closed corners
+  float specular_scale = 1.0f;
+  bool frustum_culling = true;
+  bool draw_plants = true;
+  int texture_size = 16;            // texels per block side
+
+  template <class V>
+  void visit(V& v) {
+    v(alpha_cutoff, "alpha_cutoff", {.min = 0.0, .max = 1.0, .help = "Texels with lower alpha are cut out"});
+    v(max_point_lights, "max_point_lights", {.min = 0, .max = 32, .help = "Emissive blocks lit per frame (nearest first)"});
+    v(light_kc, "light_kc", {.min = 1.0, .max = 16.0, .help = "Constant attenuation (>= 1 never amplifies)"});
+    v(light_kl, "light_kl", {.min = 0.0, .max = 4.0, .unit = "1/block", .help = "Linear attenuation"});
+    v(light_kq, "light_kq", {.min = 0.0, .max = 4.0, .unit = "1/block^2", .help = "Quadratic attenuation"});
+    v(light_range, "light_range", {.min = 1.0, .max = 4096.0, .unit = "blocks", .help = "Farthest light considered"});
+    v(ao_strength, "ao_strength", {.min = 0.0, .max = 1.0, .help = "Darkening by per-vertex ambient occlusion"});
+    v(specular_scale, "specular_scale", {.min = 0.0, .max = 8.0, .help = "Multiplier of every specular map"});
+    v(frustum_culling, "frustum_culling", {.help = "Skip chunks outside the view frustum"});
+    v(draw_plants, "draw_plants", {.help = "Draw the L-system plants"});
+    v(texture_size, "texture_size", {.min = 4, .max = 256, .unit = "texels", .help = "Block texture resolution", .rebuild = Rebuild::kGpu});
+  }
+};
+
+// Where shadows come from once the render core has cascaded shadow maps: a GLSL file (registered
+// in the shader library) defining `float voxel_shadow(vec3 rel_pos, vec3 normal)` (1 = lit), and
+// a callback binding its uniforms and textures to a program before each pass.
+struct ShadowReceiver {
+  std::string glsl_source;  // full text of the hook; empty restores "always lit"
+  std::function<void(GLuint program)> bind;
+};
+
+struct VoxelFrameStats {
+  std::size_t chunks_total = 0;
+  std::size_t chunks_drawn = 0;
+  std::size_t quads_drawn = 0;
+  std::size_t plant_parts_drawn = 0;
+  std::size_t point_lights = 0;
+  std::size_t uploads = 0;  // chunk buffers (re)built in the last update
+};
+
+class VoxelRenderer final : public render::Drawable {
+ public:
+  // Needs a current GL 4.5 context. `generator` (may be null: no plants) supplies plant models and
+  // their blocks. The world and generator must outlive the renderer. Errors: kGl (shader
+  // compile/link naming file:line), texture creation failures.
+  static Result<std::unique_ptr<VoxelRenderer>> create(const World& world,
+                                                      std::shared_ptr<const WorldGenerator> generator,
+                                                      const VoxelRenderSettings& settings = {});
+  ~VoxelRenderer() override;
+
+  VoxelRenderSettings& settings() { return settings_; }
+  const VoxelFrameStats& frame_stats() const { return stats_; }
+
+  // Uploads changed chunk meshes and plants, culls, picks point lights.
+  void update(const render::FrameContext& frame) override;
+  // kOpaque draws opaque then alpha-cut geometry; kShadow and kTransparent draw nothing until a
+  // shadow caster API exists (use draw_depth from a caster).
+  void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+  // Depth-only draw of every chunk and plant (alpha-tested where needed) with an arbitrary
+  // view-projection applied to positions relative to `origin` (world, double): the caster entry
+  // point for shadow maps. Culls nothing.
+  void draw_depth(const glm::mat4& relative_view_projection, const glm::dvec3& origin, render::PassStats& stats);
+
+  // Replaces the shadow hook and recompiles the programs (kGl on compile errors).
+  Status set_shadow_receiver(ShadowReceiver receiver);
+
+ private:
+  VoxelRenderer() = default;
+  struct ChunkGpu;
+  Status build_programs();
+  void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
+  void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
+  void bind_common(const render::Program& program, const render::FrameContext* frame) const;
+  void draw_chunks(const render::Program& quads, const render::Program& plants, bool alpha_cut,
+                   const glm::mat4& view_projection, const glm::dvec3& origin, bool culled, render::PassStats& stats);
+
+  const World* world_ = nullptr;
+  std::shared_ptr<const WorldGenerator> generator_;
+  VoxelRenderSettings settings_;
+  render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_;
+  render::Program depth_program_, depth_alpha_program_, plant_depth_program_;
+  render::Texture diffuse_, specular_;
+  render::Buffer block_table_;
+  render::VertexArray vao_;
+  std::unordered_map<ChunkCoord, std::unique_ptr<ChunkGpu>, ChunkCoordHash> chunks_;
+  std::uint64_t mesh_epoch_ = ~std::uint64_t{0};
+  std::uint64_t plant_epoch_ = ~std::uint64_t{0};
+  std::vector<ChunkGpu*> visible_;
+  std::vector<glm::vec4> light_pos_;    // camera-relative xyz
+  std::vector<glm::vec4> light_color_;  // rgb
+  ShadowReceiver shadow_;
+  VoxelFrameStats stats_;
+};
+
+}  // namespace sylva::voxel

@@ -1,0 +1,417 @@
+#include <sylva/voxel/voxel_renderer.hpp>
+
+#include <sylva/core/assert.hpp>
+#include <sylva/core/log.hpp>
+#include <sylva/render/frustum.hpp>
+#include <sylva/render/vertex_array.hpp>
+#include <sylva/voxel/block_textures.hpp>
+
+#include <fmt/format.h>
+
+#include <glm/gtc/packing.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::render::embedded {
+void register_voxel_shaders();
+}  // namespace sylva::render::embedded
+
+namespace sylva::voxel {
+
+namespace {
+
+constexpr GLuint kQuadBinding = 1;
+constexpr GLuint kPlantBinding = 2;
+constexpr GLuint kBlockBinding = 3;
+constexpr int kMaxLights = 32;
+constexpr const char* kShadowHook = "voxel/shadow_hook.glsl";
+
+struct BlockGpu {
+  std::uint32_t layers[4];
+  float emission[4];
+  float material[4];
+};
+static_assert(sizeof(BlockGpu) == 48);
+
+struct PlantPartGpu {
+  float center_size[4];
+  std::uint32_t data[4];
+};
+static_assert(sizeof(PlantPartGpu) == 32);
+
+// Sets a uniform only when the program uses it: the opaque variants compile the alpha cut-off
+// away and plants have no AO, and Program::set would warn about every such inactive name.
+template <class T>
+void set_if_active(const render::Program& p, const char* name, const T& value) {
+  if (glGetUniformLocation(p.id(), name) >= 0) p.set(name, value);
+}
+
+}  // namespace
+
+struct VoxelRenderer::ChunkGpu {
+  ChunkCoord coord;
+  render::Buffer quads;
+  std::uint32_t opaque_quads = 0;
+  std::uint32_t alpha_quads = 0;
+  std::uint64_t revision = ~std::uint64_t{0};
+  render::Buffer plants;
+  std::uint32_t plant_opaque = 0;
+  std::uint32_t plant_alpha = 0;
+  render::Aabb box;          // chunk box grown by its plants (world)
+  render::Aabb plant_box;    // plants only (empty when min > max)
+  struct Light {
+    glm::dvec3 position;  // world, block centre
+    glm::vec3 color;
+  };
+  std::vector<Light> lights;
+  glm::dvec3 origin{0.0};
+};
+
+VoxelRenderer::~VoxelRenderer() = default;
+
+Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
+                                                            std::shared_ptr<const WorldGenerator> generator,
+                                                            const VoxelRenderSettings& settings) {
+  if (settings.texture_size < 4 || settings.texture_size > 256) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("voxel.render.texture_size: {} outside [4, 256]", settings.texture_size));
+  }
+  if (settings.max_point_lights < 0 || settings.max_point_lights > kMaxLights) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.max_point_lights: {} outside [0, {}]",
+                                                               settings.max_point_lights, kMaxLights));
+  }
+  render::embedded::register_render_shaders();
+  render::embedded::register_voxel_shaders();
+  std::unique_ptr<VoxelRenderer> r(new VoxelRenderer());
+  r->world_ = &world;
+  r->generator_ = std::move(generator);
+  r->settings_ = settings;
+  r->vao_ = render::VertexArray::create();
+  SYLVA_TRY(r->set_shadow_receiver({}));
+
+  // Texture arrays: one layer per TextureId.
+  std::vector<Image> diffuse, specular;
+  for (int i = 0; i < kTextureCount; ++i) {
+    auto t = generate_block_texture(static_cast<TextureId>(i), settings.texture_size);
+    diffuse.push_back(std::move(t.diffuse));
+    specular.push_back(std::move(t.specular));
+  }
+  render::TextureOptions opt;
+  opt.encoding = render::TextureEncoding::kSrgb8;
+  opt.min_filter = GL_NEAREST_MIPMAP_LINEAR;
+  opt.mag_filter = GL_NEAREST;  // crisp pixel-art blocks
+  auto d = render::Texture::from_images(diffuse, opt);
+  if (!d.ok()) return d.error();
+  opt.encoding = render::TextureEncoding::kUnorm8;
+  auto s = render::Texture::from_images(specular, opt);
+  if (!s.ok()) return s.error();
+  r->diffuse_ = std::move(*d);
+  r->specular_ = std::move(*s);
+
+  const BlockPalette& palette = world.palette();
+  std::vector<BlockGpu> table(palette.size());
+  for (std::size_t i = 0; i < palette.size(); ++i) {
+    const BlockType& t = palette[static_cast<BlockId>(i)];
+    BlockGpu& g = table[i];
+    g.layers[0] = static_cast<std::uint32_t>(std::clamp(t.texture_top, 0, kTextureCount - 1));
+    g.layers[1] = static_cast<std::uint32_t>(std::clamp(t.texture_side, 0, kTextureCount - 1));
+    g.layers[2] = static_cast<std::uint32_t>(std::clamp(t.texture_bottom, 0, kTextureCount - 1));
+    g.layers[3] = (t.render == RenderClass::kAlphaCut ? 1u : 0u) | (t.emits_light() ? 2u : 0u);
+    g.emission[0] = t.emission.x;
+    g.emission[1] = t.emission.y;
+    g.emission[2] = t.emission.z;
+    g.emission[3] = 0.0f;
+    g.material[0] = t.specular;
+    g.material[1] = t.shininess;
+    g.material[2] = g.material[3] = 0.0f;
+  }
+  r->block_table_ = render::Buffer::immutable(std::span<const BlockGpu>(table));
+  return r;
+}
+
+Status VoxelRenderer::set_shadow_receiver(ShadowReceiver receiver) {
+  std::string hook = receiver.glsl_source;
+  if (hook.empty()) {
+    auto def = render::shader_source("voxel/shadow_hook_default.glsl");
+    if (!def.ok()) return def.error();
+    hook = *def;
+  }
+  render::register_shader_source(kShadowHook, hook);
+  shadow_ = std::move(receiver);
+  return build_programs();
+}
+
+Status VoxelRenderer::build_programs() {
+  const render::ShaderDefines alpha = {{"ALPHA_CUT", "1"}};
+  auto make = [](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
+                 render::Program& out) -> Status {
+    auto p = render::Program::create(stages, defines);
+    if (!p.ok()) return p.error();
+    out = std::move(*p);
+    return ok_status();
+  };
+  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, {}, opaque_program_));
+  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, alpha, alpha_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, {}, plant_opaque_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, alpha, plant_alpha_program_));
+  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
+  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, alpha, plant_depth_program_));
+  return ok_status();
+}
+
+void VoxelRenderer::upload_chunk(const ChunkCoord& c, ChunkGpu& gpu) {
+  const ChunkMesh* mesh = world_->mesh(c);
+  gpu.coord = c;
+  const BlockPos o = chunk_origin(c);
+  gpu.origin = glm::dvec3(static_cast<double>(o.x), static_cast<double>(o.y), static_cast<double>(o.z));
+  gpu.opaque_quads = mesh ? static_cast<std::uint32_t>(mesh->opaque.size()) : 0;
+  gpu.alpha_quads = mesh ? static_cast<std::uint32_t>(mesh->alpha_cut.size()) : 0;
+  gpu.quads = {};
+  if (gpu.opaque_quads + gpu.alpha_quads > 0) {
+    std::vector<PackedQuad> all;
+    all.reserve(gpu.opaque_quads + gpu.alpha_quads);
+    all.insert(all.end(), mesh->opaque.begin(), mesh->opaque.end());
+    all.insert(all.end(), mesh->alpha_cut.begin(), mesh->alpha_cut.end());
+    gpu.quads = render::Buffer::immutable(std::span<const PackedQuad>(all));
+  }
+  // Point lights: the emissive blocks of the chunk (seed §2.3.3.2).
+  gpu.lights.clear();
+  const Chunk* chunk = world_->find(c);
+  const BlockPalette& palette = world_->palette();
+  if (chunk && !chunk->is_uniform()) {
+    const auto blocks = chunk->blocks();
+    for (int i = 0; i < kChunkVolume; ++i) {
+      const BlockType& t = palette[blocks[static_cast<std::size_t>(i)]];
+      if (!t.emits_light()) continue;
+      const int x = i % kChunkSize, z = (i / kChunkSize) % kChunkSize, y = i / (kChunkSize * kChunkSize);
+      gpu.lights.push_back({gpu.origin + glm::dvec3(x + 0.5, y + 0.5, z + 0.5), t.emission});
+    }
+  }
+  gpu.revision = world_->revision(c);
+}
+
+void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
+  gpu.plants = {};
+  gpu.plant_opaque = gpu.plant_alpha = 0;
+  gpu.plant_box = {glm::dvec3(1e300), glm::dvec3(-1e300)};
+  const auto* plants = world_->plants(c);
+  if (!generator_ || !plants || plants->empty()) return;
+  const BlockPalette& palette = world_->palette();
+  std::vector<PlantPartGpu> opaque, alpha;
+  for (const PlantInstance& p : *plants) {
+    const PlantModel& model = generator_->variants(p.species).at(p.variant % generator_->variants(p.species).size());
+    const glm::quat yaw = glm::angleAxis(static_cast<float>(p.yaw_quarters) * 1.5707963f, glm::vec3(0, 1, 0));
+    // Ground block centre relative to the chunk origin.
+    const glm::vec3 base(static_cast<float>(p.ground.x - chunk_origin(c).x) + 0.5f,
+                         static_cast<float>(p.ground.y - chunk_origin(c).y) + 0.5f,
+                         static_cast<float>(p.ground.z - chunk_origin(c).z) + 0.5f);
+    for (int o = 0; o < kPlantOutputs; ++o) {
+      const BlockId block = generator_->part_block(p.species, o);
+      if (block == kAir) continue;
+      auto& list = palette.render(block) == RenderClass::kAlphaCut ? alpha : opaque;
+      for (const PlantPart& part : model.outputs[static_cast<std::size_t>(o)]) {
+        PlantPartGpu g;
+        const glm::vec3 pos = base + yaw * part.position;
+        g.center_size[0] = pos.x;
+        g.center_size[1] = pos.y;
+        g.center_size[2] = pos.z;
+        g.center_size[3] = part.size;
+        const glm::quat q = yaw * part.orientation;
+        g.data[0] = glm::packSnorm2x16(glm::vec2(q.x, q.y));
+        g.data[1] = glm::packSnorm2x16(glm::vec2(q.z, q.w));
+        g.data[2] = block;
+        g.data[3] = 0;
+        list.push_back(g);
+      }
+    }
+    // Bounds: any turn about y keeps the model inside the circle through its farthest box corner.
+    const glm::vec3 lo = model.bounds_min, hi = model.bounds_max;
+    const double r = std::sqrt(std::max(lo.x * lo.x, hi.x * hi.x) + std::max(lo.z * lo.z, hi.z * hi.z));
+    const glm::dvec3 world_base = gpu.origin + glm::dvec3(base);
+    gpu.plant_box.min = glm::min(gpu.plant_box.min, world_base + glm::dvec3(-r, lo.y, -r));
+    gpu.plant_box.max = glm::max(gpu.plant_box.max, world_base + glm::dvec3(r, hi.y, r));
+  }
+  gpu.plant_opaque = static_cast<std::uint32_t>(opaque.size());
+  gpu.plant_alpha = static_cast<std::uint32_t>(alpha.size());
+  if (opaque.size() + alpha.size() > 0) {
+    opaque.insert(opaque.end(), alpha.begin(), alpha.end());
+    gpu.plants = render::Buffer::immutable(std::span<const PlantPartGpu>(opaque));
+  }
+}
+
+void VoxelRenderer::update(const render::FrameContext& frame) {
+  stats_ = {};
+  const bool meshes_changed = world_->mesh_epoch() != mesh_epoch_;
+  const bool plants_changed = world_->plant_epoch() != plant_epoch_;
+  if (meshes_changed || plants_changed) {
+    // Drop chunks that were unloaded.
+    for (auto it = chunks_.begin(); it != chunks_.end();) {
+      it = world_->find(it->first) ? std::next(it) : chunks_.erase(it);
+    }
+    const auto dirty = world_->dirty_chunks();
+    auto is_dirty = [&dirty](const ChunkCoord& c) { return std::binary_search(dirty.begin(), dirty.end(), c); };
+    world_->for_each_chunk([&](const ChunkCoord& c, const Chunk&) {
+      auto& slot = chunks_[c];
+      const bool fresh = !slot;
+      if (fresh) slot = std::make_unique<ChunkGpu>();
+      // A stale (dirty) chunk keeps drawing its previous mesh until it is re-meshed.
+      if ((fresh || slot->revision != world_->revision(c)) && !is_dirty(c)) {
+        upload_chunk(c, *slot);
+        ++stats_.uploads;
+      } else if (fresh) {
+        slot->coord = c;
+        const BlockPos o = chunk_origin(c);
+        slot->origin = glm::dvec3(static_cast<double>(o.x), static_cast<double>(o.y), static_cast<double>(o.z));
+      }
+      if (fresh || plants_changed) upload_plants(c, *slot);
+      slot->box.min = slot->origin;
+      slot->box.max = slot->origin + glm::dvec3(kChunkSize);
+      if (slot->plant_box.min.x <= slot->plant_box.max.x) {
+        slot->box.min = glm::min(slot->box.min, slot->plant_box.min);
+        slot->box.max = glm::max(slot->box.max, slot->plant_box.max);
+      }
+    });
+    mesh_epoch_ = world_->mesh_epoch();
+    plant_epoch_ = world_->plant_epoch();
+  }
+
+  // Chunk frustum culling (seed §3.7.2 culled by chunk corners in NDC; a box-plane test has
+  // neither its pitch restriction nor its narrow-FOV misses).
+  const render::Frustum frustum = frame.camera.frustum();
+  visible_.clear();
+  for (auto& [c, gpu] : chunks_) {
+    ++stats_.chunks_total;
+    const bool empty = gpu->opaque_quads + gpu->alpha_quads == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
+    if (empty) continue;
+    if (settings_.frustum_culling && !frustum.intersects(gpu->box)) continue;
+    visible_.push_back(gpu.get());
+  }
+  // Stable order (front to back helps early-z).
+  const glm::dvec3 eye = frame.camera.position();
+  std::sort(visible_.begin(), visible_.end(), [&eye](const ChunkGpu* a, const ChunkGpu* b) {
+    const glm::dvec3 ca = a->origin + glm::dvec3(kChunkSize * 0.5) - eye;
+    const glm::dvec3 cb = b->origin + glm::dvec3(kChunkSize * 0.5) - eye;
+    const double da = glm::dot(ca, ca), db = glm::dot(cb, cb);
+    return da != db ? da < db : a->coord < b->coord;
+  });
+  stats_.chunks_drawn = visible_.size();
+
+  // Point lights nearest the camera.
+  struct Candidate {
+    double d2;
+    glm::dvec3 p;
+    glm::vec3 color;
+  };
+  std::vector<Candidate> lights;
+  const double range2 = static_cast<double>(settings_.light_range) * settings_.light_range;
+  for (auto& [c, gpu] : chunks_) {
+    for (const auto& l : gpu->lights) {
+      const glm::dvec3 d = l.position - eye;
+      const double d2 = glm::dot(d, d);
+      if (d2 <= range2) lights.push_back({d2, l.position, l.color});
+    }
+  }
+  const auto keep = std::min<std::size_t>(lights.size(), static_cast<std::size_t>(std::clamp(settings_.max_point_lights, 0, kMaxLights)));
+  std::partial_sort(lights.begin(), lights.begin() + static_cast<std::ptrdiff_t>(keep), lights.end(),
+                    [](const Candidate& a, const Candidate& b) { return a.d2 < b.d2; });
+  light_pos_.clear();
+  light_color_.clear();
+  for (std::size_t i = 0; i < keep; ++i) {
+    light_pos_.emplace_back(glm::vec3(lights[i].p - eye), 1.0f);
+    light_color_.emplace_back(lights[i].color, 1.0f);
+  }
+  stats_.point_lights = keep;
+}
+
+void VoxelRenderer::bind_common(const render::Program& program, const render::FrameContext* frame) const {
+  program.use();
+  diffuse_.bind(0);
+  specular_.bind(1);
+  block_table_.bind_base(GL_SHADER_STORAGE_BUFFER, kBlockBinding);
+  set_if_active(program, "u_alpha_cutoff", settings_.alpha_cutoff);
+  if (frame) {
+    set_if_active(program, "u_light_count", static_cast<int>(light_pos_.size()));
+    if (!light_pos_.empty()) {
+      set_if_active(program, "u_light_pos", std::span<const glm::vec4>(light_pos_));
+      set_if_active(program, "u_light_color", std::span<const glm::vec4>(light_color_));
+    }
+    set_if_active(program, "u_attenuation", glm::vec3(settings_.light_kc, settings_.light_kl, settings_.light_kq));
+    set_if_active(program, "u_ao_strength", settings_.ao_strength);
+    set_if_active(program, "u_specular_scale", settings_.specular_scale);
+    if (shadow_.bind) shadow_.bind(program.id());
+  }
+}
+
+void VoxelRenderer::draw_chunks(const render::Program& quads, const render::Program& plants, bool alpha_cut,
+                                const glm::mat4& view_projection, const glm::dvec3& origin, bool culled,
+                                render::PassStats& stats) {
+  const auto& list = visible_;
+  std::vector<ChunkGpu*> all;
+  if (!culled) {
+    for (auto& [c, gpu] : chunks_) all.push_back(gpu.get());
+  }
+  const auto& chunks = culled ? list : all;
+  quads.use();
+  quads.set("u_view_projection", view_projection);
+  for (ChunkGpu* gpu : chunks) {
+    const std::uint32_t count = alpha_cut ? gpu->alpha_quads : gpu->opaque_quads;
+    if (count == 0) continue;
+    quads.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
+    quads.set("u_quad_base", alpha_cut ? gpu->opaque_quads : 0u);
+    gpu->quads.bind_base(GL_SHADER_STORAGE_BUFFER, kQuadBinding);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(count) * 6);
+    ++stats.draw_calls;
+    stats.triangles += 2ull * count;
+    stats_.quads_drawn += count;
+  }
+  if (!settings_.draw_plants) return;
+  plants.use();
+  plants.set("u_view_projection", view_projection);
+  for (ChunkGpu* gpu : chunks) {
+    const std::uint32_t count = alpha_cut ? gpu->plant_alpha : gpu->plant_opaque;
+    if (count == 0) continue;
+    plants.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
+    plants.set("u_instance_base", alpha_cut ? gpu->plant_opaque : 0u);
+    gpu->plants.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(count));
+    ++stats.draw_calls;
+    stats.triangles += 12ull * count;
+    stats.instances += count;
+    stats_.plant_parts_drawn += count;
+  }
+}
+
+void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
+  if (pass != render::Pass::kOpaque) return;
+  vao_.bind();  // vertex pulling: an empty VAO (the core profile needs one bound)
+  const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);  // the seed's "clockwise is front" is wrong for GL's default (errata)
+  const glm::mat4 vp = frame.camera.view_projection();
+  const glm::dvec3 eye = frame.camera.position();
+  bind_common(opaque_program_, &frame);
+  bind_common(plant_opaque_program_, &frame);
+  draw_chunks(opaque_program_, plant_opaque_program_, false, vp, eye, true, stats);
+  glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
+  bind_common(alpha_program_, &frame);
+  bind_common(plant_alpha_program_, &frame);
+  draw_chunks(alpha_program_, plant_alpha_program_, true, vp, eye, true, stats);
+  if (cull_was) glEnable(GL_CULL_FACE);
+}
+
+void VoxelRenderer::draw_depth(const glm::mat4& relative_view_projection, const glm::dvec3& origin,
+                               render::PassStats& stats) {
+  vao_.bind();
+  bind_common(depth_program_, nullptr);
+  bind_common(plant_depth_program_, nullptr);
+  draw_chunks(depth_program_, plant_depth_program_, false, relative_view_projection, origin, false, stats);
+  bind_common(depth_alpha_program_, nullptr);
+  draw_chunks(depth_alpha_program_, plant_depth_program_, true, relative_view_projection, origin, false, stats);
+}
+
+}  // namespace sylva::voxel
