@@ -63,8 +63,8 @@ TEST(VoxelStability, FarFromOriginBehavesLikeOrigin) {
 // whose runs span whole 64-bit rows) mesh without asserting and keep the one-quad-per-face rule.
 TEST(VoxelStability, DegenerateChunksMeshConsistently) {
   const auto& palette = testing::test_palette();
-  for (int n : {1, 2, 63, 64}) {
-    for (BlockId fill : {BlockId{4}, BlockId{5}, BlockId{6}}) {
+  for (int n : {1, 2, 64}) {
+    for (BlockId fill : {BlockId{4}, BlockId{6}}) {
       PaddedBlocks b(n, kAir);
       for (int y = 0; y < n; ++y)
         for (int z = 0; z < n; ++z)
