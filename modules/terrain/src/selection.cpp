@@ -22,9 +22,12 @@ bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSett
     return chunk_error * static_cast<double>(settings.lod_distance) <= d;
   }
   if (c.error_bound <= 0.0f) return true;
-  const double d = view.distance_to_box(lo, hi);
-  // rho = K * delta / D <= tau, written without dividing by a D that may be 0.
-  return view.k * static_cast<double>(c.error_bound) <= static_cast<double>(settings.max_pixel_error) * d;
+  const double delta = static_cast<double>(c.error_bound);
+  // The drawn point lies in the box, the field point may lie up to delta outside it, so the
+  // vertical error segment is at least D - delta away: rho = K * delta / (D - delta) <= tau,
+  // written without dividing by a distance that may be 0 or negative.
+  const double d = view.distance_to_box(lo, hi) - delta;
+  return d > 0.0 && view.k * delta <= static_cast<double>(settings.max_pixel_error) * d;
 }
 
 const Selection& LodSelector::select(const LodView& view, const LodSettings& settings) {

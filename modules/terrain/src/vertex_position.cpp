@@ -25,9 +25,12 @@ VertexFrame make_vertex_frame(const ChunkTree& tree, const LodView& view, const 
 
 namespace {
 // Kept in one place so morph_weight and vertex_position cannot drift apart.
-inline float weight(const VertexFrame& f, float rx, float ry, float rz, float morph_error) {
+inline float weight(const VertexFrame& f, float rx, float ry, float rz, const ChunkVertex& v) {
   if (!f.morph) return 0.0f;
-  const float d = std::sqrt(rx * rx + ry * ry + rz * rz);
+  // Distance to the nearest point of the vertical segment between the field (h) and the morph
+  // target (G): a lower bound for the drawn point, wherever the morph has moved it.
+  const float d = std::sqrt(rx * rx + ry * ry + rz * rz) - std::fabs(v.morph_target - v.height);
+  const float morph_error = v.morph_error;
   const float m1 = f.k_over_tau * morph_error;
   const float m0 = f.morph_start * m1;
   if (d >= m1) return 1.0f;
@@ -43,13 +46,13 @@ inline float rel_z(const VertexFrame& f, const ChunkVertex& v) {
 }  // namespace
 
 float morph_weight(const VertexFrame& f, const ChunkVertex& v) {
-  return weight(f, rel_x(f, v), v.height - f.camera.y, rel_z(f, v), v.morph_error);
+  return weight(f, rel_x(f, v), v.height - f.camera.y, rel_z(f, v), v);
 }
 
 glm::vec3 vertex_position(const VertexFrame& f, const ChunkVertex& v) {
   const float rx = rel_x(f, v);
   const float rz = rel_z(f, v);
-  const float mu = weight(f, rx, v.height - f.camera.y, rz, v.morph_error);
+  const float mu = weight(f, rx, v.height - f.camera.y, rz, v);
   const float y = v.height + (v.morph_target - v.height) * mu;
   return {rx, y - f.camera.y, rz};
 }

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -68,13 +69,6 @@ struct Key {
   std::uint32_t v[6];
   bool operator==(const Key& o) const { return std::memcmp(v, o.v, sizeof(v)) == 0; }
 };
-struct KeyHash {
-  std::size_t operator()(const Key& k) const {
-    std::uint64_t h = 1469598103934665603ull;
-    for (std::uint32_t x : k.v) h = (h ^ x) * 1099511628211ull;
-    return static_cast<std::size_t>(h);
-  }
-};
 std::uint32_t bits(float f) {
   std::uint32_t b;
   std::memcpy(&b, &f, 4);
@@ -87,64 +81,142 @@ Key make_key(const glm::vec3& a, const glm::vec3& b) {
 
 WatertightResult check_watertight(const ChunkTree& tree, const LodSelector& selector, const VertexFrame& frame,
                                   const FrameMesh& mesh) {
-  // Net use of each directed edge: +1 for a->b, -1 for b->a, keyed by the lexicographically
-  // smaller end first.
-  std::unordered_map<Key, int, KeyHash> net;
-  std::unordered_map<Key, std::pair<glm::vec3, glm::vec3>, KeyHash> ends;
+  // Each directed edge a->b becomes (smaller end, larger end, +1 or -1); sorting brings the uses
+  // of one undirected edge together and their signs must cancel.
+  struct Use {
+    Key key;
+    int sign;
+  };
   auto less = [](const glm::vec3& a, const glm::vec3& b) {
     if (bits(a.x) != bits(b.x)) return bits(a.x) < bits(b.x);
     if (bits(a.y) != bits(b.y)) return bits(a.y) < bits(b.y);
     return bits(a.z) < bits(b.z);
   };
+  std::vector<Use> uses;
+  uses.reserve(mesh.positions.size());
   for (std::size_t t = 0; t < mesh.triangles(); ++t) {
     if (mesh.kind[t] == PieceKind::kSkirt) continue;
     for (int k = 0; k < 3; ++k) {
       const glm::vec3 a = mesh.positions[3 * t + static_cast<std::size_t>(k)];
       const glm::vec3 b = mesh.positions[3 * t + static_cast<std::size_t>((k + 1) % 3)];
-      if (less(a, b)) {
-        const Key key = make_key(a, b);
-        net[key] += 1;
-        ends.emplace(key, std::make_pair(a, b));
-      } else {
-        const Key key = make_key(b, a);
-        net[key] -= 1;
-        ends.emplace(key, std::make_pair(b, a));
-      }
+      uses.push_back(less(a, b) ? Use{make_key(a, b), 1} : Use{make_key(b, a), -1});
     }
   }
+  std::sort(uses.begin(), uses.end(), [](const Use& a, const Use& b) {
+    return std::memcmp(a.key.v, b.key.v, sizeof(a.key.v)) < 0;
+  });
   WatertightResult r;
-  r.edges = net.size();
   const double sp = frame.spacing;
-  auto grid = [&](const glm::vec3& p) {
-    return glm::dvec2((static_cast<double>(p.x) + frame.camera.x) / sp + frame.origin.x,
-                      (static_cast<double>(p.z) + frame.camera.z) / sp + frame.origin.y);
+  auto grid = [&](float x, float z) {
+    return glm::dvec2((static_cast<double>(x) + frame.camera.x) / sp + frame.origin.x,
+                      (static_cast<double>(z) + frame.camera.z) / sp + frame.origin.y);
   };
-  for (const auto& [key, count] : net) {
-    if (count == 0) continue;
-    const auto& [a, b] = ends.at(key);
-    const glm::dvec2 ga = grid(a), gb = grid(b);
-    const glm::dvec2 mid = 0.5 * (ga + gb);
-    bool crack = true;
-    const double eps = 1e-3;
-    if (std::fabs(ga.x - gb.x) < eps) {  // along z on the line x = ga.x
-      const std::int64_t lx = std::llround(ga.x), cz = static_cast<std::int64_t>(std::floor(mid.y));
-      crack = selector.drawn_chunk_at_cell(lx - 1, cz) != kNoChunk && selector.drawn_chunk_at_cell(lx, cz) != kNoChunk;
-    } else if (std::fabs(ga.y - gb.y) < eps) {  // along x on the line z = ga.y
-      const std::int64_t lz = std::llround(ga.y), cx = static_cast<std::int64_t>(std::floor(mid.x));
-      crack = selector.drawn_chunk_at_cell(cx, lz - 1) != kNoChunk && selector.drawn_chunk_at_cell(cx, lz) != kNoChunk;
-    }
-    if (crack) {
-      ++r.crack_edges;
-      if (r.crack_edges <= 5) {
-        r.report += fmt::format("unbalanced edge ({:.3f},{:.3f})-({:.3f},{:.3f}) grid, y {} / {}, net {}\n", ga.x,
-                                ga.y, gb.x, gb.y, a.y, b.y, count);
+  auto as_float = [](std::uint32_t b) {
+    float f;
+    std::memcpy(&f, &b, 4);
+    return f;
+  };
+  for (std::size_t i = 0; i < uses.size();) {
+    std::size_t j = i;
+    int net = 0;
+    while (j < uses.size() && uses[j].key == uses[i].key) net += uses[j++].sign;
+    ++r.edges;
+    if (net != 0) {
+      const Key& key = uses[i].key;
+      const glm::dvec2 ga = grid(as_float(key.v[0]), as_float(key.v[2]));
+      const glm::dvec2 gb = grid(as_float(key.v[3]), as_float(key.v[5]));
+      const glm::dvec2 mid = 0.5 * (ga + gb);
+      bool crack = true;
+      const double eps = 1e-3;
+      if (std::fabs(ga.x - gb.x) < eps) {  // along z on the line x = ga.x
+        const std::int64_t lx = std::llround(ga.x), cz = static_cast<std::int64_t>(std::floor(mid.y));
+        crack = selector.drawn_chunk_at_cell(lx - 1, cz) != kNoChunk && selector.drawn_chunk_at_cell(lx, cz) != kNoChunk;
+      } else if (std::fabs(ga.y - gb.y) < eps) {  // along x on the line z = ga.y
+        const std::int64_t lz = std::llround(ga.y), cx = static_cast<std::int64_t>(std::floor(mid.x));
+        crack = selector.drawn_chunk_at_cell(cx, lz - 1) != kNoChunk && selector.drawn_chunk_at_cell(cx, lz) != kNoChunk;
       }
-    } else {
-      ++r.boundary_edges;
+      if (crack) {
+        ++r.crack_edges;
+        if (r.crack_edges <= 5) {
+          r.report += fmt::format("unbalanced edge ({:.3f},{:.3f})-({:.3f},{:.3f}) grid, y {} / {}, net {}\n", ga.x,
+                                  ga.y, gb.x, gb.y, as_float(key.v[1]), as_float(key.v[4]), net);
+        }
+      } else {
+        ++r.boundary_edges;
+      }
     }
+    i = j;
   }
   (void)tree;
   return r;
+}
+
+}  // namespace sylva::terrain::testing
+
+namespace sylva::terrain::testing {
+namespace {
+template <class Fn>
+void rasterise(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh, bool bodies_only, Fn&& fn) {
+  const double sp = frame.spacing;
+  for (std::size_t t = 0; t < mesh.triangles(); ++t) {
+    if (mesh.kind[t] == PieceKind::kSkirt) continue;
+    if (bodies_only && mesh.kind[t] != PieceKind::kBody) continue;
+    glm::dvec2 g[3];
+    double y[3];
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 p = mesh.positions[3 * t + static_cast<std::size_t>(k)];
+      g[k] = glm::dvec2((static_cast<double>(p.x) + frame.camera.x) / sp + frame.origin.x,
+                        (static_cast<double>(p.z) + frame.camera.z) / sp + frame.origin.y);
+      y[k] = static_cast<double>(p.y) + frame.camera.y;
+    }
+    const double det = (g[1].y - g[0].y) * (g[2].x - g[0].x) - (g[1].x - g[0].x) * (g[2].y - g[0].y);
+    if (std::fabs(det) < 1e-9) continue;  // vertical seam triangle: no area in x/z
+    const int x0 = std::max(0, static_cast<int>(std::floor(std::min({g[0].x, g[1].x, g[2].x}) - 1e-6)));
+    const int x1 = std::min(field.columns() - 1, static_cast<int>(std::ceil(std::max({g[0].x, g[1].x, g[2].x}) + 1e-6)));
+    const int z0 = std::max(0, static_cast<int>(std::floor(std::min({g[0].y, g[1].y, g[2].y}) - 1e-6)));
+    const int z1 = std::min(field.rows() - 1, static_cast<int>(std::ceil(std::max({g[0].y, g[1].y, g[2].y}) + 1e-6)));
+    for (int z = z0; z <= z1; ++z) {
+      for (int x = x0; x <= x1; ++x) {
+        const double w0 = ((g[1].y - z) * (g[2].x - x) - (g[1].x - x) * (g[2].y - z)) / det;
+        const double w1 = ((z - g[0].y) * (g[2].x - g[0].x) - (x - g[0].x) * (g[2].y - g[0].y)) / det;
+        const double w2 = 1.0 - w0 - w1;
+        if (w0 < -1e-9 || w1 < -1e-9 || w2 < -1e-9) continue;
+        fn(x, z, w0 * y[0] + w1 * y[1] + w2 * y[2]);
+      }
+    }
+  }
+}
+}  // namespace
+
+ProjectedError projected_error(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh, double k) {
+  ProjectedError r;
+  const double sp = frame.spacing;
+  rasterise(field, frame, mesh, false, [&](int x, int z, double y) {
+    const double h = field.sample(x, z);
+    const double dx = (x - frame.origin.x) * sp - frame.camera.x;
+    const double dz = (z - frame.origin.y) * sp - frame.camera.z;
+    const double dy = y - frame.camera.y;
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double err = std::fabs(y - h);
+    const double px = d > 0.0 ? k * err / d : (err > 0.0 ? 1e30 : 0.0);
+    ++r.samples;
+    r.max_m = std::max(r.max_m, err);
+    if (px > r.max_px) {
+      r.max_px = px;
+      r.worst = {x, z};
+    }
+  });
+  return r;
+}
+
+std::vector<float> drawn_heights(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh) {
+  std::vector<float> out(static_cast<std::size_t>(field.columns()) * static_cast<std::size_t>(field.rows()),
+                         std::numeric_limits<float>::quiet_NaN());
+  rasterise(field, frame, mesh, true, [&](int x, int z, double y) {
+    out[static_cast<std::size_t>(z) * static_cast<std::size_t>(field.columns()) + static_cast<std::size_t>(x)] =
+        static_cast<float>(y);
+  });
+  return out;
 }
 
 }  // namespace sylva::terrain::testing

@@ -3,9 +3,11 @@
 //
 // Traverses the chunk tree from the root. A chunk outside the view frustum is skipped; a chunk
 // is drawn when it is detailed enough (or a leaf), otherwise its children are examined.
-//   kScreenSpaceError: rho = K * error_bound / D <= tau, D = distance from the camera to the
-//     nearest point of the chunk's box. Every drawn chunk then has a projected error of at most
-//     tau pixels (error_bound >= the measured max vertical error; D <= the distance of any point).
+//   kScreenSpaceError: rho = K * delta / (D - delta) <= tau, delta = the chunk's error_bound,
+//     D = distance from the camera to the nearest point of the chunk's box. The box holds the
+//     drawn surface; the field lies within delta of it, so every vertical error segment is at
+//     least D - delta away and projects to at most rho pixels (Ulrich's K * delta / D, made
+//     exact for errors that are not small against the distance).
 //   kSeedDistance: spacing * lod_distance / d <= 1 with d the distance to the chunk's centre, as
 //     in the seed; no error bound, no morphing.
 // After the traversal each drawn chunk learns, for each edge, whether the chunk across it is

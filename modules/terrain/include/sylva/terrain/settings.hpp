@@ -20,10 +20,13 @@ struct ChunkTreeSettings {
   // surface by at most flat_tolerance * (that level's sample spacing in metres). 0 keeps every
   // vertex of the level's grid. The resulting error is measured, never assumed.
   float flat_tolerance = 0.02f;
-  // The error of a parent is raised to at least child_error / (1 - max_morph_fraction), so a
-  // morph over up to this share of a LOD range keeps the screen-space bound (see lod_selection.md
-  // in the README). LodSettings::morph_fraction above this relaxes the bound (reported).
-  float max_morph_fraction = 0.25f;
+  // The error bound of a parent is raised to at least child_bound / (1 - max_morph_fraction), so
+  // a morph over up to this share of a LOD range keeps the screen-space bound (README, "Morphing").
+  // The default 0.5 makes every parent's bound at least twice its children's (Ulrich's "a child
+  // halves the error"); that also keeps a coarser level's vertices from morphing while finer
+  // chunks are drawn, which is what makes switches pop-free (measured: +0.2 % triangles on fBm).
+  // LodSettings::morph_fraction above this relaxes the bound (Selection::bound_certified).
+  float max_morph_fraction = 0.5f;
   // Worker threads for the build; 0 = all hardware threads.
   int threads = 0;
   // Keep the chunk meshes in memory. false keeps only the per-chunk metadata (error, bounds,

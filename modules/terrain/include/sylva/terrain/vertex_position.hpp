@@ -11,10 +11,13 @@
 //
 // Morphing (CDLOD-style, per point): a vertex moves from its height h to the coarser level's
 // surface height G as its distance d to the camera grows from (1 - f) * m1 to m1, where
-// m1 = K * morph_error / tau is the distance at which the coarser chunk becomes acceptable:
+// m1 = K * morph_error / tau is the distance at which the coarser chunk becomes acceptable and
+// d = |camera - (x, h, z)| - |G - h| is a lower bound of the distance of every point between h
+// and G (so the projected morph offset stays within tau wherever it puts the vertex):
 //   mu = clamp((d - (1 - f) m1) / (f m1), 0, 1),  y = h + (G - h) * mu.
-// A chunk is replaced by its parent only when its nearest box point is at distance >= m1, so its
-// vertices have all reached G by then and the switch does not pop.
+// A chunk is replaced by its parent only when K * delta / (D - delta) <= tau for the parent's
+// box distance D and bound delta >= |G - h|, so d >= m1 for all its vertices by then: they have
+// all reached G and the switch does not pop.
 
 #include <sylva/terrain/chunk_tree.hpp>
 #include <sylva/terrain/lod_view.hpp>
