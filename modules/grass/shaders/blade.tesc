@@ -31,7 +31,10 @@ void main() {
   tc_width_dir = grass_width_dir(b.up.xyz, b.v0.w);
   float d = length(b.v0.xyz - u_camera);
   float keep = grass_distance_keep(d, u_thinning) * u_cull.x;
-  tc_params = vec4(b.v2.w * grass_width_scale(keep, u_cull.y), b.attr.y, b.attr.w, b.attr.z);
+  // A blade about to be thinned out narrows over the last kFadeBand of keep instead of popping.
+  const float kFadeBand = 0.1;
+  float narrowing = clamp((keep - b.attr.x) / kFadeBand, 0.0, 1.0);
+  tc_params = vec4(b.v2.w * grass_width_scale(keep, u_cull.y) * narrowing, b.attr.y, b.attr.w, b.attr.z);
 
   vec3 mid = grass_bezier(b.v0.xyz, b.v1.xyz, b.v2.xyz, 0.5);
   float dm = max(length(mid - u_camera), 1e-3);

@@ -128,30 +128,31 @@ double tile_expected_blades(const GrassFieldSettings& field, const GrassMaps& ma
 }
 
 std::uint32_t tile_blade_count(const GrassFieldSettings& field, const GrassMaps& maps, TileKey key) {
-  const double expected = tile_expected_blades(field, maps, key);
+  const double expected = tile_expected_blades(field, maps, key);  // same rounding as sample_tile_points
   const double xi = hash_to_unit_float(hash_u32(kSaltRound, tile_hash(key, field.seed)));
   const double n = std::floor(expected + xi);
   return static_cast<std::uint32_t>(std::clamp(n, 0.0, static_cast<double>(kMaxBlades)));
 }
 
-void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
-                   const HeightField& ground, TileKey key, const glm::dvec3& origin, std::vector<Blade>& out) {
-  const std::uint32_t count = tile_blade_count(field, maps, key);
-  if (count == 0) return;
-  const std::uint32_t th = tile_hash(key, field.seed);
-  const Rect rect = tile_rect(field, key);
+std::vector<TilePoint> sample_tile_points(const GrassMaps& maps, TileKey key, double tile_size, double per_m2,
+                                         std::uint32_t seed) {
+  std::vector<TilePoint> out;
+  const Rect rect{{key.x * tile_size, key.z * tile_size}, {(key.x + 1) * tile_size, (key.z + 1) * tile_size}};
+  const double expected = maps.density_integral(rect) * per_m2;
+  const std::uint32_t th = tile_hash(key, seed);
+  const double xi = hash_to_unit_float(hash_u32(kSaltRound, th));
+  const auto count = static_cast<std::uint32_t>(std::clamp(std::floor(expected + xi), 0.0, static_cast<double>(kMaxBlades)));
+  if (count == 0) return out;
 
   // Density CDF over K x K cells (rows along z, columns along x), from exact cell integrals.
+  // Four cells per map pixel (at most 32 x 32 per tile): points are uniform inside a cell, so
+  // cells must be small against the map's features (an empty strip stays empty). Without a
+  // map the density is 1 inside the rectangle: one cell, unless the tile straddles its border.
   const glm::dvec2 texel = maps.density_texel();
-  // Four cells per map pixel (at most 32 x 32 per tile): blades are uniform inside a cell, so
-  // cells must be small against the map's features (an empty strip stays empty).
-  const double per_side = std::ceil(4.0 * field.tile_size / std::max(std::min(texel.x, texel.y), 1e-9));
-  // Without a map the density is 1 inside the rectangle: one cell, unless the tile straddles
-  // the rectangle's border.
-  const Rect inner = rect.intersect(maps.rect());
-  const bool whole = inner.size() == rect.size();
+  const double per_side = std::ceil(4.0 * tile_size / std::max(std::min(texel.x, texel.y), 1e-9));
+  const bool whole = rect.intersect(maps.rect()).size() == rect.size();
   const int k = maps.has_density_map() ? static_cast<int>(std::clamp(per_side, 1.0, 32.0)) : (whole ? 1 : 32);
-  const double cell = field.tile_size / k;
+  const double cell = tile_size / k;
   std::vector<double> mass(static_cast<std::size_t>(k * k));
   std::vector<double> row_cum(static_cast<std::size_t>(k + 1), 0.0);
   for (int r = 0; r < k; ++r) {
@@ -165,9 +166,9 @@ void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, 
     row_cum[static_cast<std::size_t>(r + 1)] = row_cum[static_cast<std::size_t>(r)] + row;
   }
   const double total = row_cum[static_cast<std::size_t>(k)];
-  if (!(total > 0.0)) return;
+  if (!(total > 0.0)) return out;
 
-  out.reserve(out.size() + count);
+  out.reserve(count);
   for (std::uint32_t i = 0; i < count; ++i) {
     const glm::dvec2 u = r2_point(i, th);
     // Row by the marginal CDF, then column by the row's conditional CDF; linear inside a cell.
@@ -186,16 +187,26 @@ void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, 
     }
     const double m = mass[static_cast<std::size_t>(r * k + c)];
     const double fx = m > 0.0 ? std::clamp(tx / m, 0.0, 1.0) : 0.5;
-    const double x = rect.min.x + (c + fx) * cell;
-    const double z = rect.min.y + (r + fz) * cell;
+    TilePoint p;
+    p.position = {rect.min.x + (c + fx) * cell, rect.min.y + (r + fz) * cell};
+    p.hash = hash_u32(i, th);
+    p.rank = (static_cast<float>(i) + 0.5f) / static_cast<float>(count);
+    out.push_back(p);
+  }
+  return out;
+}
 
+void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                   const HeightField& ground, TileKey key, const glm::dvec3& origin, std::vector<Blade>& out) {
+  const std::vector<TilePoint> points = sample_tile_points(maps, key, field.tile_size, field.density, field.seed);
+  out.reserve(out.size() + points.size());
+  for (const TilePoint& p : points) {
+    const double x = p.position.x, z = p.position.y;
     const double y = ground.height(x, z);
     glm::vec3 up(0.0f, 1.0f, 0.0f);
     if (field.up_normal_blend > 0.0f) up = glm::normalize(glm::mix(up, ground.normal(x, z), field.up_normal_blend));
     const glm::vec3 root(static_cast<float>(x - origin.x), static_cast<float>(y - origin.y), static_cast<float>(z - origin.z));
-    const std::uint32_t bh = hash_u32(i, th);
-    const float rank = (static_cast<float>(i) + 0.5f) / static_cast<float>(count);
-    out.push_back(make_blade(blade, bh, root, up, maps.height_scale(x, z), maps.tint(x, z), rank));
+    out.push_back(make_blade(blade, p.hash, root, up, maps.height_scale(x, z), maps.tint(x, z), p.rank));
   }
 }
 

@@ -199,6 +199,18 @@ double GrassMaps::density_integral(const Rect& area) const {
   return clip.empty() ? 0.0 : clip.size().x * clip.size().y;
 }
 
+Image GrassMaps::density_image() const {
+  if (!density_) {
+    Image one(1, 1, 1);
+    one.at(0, 0) = 1.0f;
+    return one;
+  }
+  Image img(density_->width(), density_->height(), 1);
+  for (int j = 0; j < img.height(); ++j)
+    for (int i = 0; i < img.width(); ++i) img.at(i, j) = density_->value(i, j);
+  return img;
+}
+
 glm::dvec2 GrassMaps::density_texel() const {
   if (!density_) return rect_.size();
   return rect_.size() / glm::dvec2(density_->width(), density_->height());

@@ -17,6 +17,8 @@
 //               §5.1 use 0.9) AND the edge-on width w * sqrt(1 - dot^2) projects to fewer than
 //               orientation_max_px pixels; the second clause (ours) keeps near blades whose
 //               sliver is still visible, so the image changes by less than a pixel per blade.
+// A survivor whose rank is within 0.1 of keep is narrowed linearly to zero width (blade.tesc),
+// so a blade fades out over a distance band instead of popping.
 // Survivors are widened by 1 / keep (blend width_compensation, at most 4x) so that thinning
 // keeps the covered area, which is what the eye integrates at a distance.
 //

@@ -69,6 +69,19 @@ inline constexpr std::size_t kMaxBlades = std::size_t{1} << 25;  // 33.5 million
 double tile_expected_blades(const GrassFieldSettings& field, const GrassMaps& maps, TileKey key);
 std::uint32_t tile_blade_count(const GrassFieldSettings& field, const GrassMaps& maps, TileKey key);
 
+// A point placed by the tile sampler: world x/z, its hash (key for further randoms) and its
+// rank among the tile's points in [0, 1) (prefixes are evenly spread).
+struct TilePoint {
+  glm::dvec2 position{0.0};
+  std::uint32_t hash = 0;
+  float rank = 0.0f;
+};
+// The placement of the header comment for any kind of element (blades, billboard clumps):
+// stochastic-rounded density integral * per_m2 points of tile `key` of a world grid of
+// tile_size, R2 sequence through the density CDF. Deterministic in (seed, key).
+std::vector<TilePoint> sample_tile_points(const GrassMaps& maps, TileKey key, double tile_size, double per_m2,
+                                          std::uint32_t seed);
+
 // Appends the blades of one tile (origin = the BladeSet origin they are relative to).
 void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                    const HeightField& ground, TileKey key, const glm::dvec3& origin, std::vector<Blade>& out);

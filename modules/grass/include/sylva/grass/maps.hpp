@@ -44,6 +44,7 @@ class ScalarMap {
   static Result<ScalarMap> create(const Image& image, int channel, const Rect& rect, const char* what);
 
   bool empty() const { return width_ == 0; }
+  float value(int i, int j) const { return texel(i, j); }
   const Rect& rect() const { return rect_; }
   int width() const { return width_; }
   int height() const { return height_; }
@@ -89,6 +90,9 @@ class GrassMaps {
   // World size of one density-map pixel [m]; the whole rectangle when there is no density map.
   glm::dvec2 density_texel() const;
   bool has_density_map() const { return density_.has_value(); }
+  // The density map as a one-channel float image (row 0 at rect().min.y, like the input);
+  // a 1 x 1 white image when there is no map.
+  Image density_image() const;
 
  private:
   Rect rect_;

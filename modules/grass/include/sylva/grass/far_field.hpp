@@ -1,0 +1,191 @@
+#pragma once
+// The far field of seed 003: blades near (GrassField), camera-independent billboard clumps in the
+// middle distance, a textured ground layer far, with cross-fades instead of pops.
+//
+// - Clumps (seed 003 §2.4): two crossed vertical quads with a random rotation, placed by the
+//   same world-anchored tile sampler as the blades (generator.hpp) at clumps_per_m2 times the
+//   density map. They do not turn towards the camera (seed 003's billboards do not either), so
+//   nothing changes when only the camera rotates. Texture: a procedural atlas of strands whose
+//   alpha holds a graded threshold per strand (seed 003 §2.4.2); a fragment is kept when its
+//   strand's threshold is below density * fade, so density and fades add or remove whole
+//   strands one by one instead of fading alpha. Tops sway with the shared wind.
+// - Ground layer (seed 003 §2.5): the height field's surface, lifted by ground_offset, textured
+//   with a procedural top-view grass texture whose alpha is histogram-equalised noise, kept
+//   where alpha < density * fade: the density interpolates per pixel (seed 003's per-vertex
+//   density fix for seams, done by sampling the density map itself) and no seams appear.
+// - Fades: for a distance d from the camera,
+//     blades:    culling.hpp keep(d), ends at cull.near_distance;
+//     clumps:    ramp(d; near_distance - clump_fade_in, near_distance) * (1 - ramp(d; mid_distance - mid_fade, mid_distance));
+//     ground:    ramp(d; mid_distance - mid_fade, mid_distance) * (1 - ramp(d; far_distance - far_fade, far_distance)),
+//   ramp(d; a, b) = clamp((d - a) / (b - a), 0, 1). Each representation's coverage therefore
+//   changes continuously with distance; the GL test dollies through the transitions and checks
+//   that the covered share of the picture changes by at most 1 % per frame.
+//
+// Ground coverage model. Blades and clumps are vertical, so the share of ground they hide grows
+// as the view gets flatter; a flat texture does not. The ground layer therefore keeps a texel
+// when alpha < density * fade * coverage(theta), a Beer-Lambert estimate of what the blades
+// would hide: coverage = 1 - exp(-gain * (tau_top + tau_side * cot(theta))) with theta the view
+// elevation above the surface, tau_side = blades/m^2 * mean width * mean height * 2/pi (mean
+// projected side area of randomly turned blades) and tau_top = 0.2 * that (leaning tips).
+// ground_coverage() is its CPU twin; the dolly test calibrates coverage_gain.
+//
+// Height fields only (a mesh field has no far field: draw its blades to near_distance).
+
+#include <sylva/core/height_field.hpp>
+#include <sylva/core/image.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/core/wind.hpp>
+#include <sylva/grass/generator.hpp>
+#include <sylva/grass/maps.hpp>
+#include <sylva/grass/settings.hpp>
+#include <sylva/render/buffer.hpp>
+#include <sylva/render/camera.hpp>
+#include <sylva/render/drawable.hpp>
+#include <sylva/render/shader_library.hpp>
+#include <sylva/render/texture.hpp>
+#include <sylva/render/vertex_array.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace sylva::grass {
+
+struct FarFieldSettings {
+  bool clumps = true;
+  bool ground = true;
+  float clumps_per_m2 = 0.9f;     // clumps per square metre at density 1 [1/m^2]
+  float clump_width = 0.9f;       // width of a clump quad [m]
+  float clump_fade_in = 15.0f;    // clumps grow in over this band before cull.near_distance [m]
+  float mid_distance = 150.0f;    // clumps end, the ground layer is complete [m]
+  float mid_fade = 40.0f;         // clump -> ground cross-fade band before mid_distance [m]
+  float far_distance = 2000.0f;   // the ground layer ends [m]
+  float far_fade = 200.0f;        // ground fade-out band before far_distance [m]
+  float ground_offset = 0.03f;    // ground layer lift above the surface [m]
+  float ground_spacing = 2.0f;    // vertex spacing of the ground layer mesh [m]
+  float texture_scale = 3.0f;     // world metres per repeat of the ground texture [m]
+  float sway = 0.5f;              // clump sway relative to the blades' wind response
+  float coverage_gain = 0.6f;     // calibration of the ground layer's coverage model (see below)
+
+  template <class V>
+  void visit(V& v) {
+    v(clumps, "clumps", {.help = "Draw billboard clumps in the middle distance"});
+    v(ground, "ground", {.help = "Draw the textured ground layer far away"});
+    v(clumps_per_m2, "clumps_per_m2", {.min = 0.01f, .max = 20.0f, .unit = "1/m^2", .help = "Clump density at density 1",
+                                       .rebuild = Rebuild::kOffline});
+    v(clump_width, "clump_width", {.min = 0.05f, .max = 5.0f, .unit = "m", .help = "Width of a clump",
+                                   .rebuild = Rebuild::kOffline});
+    v(clump_fade_in, "clump_fade_in", {.min = 0.0f, .max = 500.0f, .unit = "m", .help = "Blade-to-clump cross-fade band"});
+    v(mid_distance, "mid_distance", {.min = 1.0f, .max = 10000.0f, .unit = "m", .help = "Where clumps end"});
+    v(mid_fade, "mid_fade", {.min = 0.0f, .max = 1000.0f, .unit = "m", .help = "Clump-to-ground cross-fade band"});
+    v(far_distance, "far_distance", {.min = 1.0f, .max = 100000.0f, .unit = "m", .help = "Where the ground layer ends"});
+    v(far_fade, "far_fade", {.min = 0.0f, .max = 10000.0f, .unit = "m", .help = "Ground layer fade-out band"});
+    v(ground_offset, "ground_offset", {.min = 0.0f, .max = 1.0f, .unit = "m", .help = "Lift of the ground layer"});
+    v(ground_spacing, "ground_spacing", {.min = 0.25f, .max = 64.0f, .unit = "m", .help = "Ground layer mesh spacing",
+                                         .rebuild = Rebuild::kOffline});
+    v(texture_scale, "texture_scale", {.min = 0.1f, .max = 100.0f, .unit = "m", .help = "Ground texture repeat"});
+    v(sway, "sway", {.min = 0.0f, .max = 4.0f, .help = "Clump sway relative to blades"});
+    v(coverage_gain, "coverage_gain", {.min = 0.0f, .max = 10.0f,
+                                       .help = "Scales the ground layer's coverage to match the blades"});
+  }
+};
+
+// Fade weights in [0, 1] of the three representations at distance d (header comment).
+float clump_fade(float distance, float near_distance, const FarFieldSettings& s);
+float ground_fade(float distance, const FarFieldSettings& s);
+// Ground coverage model (above); sin_elevation = |dot(view direction, surface normal)|.
+float ground_coverage(float sin_elevation, float tau_side, float tau_top, float gain);
+
+// One clump (std430, 3 x vec4 = 48 bytes; shaders/far.glsl mirrors it).
+struct Clump {
+  glm::vec4 root;   // xyz root (blade-set local), w rotation [rad]
+  glm::vec4 size;   // x width, y height [m], z rank [0, 1), w atlas cell (0..3)
+  glm::vec4 color;  // rgb colour multiplier (per clump variation x tint), w sway phase [0, 1)
+};
+static_assert(sizeof(Clump) == 48);
+
+struct ClumpSet {
+  glm::dvec3 origin{0.0};
+  std::vector<Clump> clumps;
+  std::vector<GrassTile> tiles;  // runs of clumps, bounds for culling
+};
+
+// World-anchored clumps for every tile overlapping maps.rect() (same tiles as the blades).
+Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
+
+// Procedural textures (deterministic for a seed). Billboard atlas: 2 x 2 cells of `size`/2,
+// RGBA: rgb strand colour (root dark, tip light), a = strand threshold (graded, uniform in
+// [0, 1) over strands), 1 where there is no strand. Ground: RGBA tileable top-view grass, rgb
+// colour, a = histogram-equalised noise (exactly uniform: coverage = threshold).
+Image make_clump_atlas(int size, std::uint32_t seed);
+Image make_ground_texture(int size, std::uint32_t seed);
+
+// A mip chain (level 0 = `level0`, halving to 1 x 1) whose colour is box-filtered and whose alpha
+// is histogram-matched to level 0: the share of texels with alpha < f is the same at every
+// level for every f. Alpha-threshold coverage therefore does not drift with distance (plain
+// mipmaps average thresholds towards 0.5 and make distant grass pop in or vanish), and each
+// level is smooth, so coverage does not flicker from frame to frame. Power-of-two square input.
+std::vector<Image> coverage_preserving_mips(const Image& level0);
+
+// GL renderer of clumps and ground layer for one grass field.
+class FarField : public render::Drawable {
+ public:
+  FarField() = default;
+  static Result<FarField> create(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far = {});
+
+  FarFieldSettings& settings() { return settings_; }
+  // The blades' culling, wind response and colours (to match the near field).
+  void set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
+                const glm::vec3& tip_color);
+
+  void update(const render::FrameContext& frame) override;
+  void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+  void update(const render::Camera& camera, glm::ivec2 viewport);
+  void draw_far(const render::Camera& camera, const WindField& wind, double time, render::PassStats* stats = nullptr);
+
+  std::size_t clump_count() const { return clump_count_; }
+  std::uint64_t last_clumps_drawn() const { return clumps_drawn_; }
+  std::uint64_t last_ground_chunks_drawn() const { return ground_drawn_; }
+
+ private:
+  struct GroundChunk {
+    std::uint32_t first_index = 0;
+    std::uint32_t index_count = 0;
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+  };
+  FarFieldSettings settings_;
+  glm::dvec3 origin_{0.0};
+  float near_distance_ = 50.0f;
+  float wind_response_ = 6.0f;
+  float mean_stiffness_ = 60.0f;
+  float tau_side_ = 0.0f;
+  float tau_top_ = 0.0f;
+  glm::vec3 base_color_{0.045f, 0.16f, 0.035f};
+  glm::vec3 tip_color_{0.28f, 0.55f, 0.12f};
+  std::vector<GrassTile> clump_tiles_;
+  std::vector<GroundChunk> chunks_;
+  std::vector<std::uint32_t> visible_clump_tiles_;
+  std::vector<std::uint32_t> visible_chunks_;
+  std::size_t clump_count_ = 0;
+  std::uint64_t clumps_drawn_ = 0;
+  std::uint64_t ground_drawn_ = 0;
+  glm::vec3 camera_local_{0.0f};
+
+  render::Buffer clumps_;
+  render::Buffer ground_vertices_;
+  render::Buffer ground_indices_;
+  render::Buffer wind_;
+  render::VertexArray clump_vao_;
+  render::VertexArray ground_vao_;
+  render::Texture atlas_;
+  render::Texture ground_texture_;
+  render::Texture density_;
+  render::Program clump_program_;
+  render::Program ground_program_;
+  Rect map_rect_;
+};
+
+}  // namespace sylva::grass

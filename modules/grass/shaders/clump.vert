@@ -1,0 +1,59 @@
+#version 450 core
+// grass/clump.vert: two crossed vertical quads per clump (seed 003 §2.4: fixed random
+// rotation, not camera-facing), tops swaying with the shared wind like the blades' equilibrium
+// bend (wind_response * wind / stiffness).
+#include "grass/far.glsl"
+#include "render/lib/wind.glsl"
+
+layout(std430, binding = GRASS_CLUMPS_BINDING) readonly buffer Clumps { Clump clumps[]; };
+layout(std140, binding = GRASS_WIND_UBO_BINDING) uniform GrassWind { SylvaWind u_wind; };
+
+uniform mat4 u_view_proj;
+uniform vec3 u_origin_rel;
+uniform vec3 u_camera;
+uniform vec4 u_fades;
+uniform float u_sway;
+uniform int u_first;
+
+out vec3 c_rel_pos;
+out vec2 c_uv;
+out float c_v;
+flat out vec3 c_color;
+flat out float c_fade;
+flat out vec3 c_normal;
+
+const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
+
+void main() {
+  Clump c = clumps[u_first + gl_InstanceID];
+  int quad = gl_VertexID / 6;
+  vec2 corner = kCorners[gl_VertexID % 6];
+  float d = length(c.root.xyz - u_camera);
+  c_fade = grass_clump_fade(d, u_fades);
+  if (c_fade <= 0.0) {
+    gl_Position = vec4(0.0, 0.0, -2.0, 1.0);  // outside the clip volume: the clump is not drawn
+    c_rel_pos = vec3(0.0);
+    c_uv = vec2(0.0);
+    c_v = 0.0;
+    c_color = vec3(0.0);
+    c_normal = vec3(0.0, 1.0, 0.0);
+    return;
+  }
+  float angle = c.root.w + float(quad) * 1.5707963;
+  vec3 across = vec3(cos(angle), 0.0, sin(angle));
+  vec3 pos = c.root.xyz + (corner.x - 0.5) * c.size.x * across + vec3(0.0, corner.y * c.size.y, 0.0);
+  vec3 wind = sylva_wind(u_wind, c.root.xyz);
+  vec3 bend = vec3(wind.x, 0.0, wind.z) * u_sway;
+  float bl = length(bend);
+  float max_bend = 0.6 * c.size.y;
+  if (bl > max_bend) bend *= max_bend / bl;
+  pos += bend * corner.y * corner.y;
+  pos.y -= (bl > 0.0 ? min(bl, max_bend) : 0.0) * 0.3 * corner.y * corner.y;  // keep the length roughly
+  c_rel_pos = pos + u_origin_rel;
+  float cell = c.size.w;
+  c_uv = (vec2(mod(cell, 2.0), floor(cell / 2.0)) + corner) * 0.5;
+  c_v = corner.y;
+  c_color = c.color.rgb;
+  c_normal = normalize(cross(across, vec3(0.0, 1.0, 0.0)) * 0.5 + vec3(0.0, 1.0, 0.0));
+  gl_Position = u_view_proj * vec4(c_rel_pos, 1.0);
+}

@@ -1,0 +1,494 @@
+#include <sylva/grass/far_field.hpp>
+
+#include <sylva/core/log.hpp>
+#include <sylva/core/params.hpp>
+#include <sylva/core/rng.hpp>
+#include <sylva/grass/culling.hpp>
+#include <sylva/render/frame_context.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace sylva::render::embedded {
+void register_grass_shaders();
+}  // namespace sylva::render::embedded
+
+namespace sylva::grass {
+
+namespace {
+
+constexpr GLuint kClumpsBinding = 5;
+constexpr GLuint kWindUboBinding = 1;
+constexpr float kPi = std::numbers::pi_v<float>;
+
+float ramp(float d, float a, float b) {
+  if (!(b > a)) return d >= b ? 1.0f : 0.0f;
+  return std::clamp((d - a) / (b - a), 0.0f, 1.0f);
+}
+
+float unit(std::uint32_t h, std::uint32_t salt) { return hash_to_unit_float(hash_u32(salt, h)); }
+
+// Periodic value noise on a period x period lattice, smooth (quintic) interpolation.
+float periodic_noise(float x, float y, int period, std::uint32_t seed) {
+  const int xi = static_cast<int>(std::floor(x)), yi = static_cast<int>(std::floor(y));
+  const float fx = x - static_cast<float>(xi), fy = y - static_cast<float>(yi);
+  auto v = [&](int i, int j) {
+    const auto wi = static_cast<std::uint32_t>(((i % period) + period) % period);
+    const auto wj = static_cast<std::uint32_t>(((j % period) + period) % period);
+    return hash_to_unit_float(hash_u32(wi, wj, seed));
+  };
+  auto q = [](float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); };
+  const float sx = q(fx), sy = q(fy);
+  const float a = v(xi, yi) + (v(xi + 1, yi) - v(xi, yi)) * sx;
+  const float b = v(xi, yi + 1) + (v(xi + 1, yi + 1) - v(xi, yi + 1)) * sx;
+  return a + (b - a) * sy;
+}
+
+bool box_visible(const CullView& view, const glm::vec3& lo, const glm::vec3& hi) {
+  for (const glm::vec4& p : view.planes) {
+    const glm::vec3 n(p);
+    const glm::vec3 far_corner(n.x >= 0 ? hi.x : lo.x, n.y >= 0 ? hi.y : lo.y, n.z >= 0 ? hi.z : lo.z);
+    if (glm::dot(n, far_corner) + p.w < 0.0f) return false;
+  }
+  return true;
+}
+
+// Nearest and farthest distance from p to a box.
+void box_distances(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi, float& nearest, float& farthest) {
+  nearest = glm::length(glm::clamp(p, lo, hi) - p);
+  const glm::vec3 far_corner(std::abs(p.x - lo.x) > std::abs(p.x - hi.x) ? lo.x : hi.x,
+                             std::abs(p.y - lo.y) > std::abs(p.y - hi.y) ? lo.y : hi.y,
+                             std::abs(p.z - lo.z) > std::abs(p.z - hi.z) ? lo.z : hi.z);
+  farthest = glm::length(far_corner - p);
+}
+
+}  // namespace
+
+float clump_fade(float d, float near_distance, const FarFieldSettings& s) {
+  const float in = ramp(d, near_distance - s.clump_fade_in, near_distance);
+  const float out = 1.0f - ramp(d, s.mid_distance - s.mid_fade, s.mid_distance);
+  return in * out;
+}
+
+float ground_fade(float d, const FarFieldSettings& s) {
+  return ramp(d, s.mid_distance - s.mid_fade, s.mid_distance) * (1.0f - ramp(d, s.far_distance - s.far_fade, s.far_distance));
+}
+
+float ground_coverage(float sin_elevation, float tau_side, float tau_top, float gain) {
+  const float s = std::clamp(sin_elevation, 0.05f, 1.0f);
+  const float cot = std::sqrt(std::max(1.0f - s * s, 0.0f)) / s;
+  return 1.0f - std::exp(-gain * (tau_top + tau_side * cot));
+}
+
+Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+  SYLVA_TRY(check_settings(field, blade));
+  SYLVA_TRY(validate_params(far, "grass.far"));
+  if (ground.samples().empty()) return make_error(ErrorCode::kInvalidArgument, "grass far field: the ground height field is empty");
+  ClumpSet set;
+  set.origin = origin;
+  const Rect area = maps.rect();
+  if (area.empty()) return set;
+  const double t = field.tile_size;
+  const auto x0 = static_cast<std::int64_t>(std::floor(area.min.x / t));
+  const auto x1 = static_cast<std::int64_t>(std::ceil(area.max.x / t));
+  const auto z0 = static_cast<std::int64_t>(std::floor(area.min.y / t));
+  const auto z1 = static_cast<std::int64_t>(std::ceil(area.max.y / t));
+  if ((x1 - x0) * (z1 - z0) > 4000000) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.field.tile_size: {} m makes more than 4 million tiles", t));
+  }
+  const double expected = maps.density_integral(area) * far.clumps_per_m2;
+  if (expected > static_cast<double>(kMaxBlades)) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.far.clumps_per_m2: {:.0f} clumps is above the limit {}", expected, kMaxBlades));
+  }
+  const float mean_height = 0.5f * (blade.height_min + blade.height_max);
+  for (std::int64_t z = z0; z < z1; ++z) {
+    for (std::int64_t x = x0; x < x1; ++x) {
+      GrassTile tile;
+      tile.key = {static_cast<std::int32_t>(x), 0, static_cast<std::int32_t>(z)};
+      tile.first = static_cast<std::uint32_t>(set.clumps.size());
+      // A different seed than the blades so clumps do not sit on the first blades.
+      const auto points = sample_tile_points(maps, tile.key, t, far.clumps_per_m2, field.seed ^ 0xc1a3a5u);
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+      for (const TilePoint& p : points) {
+        const double wx = p.position.x, wz = p.position.y;
+        const glm::vec3 root(static_cast<float>(wx - origin.x), static_cast<float>(ground.height(wx, wz) - origin.y),
+                             static_cast<float>(wz - origin.z));
+        const float h = std::max(mean_height * (0.8f + 0.4f * unit(p.hash, 21u)) * maps.height_scale(wx, wz), blade.min_height);
+        const glm::vec3 tint = maps.tint(wx, wz) * (1.0f + blade.color_variation * (2.0f * unit(p.hash, 22u) - 1.0f));
+        Clump c;
+        c.root = glm::vec4(root, unit(p.hash, 23u) * kPi);
+        c.size = glm::vec4(far.clump_width * (0.8f + 0.4f * unit(p.hash, 24u)), h, p.rank,
+                           std::floor(unit(p.hash, 25u) * 4.0f));
+        c.color = glm::vec4(tint, unit(p.hash, 26u));
+        set.clumps.push_back(c);
+        lo = glm::min(lo, root - glm::vec3(far.clump_width + h));
+        hi = glm::max(hi, root + glm::vec3(far.clump_width + h));
+      }
+      tile.count = static_cast<std::uint32_t>(set.clumps.size()) - tile.first;
+      if (tile.count == 0) continue;
+      tile.bounds_min = lo;
+      tile.bounds_max = hi;
+      tile.expected = maps.density_integral({{x * t, z * t}, {(x + 1) * t, (z + 1) * t}}) * far.clumps_per_m2;
+      set.tiles.push_back(tile);
+    }
+  }
+  return set;
+}
+
+Image make_clump_atlas(int size, std::uint32_t seed) {
+  Image img(size, size, 4, PixelFormat::kU8);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) img.at(x, y, 3) = 1.0f;
+  const int cs = size / 2;
+  constexpr int kStrands = 56;
+  for (int cell = 0; cell < 4; ++cell) {
+    const int ox = (cell % 2) * cs, oy = (cell / 2) * cs;
+    // A random permutation of the graded thresholds, so neighbouring strands appear at
+    // unrelated densities.
+    int order[kStrands];
+    for (int k = 0; k < kStrands; ++k) order[k] = k;
+    Pcg32 rng(hash_u32(static_cast<std::uint32_t>(cell), seed), 7u);
+    for (int k = kStrands - 1; k > 0; --k) std::swap(order[k], order[rng.next_below(static_cast<std::uint32_t>(k + 1))]);
+    for (int k = 0; k < kStrands; ++k) {
+      const float threshold = (static_cast<float>(order[k]) + 0.5f) / kStrands;
+      const float x0 = (0.06f + 0.88f * rng.next_float()) * static_cast<float>(cs);
+      const float height = (0.55f + 0.45f * rng.next_float()) * static_cast<float>(cs - 2);
+      const float lean = (rng.next_float() - 0.5f) * 0.5f * static_cast<float>(cs);
+      const float half_w = 0.6f + 1.2f * rng.next_float() * static_cast<float>(cs) / 64.0f;
+      const float shade = 0.75f + 0.5f * rng.next_float();
+      for (int row = 0; row < static_cast<int>(height); ++row) {
+        const float v = static_cast<float>(row) / height;  // 0 root, 1 tip
+        const float cx = x0 + lean * v * v;
+        const float hw = half_w * (1.0f - v) + 0.35f;
+        const int y = oy + (cs - 1 - row);  // image row 0 is the top: roots at the bottom
+        for (int x = static_cast<int>(std::floor(cx - hw)); x <= static_cast<int>(std::ceil(cx + hw)); ++x) {
+          if (x < 0 || x >= cs || std::abs(static_cast<float>(x) + 0.5f - cx) > hw) continue;
+          const int px = ox + x;
+          if (threshold < img.at(px, y, 3)) {
+            img.at(px, y, 3) = threshold;
+            // Luminance ramp root -> tip; the hue comes from the field's colours in the shader.
+            const float l = std::clamp((0.25f + 0.75f * v) * shade, 0.0f, 1.0f);
+            img.at(px, y, 0) = l;
+            img.at(px, y, 1) = l;
+            img.at(px, y, 2) = l;
+          }
+        }
+      }
+    }
+  }
+  return img;
+}
+
+Image make_ground_texture(int size, std::uint32_t seed) {
+  Image img(size, size, 4, PixelFormat::kU8);
+  std::vector<float> coverage(static_cast<std::size_t>(size) * static_cast<std::size_t>(size));
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const float u = static_cast<float>(x) / static_cast<float>(size), v = static_cast<float>(y) / static_cast<float>(size);
+      // Coverage noise: fine blades-from-above speckle over a tuft-scale pattern.
+      float n = 0.0f, amp = 1.0f, norm = 0.0f;
+      for (int o = 0; o < 4; ++o) {
+        const int period = 8 << o;
+        n += amp * periodic_noise(u * static_cast<float>(period), v * static_cast<float>(period), period, seed + static_cast<std::uint32_t>(o));
+        norm += amp;
+        amp *= 0.7f;
+      }
+      coverage[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = n / norm;
+      const float c = periodic_noise(u * 16.0f, v * 16.0f, 16, seed ^ 0xabcdu);
+      const float l = 0.55f + 0.45f * periodic_noise(u * 64.0f, v * 64.0f, 64, seed ^ 0x1234u);
+      img.at(x, y, 0) = std::clamp(l * (0.8f + 0.4f * c), 0.0f, 1.0f);
+      img.at(x, y, 1) = std::clamp(l, 0.0f, 1.0f);
+      img.at(x, y, 2) = std::clamp(l * (1.1f - 0.3f * c), 0.0f, 1.0f);
+    }
+  }
+  // Histogram equalisation: alpha = rank / count, so "alpha < density" covers exactly a share
+  // `density` of the texels.
+  std::vector<std::uint32_t> order(coverage.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return coverage[a] < coverage[b]; });
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    const std::uint32_t i = order[r];
+    img.at(static_cast<int>(i % static_cast<std::uint32_t>(size)), static_cast<int>(i / static_cast<std::uint32_t>(size)), 3) =
+        (static_cast<float>(r) + 0.5f) / static_cast<float>(order.size());
+  }
+  return img;
+}
+
+std::vector<Image> coverage_preserving_mips(const Image& level0) {
+  std::vector<Image> levels{level0};
+  const int channels = level0.channels();
+  // The level-0 alpha distribution, sorted, is the target of every level.
+  std::vector<float> target(level0.pixel_count());
+  for (int y = 0, i = 0; y < level0.height(); ++y)
+    for (int x = 0; x < level0.width(); ++x) target[static_cast<std::size_t>(i++)] = level0.at(x, y, channels - 1);
+  std::sort(target.begin(), target.end());
+  while (levels.back().width() > 1 || levels.back().height() > 1) {
+    const Image& prev = levels.back();
+    const int w = std::max(prev.width() / 2, 1), h = std::max(prev.height() / 2, 1);
+    Image next(w, h, channels, prev.format());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < channels; ++c)
+          next.at(x, y, c) = 0.25f * (prev.at_clamped(2 * x, 2 * y, c) + prev.at_clamped(2 * x + 1, 2 * y, c) +
+                                      prev.at_clamped(2 * x, 2 * y + 1, c) + prev.at_clamped(2 * x + 1, 2 * y + 1, c));
+    // Histogram matching of alpha: the k-th smallest texel gets the level-0 quantile (k + 0.5) / n.
+    std::vector<std::uint32_t> order(next.pixel_count());
+    for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return next.at(static_cast<int>(a % static_cast<std::uint32_t>(w)), static_cast<int>(a / static_cast<std::uint32_t>(w)), channels - 1) <
+             next.at(static_cast<int>(b % static_cast<std::uint32_t>(w)), static_cast<int>(b / static_cast<std::uint32_t>(w)), channels - 1);
+    });
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      const double q = (static_cast<double>(k) + 0.5) / static_cast<double>(order.size());
+      const auto src = static_cast<std::size_t>(std::min(q * static_cast<double>(target.size()), static_cast<double>(target.size() - 1)));
+      next.at(static_cast<int>(order[k] % static_cast<std::uint32_t>(w)), static_cast<int>(order[k] / static_cast<std::uint32_t>(w)), channels - 1) =
+          target[src];
+    }
+    levels.push_back(std::move(next));
+  }
+  return levels;
+}
+
+namespace {
+
+// RGBA8 texture from an explicit mip chain (rows flipped to GL's bottom-up order).
+render::Texture texture_from_mips(const std::vector<Image>& mips, GLenum min_filter, GLenum wrap, int max_level) {
+  render::Texture tex = render::Texture::create_2d(mips[0].width(), mips[0].height(), GL_RGBA8, static_cast<int>(mips.size()));
+  for (std::size_t level = 0; level < mips.size(); ++level) {
+    const Image& im = mips[level];
+    std::vector<float> rows(im.pixel_count() * 4);
+    for (int y = 0; y < im.height(); ++y)
+      for (int x = 0; x < im.width(); ++x)
+        for (int c = 0; c < 4; ++c)
+          rows[(static_cast<std::size_t>(im.height() - 1 - y) * static_cast<std::size_t>(im.width()) + static_cast<std::size_t>(x)) * 4 +
+               static_cast<std::size_t>(c)] = c < im.channels() ? im.at(x, y, c) : 1.0f;
+    glTextureSubImage2D(tex.id(), static_cast<GLint>(level), 0, 0, im.width(), im.height(), GL_RGBA, GL_FLOAT, rows.data());
+  }
+  tex.set_filter(min_filter, GL_NEAREST);
+  tex.set_wrap(wrap);
+  // Coarser levels have too few texels for a threshold to express a coverage share.
+  glTextureParameteri(tex.id(), GL_TEXTURE_MAX_LEVEL, std::min(max_level, static_cast<int>(mips.size()) - 1));
+  return tex;
+}
+
+}  // namespace
+
+Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                  const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+  render::embedded::register_render_shaders();
+  render::embedded::register_grass_shaders();
+  auto clumps = generate_clumps(field, blade, maps, ground, origin, far);
+  if (!clumps) return clumps.error();
+
+  FarField f;
+  f.settings_ = far;
+  f.origin_ = origin;
+  f.map_rect_ = maps.rect();
+  f.clump_tiles_ = std::move(clumps->tiles);
+  f.clump_count_ = clumps->clumps.size();
+  const float side_area = field.density * 0.5f * (blade.width_min + blade.width_max) * 0.5f * (blade.height_min + blade.height_max);
+  f.tau_side_ = side_area * 2.0f / kPi;
+  f.tau_top_ = 0.2f * side_area;
+
+  auto cp = render::Program::create({"grass/clump.vert", "grass/clump.frag"});
+  if (!cp) return cp.error();
+  auto gp = render::Program::create({"grass/ground.vert", "grass/ground.frag"});
+  if (!gp) return gp.error();
+  f.clump_program_ = std::move(*cp);
+  f.ground_program_ = std::move(*gp);
+
+  if (clumps->clumps.empty()) clumps->clumps.push_back(Clump{});
+  f.clumps_ = render::Buffer::immutable(std::span<const Clump>(clumps->clumps));
+  f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
+  f.clump_vao_ = render::VertexArray::create();
+
+  // Ground layer: chunks of 16 x 16 quads over the map rectangle, following the height field.
+  const double spacing = far.ground_spacing;
+  const Rect area = maps.rect();
+  std::vector<float> vertices;     // xyz local position, xyz normal
+  std::vector<std::uint32_t> indices;
+  constexpr int kQuads = 16;
+  const double chunk = spacing * kQuads;
+  const int cx = static_cast<int>(std::ceil(area.size().x / chunk));
+  const int cz = static_cast<int>(std::ceil(area.size().y / chunk));
+  if (static_cast<double>(cx) * cz * (kQuads + 1) * (kQuads + 1) > 2.0e7) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.far.ground_spacing: {} m gives more than 20 million ground vertices", spacing));
+  }
+  for (int j = 0; j < cz; ++j) {
+    for (int i = 0; i < cx; ++i) {
+      GroundChunk gc;
+      gc.first_index = static_cast<std::uint32_t>(indices.size());
+      const auto base = static_cast<std::uint32_t>(vertices.size() / 6);
+      glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+      for (int b = 0; b <= kQuads; ++b) {
+        for (int a = 0; a <= kQuads; ++a) {
+          const double wx = std::min(area.min.x + (i * kQuads + a) * spacing, area.max.x);
+          const double wz = std::min(area.min.y + (j * kQuads + b) * spacing, area.max.y);
+          const glm::vec3 n = ground.normal(wx, wz);
+          const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(ground.height(wx, wz) - origin.y),
+                            static_cast<float>(wz - origin.z));
+          const glm::vec3 q = p + n * far.ground_offset;
+          vertices.insert(vertices.end(), {q.x, q.y, q.z, n.x, n.y, n.z});
+          lo = glm::min(lo, q);
+          hi = glm::max(hi, q);
+        }
+      }
+      for (int b = 0; b < kQuads; ++b) {
+        for (int a = 0; a < kQuads; ++a) {
+          const std::uint32_t v00 = base + static_cast<std::uint32_t>(b * (kQuads + 1) + a);
+          const std::uint32_t v10 = v00 + 1, v01 = v00 + kQuads + 1, v11 = v01 + 1;
+          indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
+        }
+      }
+      gc.index_count = static_cast<std::uint32_t>(indices.size()) - gc.first_index;
+      gc.bounds_min = lo - glm::vec3(0.1f);
+      gc.bounds_max = hi + glm::vec3(0.1f);
+      f.chunks_.push_back(gc);
+    }
+  }
+  if (vertices.empty()) vertices.assign(6, 0.0f);
+  if (indices.empty()) indices.assign(3, 0u);
+  f.ground_vertices_ = render::Buffer::immutable(std::span<const float>(vertices));
+  f.ground_indices_ = render::Buffer::immutable(std::span<const std::uint32_t>(indices));
+  f.ground_vao_ = render::VertexArray::create();
+  f.ground_vao_.attribute(0, 0, 3, GL_FLOAT, 0);
+  f.ground_vao_.attribute(1, 0, 3, GL_FLOAT, 3 * sizeof(float));
+  f.ground_vao_.vertex_buffer(0, f.ground_vertices_, 6 * sizeof(float));
+  f.ground_vao_.index_buffer(f.ground_indices_);
+
+  // Textures: alpha holds thresholds, so the mip chains are coverage-preserving (see
+  // coverage_preserving_mips) and sampled without blending between texels or levels.
+  f.atlas_ = texture_from_mips(coverage_preserving_mips(make_clump_atlas(256, field.seed)), GL_NEAREST_MIPMAP_NEAREST,
+                               GL_CLAMP_TO_EDGE, 3);  // cells of 128 -> 16 texels
+  f.ground_texture_ = texture_from_mips(coverage_preserving_mips(make_ground_texture(256, field.seed ^ 0x5eedu)),
+                                        GL_NEAREST_MIPMAP_NEAREST, GL_REPEAT, 4);  // 256 -> 16 texels
+  render::TextureOptions linear;
+  linear.mipmaps = false;
+  linear.min_filter = GL_LINEAR;
+  linear.wrap = GL_CLAMP_TO_EDGE;
+  linear.encoding = render::TextureEncoding::kFloat32;
+  auto dens = render::Texture::from_image(maps.density_image(), linear);
+  if (!dens) return dens.error();
+  f.density_ = std::move(*dens);
+  return f;
+}
+
+void FarField::set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
+                        const glm::vec3& tip_color) {
+  near_distance_ = near_distance;
+  wind_response_ = wind_response;
+  mean_stiffness_ = mean_stiffness;
+  base_color_ = base_color;
+  tip_color_ = tip_color;
+}
+
+void FarField::update(const render::FrameContext& frame) { update(frame.camera, frame.viewport); }
+
+void FarField::update(const render::Camera& camera, glm::ivec2 viewport) {
+  const glm::mat4 vp_local = camera.view_projection() * camera.relative_model(origin_);
+  camera_local_ = glm::vec3(camera.position() - origin_);
+  const CullView view = make_cull_view(vp_local, camera_local_, camera.forward(), static_cast<float>(std::max(viewport.y, 1)),
+                                       camera.perspective().fov_y);
+  const FarFieldSettings& s = settings_;
+  visible_clump_tiles_.clear();
+  visible_chunks_.clear();
+  float nearest = 0.0f, farthest = 0.0f;
+  if (s.clumps) {
+    for (std::uint32_t i = 0; i < clump_tiles_.size(); ++i) {
+      const GrassTile& t = clump_tiles_[i];
+      box_distances(camera_local_, t.bounds_min, t.bounds_max, nearest, farthest);
+      if (nearest >= s.mid_distance || farthest <= near_distance_ - s.clump_fade_in) continue;
+      if (!box_visible(view, t.bounds_min, t.bounds_max)) continue;
+      visible_clump_tiles_.push_back(i);
+    }
+  }
+  if (s.ground) {
+    for (std::uint32_t i = 0; i < chunks_.size(); ++i) {
+      const GroundChunk& c = chunks_[i];
+      box_distances(camera_local_, c.bounds_min, c.bounds_max, nearest, farthest);
+      if (nearest >= s.far_distance || farthest <= s.mid_distance - s.mid_fade) continue;
+      if (!box_visible(view, c.bounds_min, c.bounds_max)) continue;
+      visible_chunks_.push_back(i);
+    }
+  }
+}
+
+void FarField::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
+  if (pass != render::Pass::kOpaque) return;
+  draw_far(frame.camera, frame.wind, frame.time, &stats);
+}
+
+void FarField::draw_far(const render::Camera& camera, const WindField& wind, double time, render::PassStats* stats) {
+  clumps_drawn_ = 0;
+  ground_drawn_ = 0;
+  const glm::vec3 origin_rel(origin_ - camera.position());
+  const FarFieldSettings& s = settings_;
+  const glm::vec4 fades(near_distance_, s.clump_fade_in, s.mid_distance, s.mid_fade);
+  const glm::vec2 far_fades(s.far_distance, s.far_fade);
+  if (!visible_clump_tiles_.empty()) {
+    const WindFrame wf = wind.frame(std::isfinite(time) ? time : 0.0, origin_);
+    wind_.update(0, sizeof(WindGpuParams), &wf.gpu);
+    wind_.bind_base(GL_UNIFORM_BUFFER, kWindUboBinding);
+    clumps_.bind_base(GL_SHADER_STORAGE_BUFFER, kClumpsBinding);
+    const render::Program& p = clump_program_;
+    p.set("u_view_proj", camera.view_projection());
+    p.set("u_origin_rel", origin_rel);
+    p.set("u_camera", camera_local_);
+    p.set("u_fades", fades);
+    p.set("u_sway", s.sway * wind_response_ / std::max(mean_stiffness_, 1.0f));
+    p.set("u_base_color", base_color_);
+    p.set("u_tip_color", tip_color_);
+    atlas_.bind(0);
+    clump_vao_.bind();
+    p.use();
+    for (const std::uint32_t ti : visible_clump_tiles_) {
+      const GrassTile& t = clump_tiles_[ti];
+      p.set("u_first", static_cast<int>(t.first));
+      glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(t.count));
+      clumps_drawn_ += t.count;
+    }
+    if (stats) {
+      stats->draw_calls += visible_clump_tiles_.size();
+      stats->instances += clumps_drawn_;
+      stats->triangles += 4 * clumps_drawn_;
+    }
+  }
+  if (!visible_chunks_.empty()) {
+    const render::Program& p = ground_program_;
+    p.set("u_view_proj", camera.view_projection());
+    p.set("u_origin_rel", origin_rel);
+    p.set("u_origin_xz", glm::vec2(static_cast<float>(std::fmod(origin_.x, static_cast<double>(s.texture_scale))),
+                                   static_cast<float>(std::fmod(origin_.z, static_cast<double>(s.texture_scale)))));
+    p.set("u_camera", camera_local_);
+    p.set("u_fades", glm::vec4(s.mid_distance, s.mid_fade, far_fades.x, far_fades.y));
+    p.set("u_texture_scale", s.texture_scale);
+    p.set("u_coverage", glm::vec3(tau_side_, tau_top_, s.coverage_gain));
+    p.set("u_map_min", glm::vec2(glm::dvec2(map_rect_.min) - glm::dvec2(origin_.x, origin_.z)));
+    p.set("u_map_size", glm::vec2(map_rect_.size()));
+    p.set("u_base_color", base_color_);
+    p.set("u_tip_color", tip_color_);
+    ground_texture_.bind(0);
+    density_.bind(1);
+    ground_vao_.bind();
+    p.use();
+    std::uint64_t tris = 0;
+    for (const std::uint32_t ci : visible_chunks_) {
+      const GroundChunk& c = chunks_[ci];
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(c.index_count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(static_cast<std::uintptr_t>(c.first_index) * sizeof(std::uint32_t)));
+      tris += c.index_count / 3;
+    }
+    ground_drawn_ = visible_chunks_.size();
+    if (stats) {
+      stats->draw_calls += visible_chunks_.size();
+      stats->triangles += tris;
+    }
+  }
+  glBindVertexArray(0);
+}
+
+}  // namespace sylva::grass
