@@ -40,6 +40,7 @@ double now_ms() {
 
 PassStats& PassStats::operator+=(const PassStats& o) {
   gpu_ms += o.gpu_ms;
+  sync_ms += o.sync_ms;
   primitives += o.primitives;
   samples += o.samples;
   triangles += o.triangles;
@@ -167,6 +168,8 @@ void FrameProfiler::begin(const std::string& name, bool counters) {
   }
   p.stats.passes[name];  // the record exists even before GPU results arrive
   open_.push_back(name);
+  if (synchronous_) glFinish();
+  open_start_ms_.push_back(now_ms());
   it->second.begin(frame_);
 }
 
@@ -174,7 +177,13 @@ void FrameProfiler::end(const std::string& name) {
   SYLVA_ASSERT(!open_.empty() && open_.back() == name, "end(\"{}\") does not match the innermost open scope", name);
   open_.pop_back();
   queries_.at(name).end();
-  ++in_flight_[frame_].awaiting;
+  Pending& p = in_flight_[frame_];
+  ++p.awaiting;
+  if (synchronous_) {
+    glFinish();
+    p.stats.passes[name].sync_ms += now_ms() - open_start_ms_.back();
+  }
+  open_start_ms_.pop_back();
 }
 
 void FrameProfiler::add_cpu_counts(const std::string& name, const PassStats& counts) {

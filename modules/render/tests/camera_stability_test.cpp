@@ -33,7 +33,8 @@ TEST(CameraStability, FiniteForExtremeProjections) {
           c.set_yaw_pitch(2.0f, -1.5f);
           ASSERT_TRUE(finite(c.projection())) << fov << " " << near_plane << " " << far_plane;
           ASSERT_TRUE(finite(c.view_projection()));
-          for (const glm::vec4& p : c.frustum().planes()) {
+          const Frustum frustum = c.frustum();  // keep it alive: planes() returns a reference
+          for (const glm::vec4& p : frustum.planes()) {
             ASSERT_TRUE(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z) && std::isfinite(p.w));
           }
           // The point straight ahead between the planes is visible (camera near the origin,

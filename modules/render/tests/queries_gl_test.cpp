@@ -176,10 +176,35 @@ TEST_F(QueriesTest, FrameProfilerReportsPassesAndNestedScopes) {
   EXPECT_GE(stats->cpu_ms, 0.0);
 }
 
+TEST_F(QueriesTest, SynchronousModeMeasuresWallTime) {
+  fb_.bind();
+  glDisable(GL_DEPTH_TEST);
+  FrameProfiler profiler;
+  profiler.set_synchronous(true);
+  for (int frame = 0; frame < 3; ++frame) {
+    profiler.begin_frame();
+    profiler.begin("light");
+    draw_quads(1, 1);
+    profiler.end("light");
+    profiler.begin("heavy");
+    draw_quads(40, 400);
+    profiler.end("heavy");
+    profiler.end_frame();
+  }
+  std::optional<FrameStats> stats = profiler.flush();
+  ASSERT_TRUE(stats.has_value());
+  const double light = stats->passes.at("light").sync_ms;
+  const double heavy = stats->passes.at("heavy").sync_ms;
+  EXPECT_GT(light, 0.0);
+  EXPECT_GT(heavy, light * 3.0) << "light " << light << " ms, heavy " << heavy << " ms";
+  EXPECT_EQ(stats->passes.at("heavy").samples, 40u * kW * kH);
+}
+
 TEST(PassStatsTest, Accumulates) {
-  PassStats a{.gpu_ms = 1.0, .primitives = 2, .samples = 3, .triangles = 4, .draw_calls = 5, .instances = 6};
+  PassStats a{.gpu_ms = 1.0, .sync_ms = 0.5, .primitives = 2, .samples = 3, .triangles = 4, .draw_calls = 5, .instances = 6};
   a += a;
   EXPECT_EQ(a.gpu_ms, 2.0);
+  EXPECT_EQ(a.sync_ms, 1.0);
   EXPECT_EQ(a.primitives, 4u);
   EXPECT_EQ(a.instances, 12u);
 }

@@ -27,6 +27,8 @@ namespace sylva::render {
 // queries; draw_calls, instances and triangles are counted by the code that issues the draws.
 struct PassStats {
   double gpu_ms = 0.0;             // GPU time between the scope's begin and end [ms]
+  double sync_ms = 0.0;            // wall time with glFinish around the scope [ms]; only filled
+                                   // by FrameProfiler in synchronous mode (see below)
   std::uint64_t primitives = 0;    // GL_PRIMITIVES_GENERATED (after tessellation/geometry)
   std::uint64_t samples = 0;       // GL_SAMPLES_PASSED (fragments that passed depth/stencil)
   std::uint64_t triangles = 0;     // submitted by the CPU side
@@ -108,6 +110,13 @@ class PassQuery {
 //   if (auto s = profiler.latest()) ...   // a few frames old
 class FrameProfiler {
  public:
+  // Synchronous mode wraps every scope in glFinish and records its wall time as sync_ms. It
+  // stalls the pipeline, so it is for benchmarks only, and it exists because timer queries on
+  // llvmpipe underestimate: its timestamps are taken per tile by the rasteriser threads, and a
+  // 1280x720 sky pass measured 12-40 ms by GL_TIME_ELAPSED took about 130 ms of wall time.
+  void set_synchronous(bool on) { synchronous_ = on; }
+  bool synchronous() const { return synchronous_; }
+
   void begin_frame();
   // counters: whether this scope counts primitives/samples (only one counting scope may be
   // open at a time; nested module scopes inside a counting pass pass false).
@@ -136,6 +145,8 @@ class FrameProfiler {
   std::map<std::string, PassQuery> queries_;
   std::map<std::uint64_t, Pending> in_flight_;  // by frame number
   std::vector<std::string> open_;              // scopes currently open, innermost last
+  std::vector<double> open_start_ms_;          // synchronous mode: wall clock at begin()
+  bool synchronous_ = false;
   std::uint64_t frame_ = 0;
   double frame_start_ms_ = 0.0;
   std::optional<FrameStats> latest_;
