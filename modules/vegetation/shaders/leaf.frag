@@ -1,0 +1,77 @@
+#version 450 core
+// Two-sided leaves (seed 000 §3.2, §4.6): per-side colour deviation, venation normal map and
+// Half-Life-2 translucency; diffuse + Cook-Torrance specular + ambient + translucency; the season
+// colour c_s from the season texture at seasonCoord, budding and leaf fall by discard; edges by
+// alpha-to-coverage (sharpened alpha) on multisampled targets, else by the alpha test.
+#include "render/lib/fog.glsl"
+#include "vegetation/lib/leaf_shading.glsl"
+
+in vec2 v_uv;
+flat in float v_season_offset;
+in vec3 v_rel;
+in vec3 v_normal;
+in vec3 v_tangent;
+flat in vec3 v_variation;
+
+layout(binding = 0) uniform sampler2DArray u_leaf_color;         // layer 0 front, 1 back
+layout(binding = 1) uniform sampler2DArray u_leaf_normal;
+layout(binding = 2) uniform sampler2DArray u_leaf_translucency;
+layout(binding = 3) uniform sampler2D u_season;
+
+uniform float u_season_time;      // the season parameter (0 = 1 January)
+uniform int u_alpha_to_coverage;  // 1: write a sharpened alpha for GL_SAMPLE_ALPHA_TO_COVERAGE
+uniform float u_roughness;
+uniform float u_ior;
+uniform vec3 u_specular_color;
+uniform vec3 u_translucent_color;
+uniform float u_diffuse;
+uniform float u_ambient;
+
+out vec4 o_color;
+
+void main() {
+  // Season (seed §4.6): seasonCoord = season + 0.2 leafSpecificNumber + instance offset.
+  vec4 season = texture(u_season, vec2(0.5, u_season_time + v_season_offset));
+  if (season.a < 0.5) discard;
+
+  float layer = gl_FrontFacing ? 0.0 : 1.0;
+  vec4 col = texture(u_leaf_color, vec3(v_uv, layer));
+  float alpha = col.a;
+  if (u_alpha_to_coverage != 0) {
+    // Sharpen to about one pixel so coverage follows the outline (Golus 2017).
+    alpha = (col.a - 0.5) / max(fwidth(col.a), 1.0e-4) + 0.5;
+    if (alpha <= 0.0) discard;
+  } else if (col.a < 0.5) {
+    discard;
+  }
+
+  // Tangent frame of the visible side: front (b, t, n); back (-b, t, -n).
+  vec3 n = normalize(v_normal);
+  vec3 t = normalize(v_tangent - dot(v_tangent, n) * n);
+  vec3 b = cross(t, n);
+  if (!gl_FrontFacing) {
+    n = -n;
+    b = -b;
+  }
+  vec3 nts = texture(u_leaf_normal, vec3(v_uv, layer)).xyz * 2.0 - 1.0;
+  vec3 N = normalize(b * nts.x + t * nts.y + n * nts.z);
+  vec3 V = normalize(-v_rel);
+  vec3 L = sun_direction();
+
+  vec3 cv = col.rgb - 0.5;                 // colour deviation c_v
+  vec3 cs = season.rgb + v_variation;      // seasonal colour c_s with per-instance variation
+  vec3 base = max(cv + cs, vec3(0.0));
+  float diffuse = max(dot(N, L), 0.0);
+  float specular = sylva_cook_torrance(N, L, V, u_roughness, u_ior);
+  float translucency = 0.0;
+  if (dot(n, L) < 0.0) {
+    // Light enters through the other side: express L in that side's tangent space (-b, t, -n).
+    vec4 tr = texture(u_leaf_translucency, vec3(v_uv, layer));
+    vec3 l_ts = vec3(dot(L, -b), dot(L, t), dot(L, -n));
+    translucency = sylva_hl2_translucency(tr.rgb * 2.0 - 1.0, tr.a, l_ts);
+  }
+  vec3 color = sun_radiance() * (diffuse * u_diffuse * base + specular * u_specular_color +
+                                 translucency * base * u_translucent_color) +
+               hemisphere_ambient(N) * u_ambient * base;
+  o_color = vec4(apply_fog(color, v_rel), clamp(alpha, 0.0, 1.0));
+}

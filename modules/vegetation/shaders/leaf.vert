@@ -1,0 +1,62 @@
+#version 450 core
+// Leaves of LOD0 trees: the branch chain of their parent, then the leaf's own tilt and twist
+// (eq. 3.16), then the instance transform. Compiled with SYLVA_DEPTH_ONLY for the depth pass (the
+// varyings the alpha test needs are kept), so every pass deforms identically.
+#include "vegetation/lib/tree_animation.glsl"
+
+layout(location = 0) in vec3 a_position;  // rest position (object)
+layout(location = 1) in vec3 a_normal;    // rest normal (object)
+layout(location = 2) in vec2 a_corner;    // (P_x, P_y) in the leaf frame (b, t)
+layout(location = 3) in vec2 a_uv;
+layout(location = 4) in vec4 a_xvec;
+layout(location = 5) in uint a_branch;
+layout(location = 6) in uint a_leaf;
+
+uniform mat4 u_view_proj;
+uniform int u_instance_base;
+
+out vec2 v_uv;
+flat out float v_season_offset;  // leaf spread * leafSpecificNumber + instance offset, before the season
+#ifndef SYLVA_DEPTH_ONLY
+out vec3 v_rel;
+out vec3 v_normal;   // front side normal n2 (world)
+out vec3 v_tangent;  // blade axis t1 (world)
+flat out vec3 v_variation;
+#endif
+
+uniform float u_leaf_spread;
+
+#ifdef SYLVA_TREE_CAPTURE
+layout(std430, binding = 7) writeonly buffer SylvaTreeCapture { vec4 sylva_capture[]; };
+#endif
+
+void main() {
+  SylvaTreeInstance inst = sylva_instances[u_instance_base + gl_InstanceID];
+  vec3 p;
+  vec3 n;
+  vec3 t;
+#if SYLVA_TREE_ANIMATION == 0
+  SylvaTreeLeaf leaf0 = sylva_leaves[a_leaf];
+  p = a_position;
+  n = a_normal;
+  t = leaf0.t_object.xyz;
+#else
+  sylva_deform_leaf(a_branch, a_leaf, a_xvec, a_corner, inst, p, n, t);
+#endif
+#ifdef SYLVA_TREE_CAPTURE
+  if (gl_InstanceID == 0) {
+    sylva_capture[gl_VertexID * 2] = vec4(p, 1.0);
+    sylva_capture[gl_VertexID * 2 + 1] = vec4(n, 0.0);
+  }
+#endif
+  vec3 rel = sylva_instance_point(inst, p);
+  gl_Position = u_view_proj * vec4(rel, 1.0);
+  v_uv = a_uv;
+  v_season_offset = u_leaf_spread * sylva_leaves[a_leaf].t_parent.w + inst.rotation.w;
+#ifndef SYLVA_DEPTH_ONLY
+  v_rel = rel;
+  v_normal = sylva_instance_vector(inst, n);
+  v_tangent = sylva_instance_vector(inst, t);
+  v_variation = inst.variation.rgb;
+#endif
+}
