@@ -1,0 +1,195 @@
+#include "bench_app.hpp"
+
+#include "bench_options.hpp"
+#include "runner.hpp"
+#include "scene_source.hpp"
+#include "stability.hpp"
+#include "suites.hpp"
+
+#include <sylva/render/gl_context.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+
+namespace sylva::bench {
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitFailed = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitUnavailable = 3;
+
+void print_params(BenchTarget& target, std::ostream& out) {
+  for (const ParamDescriptor& p : target.params()) {
+    std::string range;
+    if (std::isfinite(p.info.min) || std::isfinite(p.info.max)) range = fmt::format(" [{}..{}]", p.info.min, p.info.max);
+    out << fmt::format("{} = {} ({}{}{}{}){}{}\n", p.path, p.get_string(), p.type_name(), range,
+                       *p.info.unit ? " " : "", p.info.unit, *p.info.help ? "  " : "", p.info.help);
+  }
+}
+
+void print_paths(BenchTarget& target, std::ostream& out) {
+  for (const CameraPath& p : target.camera_paths()) {
+    out << fmt::format("{}: {} ({} keys)\n", p.name, p.description, p.keys.size());
+  }
+}
+
+// Runs one sweep and writes its outputs; returns the exit code.
+int run_and_write(const RunSpec& spec, bool embed, std::ostream& out, std::ostream& err) {
+  Status valid = validate_spec(spec);
+  if (!valid.ok()) {
+    err << "sylva-bench: " << valid.error().message << "\n";
+    return kExitUsage;
+  }
+  auto report = run_sweep(spec, out);
+  if (!report.ok()) {
+    err << "sylva-bench: " << report.error().message << "\n";
+    return kExitFailed;
+  }
+  Status written = write_report(*report, spec.out, embed);
+  if (!written.ok()) {
+    err << "sylva-bench: " << written.error().message << "\n";
+    return kExitFailed;
+  }
+  out << fmt::format("sylva-bench: wrote {}\n", std::filesystem::absolute(spec.out / "report.html").string());
+  for (const SettingResult& r : report->settings) {
+    if (!r.error_message.empty()) return kExitFailed;
+  }
+  return kExitOk;
+}
+
+void apply_common(const BenchOptions& o, RunSpec& spec) {
+  if (o.frames) spec.frames = *o.frames;
+  if (o.size) spec.size = *o.size;
+  if (o.camera_path) spec.camera_path = o.camera_path;
+  spec.warmup = o.warmup;
+  spec.dt = o.dt;
+  spec.threshold = o.threshold;
+  if (o.cost) spec.cost = *o.cost;
+  spec.error = o.error;
+  for (const Assignment& a : o.overrides) spec.overrides.push_back(a);
+}
+
+}  // namespace
+
+int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
+  auto parsed = parse_bench_options(args);
+  if (!parsed.ok()) {
+    err << "sylva-bench: " << parsed.error().message << "\n";
+    return kExitUsage;
+  }
+  const BenchOptions& o = *parsed;
+  if (o.help) {
+    out << bench_usage();
+    return kExitOk;
+  }
+
+  // Listing needs no GL: parameters and paths exist before prepare().
+  if (o.list_params || o.list_camera_paths) {
+    TargetFactory factory;
+    if (o.scene) {
+      auto f = open_scene(*o.scene);
+      if (!f.ok()) {
+        err << "sylva-bench: " << f.error().message << "\n";
+        return kExitUsage;
+      }
+      factory = *f;
+    } else {
+      auto suite = make_suite(*o.suite);
+      if (!suite.ok()) {
+        err << "sylva-bench: " << suite.error().message << "\n";
+        return suite.error().code == ErrorCode::kUnsupported ? kExitUnavailable : kExitUsage;
+      }
+      factory = suite->run.factory;
+    }
+    auto target = factory();
+    if (!target.ok()) {
+      err << "sylva-bench: " << target.error().message << "\n";
+      return kExitUsage;
+    }
+    if (o.list_params) print_params(**target, out);
+    if (o.list_camera_paths) print_paths(**target, out);
+    return kExitOk;
+  }
+
+  // Everything else renders: one headless context for the whole run.
+  auto context = render::GlContext::create_headless({.debug = false});
+  if (!context.ok()) {
+    err << "sylva-bench: " << context.error().message << "\n";
+    return kExitFailed;
+  }
+  const std::filesystem::path out_dir = o.out;
+  int status = kExitOk;
+  auto merge = [&status](int s) {
+    // The most severe outcome wins: usage errors, then failures, then unavailable modules.
+    auto rank = [](int code) { return code == kExitUsage ? 3 : code == kExitFailed ? 2 : code == kExitUnavailable ? 1 : 0; };
+    if (rank(s) > rank(status)) status = s;
+  };
+
+  if (o.scene) {
+    auto factory = open_scene(*o.scene);
+    if (!factory.ok()) {
+      err << "sylva-bench: " << factory.error().message << "\n";
+      return kExitUsage;
+    }
+    RunSpec spec;
+    spec.factory = *factory;
+    spec.scene = *o.scene;
+    if (!o.sweeps.empty()) spec.sweep_groups.push_back(o.sweeps);
+    spec.reference = o.reference;
+    spec.frames = kDefaultFrames;
+    spec.size = kDefaultSize;
+    apply_common(o, spec);
+    spec.out = out_dir;
+    spec.gl_renderer = context->renderer();
+    spec.gl_version = context->version();
+    if (!o.cost) spec.cost = default_cost_metric(spec.gl_renderer);
+    merge(run_and_write(spec, o.embed_images, out, err));
+  }
+
+  if (o.suite) {
+    const std::vector<std::string> names = *o.suite == "all" ? suite_names() : std::vector<std::string>{*o.suite};
+    for (const std::string& name : names) {
+      auto suite = make_suite(name);
+      if (!suite.ok()) {
+        err << fmt::format("sylva-bench: suite {}: {}\n", name, suite.error().message);
+        merge(suite.error().code == ErrorCode::kUnsupported ? kExitUnavailable : kExitFailed);
+        continue;
+      }
+      RunSpec spec = suite->run;
+      apply_common(o, spec);
+      spec.out = names.size() > 1 ? out_dir / name : out_dir;
+      spec.gl_renderer = context->renderer();
+      spec.gl_version = context->version();
+      if (!o.cost) spec.cost = default_cost_metric(spec.gl_renderer);
+      out << fmt::format("suite {}: {}\n", name, spec.description);
+      merge(run_and_write(spec, o.embed_images, out, err));
+    }
+  }
+
+  if (o.stability) {
+    StabilityOptions so;
+    if (o.suite && *o.suite != "all") so.only_module = *o.suite == "trees" ? "vegetation" : *o.suite;
+    const StabilityReport report = run_stability(so, out);
+    Status written = write_stability_report(report, out_dir, context->renderer());
+    if (!written.ok()) {
+      err << "sylva-bench: " << written.error().message << "\n";
+      merge(kExitFailed);
+    } else {
+      out << fmt::format("sylva-bench: wrote {}\n", std::filesystem::absolute(out_dir / "stability.html").string());
+    }
+    const StabilityReport::Totals t = report.totals();
+    out << fmt::format("stability: {} passed, {} failed, {} module(s) not available\n", t.passed, t.failed,
+                       t.unavailable_modules);
+    // Modules that are not built are listed in the table as not available; they do not fail the
+    // run (only --suite asks for a specific module).
+    if (t.failed > 0) merge(kExitFailed);
+  }
+  return status;
+}
+
+}  // namespace sylva::bench

@@ -1,0 +1,62 @@
+#pragma once
+// What sylva-bench renders: a scene whose parameters can be set by path, with named camera
+// paths, rendering one frame at a time into the bench's framebuffer and reporting what it
+// cost. Implementations: GroundTarget (built-in sky + fBm ground, no content module) and
+// SceneTarget (a modules/scene scene file with the modules it lists).
+//
+// Life cycle per setting (runner.cpp): create a fresh target from the factory, set the
+// --set overrides and the setting's assignments through params(), prepare(), then render the
+// warm-up and measured frames with a fixed time step. A fresh target per setting keeps every
+// setting independent of the previous one's simulation state (grass physics, streaming caches),
+// which is what makes two runs agree in every count.
+
+#include "camera_path.hpp"
+#include "results.hpp"
+
+#include <sylva/core/params.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/render/framebuffer.hpp>
+
+#include <glm/glm.hpp>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace sylva::bench {
+
+struct FrameInput {
+  int frame = 0;          // index along the camera path (warm-up frames repeat frame 0: -1..)
+  double time = 0.0;      // scene time [s] = warm-up offset + frame * dt, identical in every run
+  float dt = 0.0f;        // fixed step [s]
+  CameraPose pose;
+};
+
+struct FrameOutput {
+  double cpu_ms = kNaN;   // CPU time of update + draw submission, without waiting for the GPU
+  double gpu_ms = kNaN;   // GPU time of all passes (timer queries)
+  FrameCounts counts;
+  std::map<std::string, double> metrics;  // module-reported numbers (terrain.max_projected_error_px)
+};
+
+class BenchTarget {
+ public:
+  virtual ~BenchTarget() = default;
+
+  // Every parameter --set, --sweep and --reference may address. The descriptors point into the
+  // target and stay valid until prepare() or destruction.
+  virtual std::vector<ParamDescriptor> params() = 0;
+  // Builds everything for rendering at `size` after the parameters are final (needs GL).
+  virtual Status prepare(glm::ivec2 size) = 0;
+  // Camera paths by name; the first is the default.
+  virtual std::vector<CameraPath> camera_paths() const = 0;
+  // One frame into `target` (bound and cleared by the target itself). Must not read back.
+  virtual Status render(const FrameInput& input, const render::Framebuffer& target, FrameOutput& out) = 0;
+  // Modules this target draws ("terrain", "grass", ...); for the report.
+  virtual std::vector<std::string> modules() const = 0;
+};
+
+using TargetFactory = std::function<Result<std::unique_ptr<BenchTarget>>()>;
+
+}  // namespace sylva::bench
