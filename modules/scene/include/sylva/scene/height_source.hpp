@@ -1,0 +1,71 @@
+#pragma once
+// Where a scene's ground comes from (GL-free): a painted/loaded height map, or a field generated
+// from core noise. The ground-providing section ("terrain" or "ground") lists these fields; the
+// scene turns them into the one sylva::HeightField that grass and trees stand on (DESIGN.md
+// §2b: modules exchange the ground only through the core type).
+//
+// Placement: the field is centred on `center`, `size` metres along x; samples are square, so
+// the z extent follows from the sample rows. Generated fields have `resolution` samples per
+// side. A height map (the section's maps.height) gives the sample grid instead; its values are
+// file units * map_scale + map_offset metres (1.0 = white of a 16-bit PNG).
+
+#include <sylva/core/height_field.hpp>
+#include <sylva/core/noise.hpp>
+#include <sylva/core/params.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/scene/map_grid.hpp>
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <filesystem>
+#include <optional>
+
+namespace sylva::scene {
+
+enum class HeightGenerator { kFlat, kFbm, kRidged, kHillsAndRidges };
+constexpr std::array<EnumName<HeightGenerator>, 4> enum_names(HeightGenerator) {
+  return {{{HeightGenerator::kFlat, "flat"},
+           {HeightGenerator::kFbm, "fbm"},
+           {HeightGenerator::kRidged, "ridged"},
+           {HeightGenerator::kHillsAndRidges, "hills_and_ridges"}}};
+}
+
+struct HeightSourceSettings {
+  glm::dvec2 center{0.0, 0.0};  // world x/z of the field's centre [m]
+  float size = 4000.0f;         // x extent [m]
+  int resolution = 257;         // samples per side of a generated field
+  float height = 220.0f;        // vertical scale of the generator [m]
+  HeightGenerator generator = HeightGenerator::kHillsAndRidges;
+  FbmSettings noise{.octaves = 7, .persistence = 0.48f, .lacunarity = 2.0f, .frequency = 1.0f / 700.0f,
+                    .seed = 7, .ridge_gain = 2.0f};
+  float map_scale = 1.0f;       // metres per file unit of a height map
+  float map_offset = 0.0f;      // metres added to a height map
+
+  template <class V>
+  void visit(V& v) {
+    v(center, "center", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "World x/z of the ground's centre", .rebuild = Rebuild::kOffline});
+    v(size, "size", {.min = 1.0, .max = 1.0e6, .unit = "m", .help = "Side length of the ground along x", .rebuild = Rebuild::kOffline, .log_scale = true});
+    v(resolution, "resolution", {.min = 2, .max = 8193, .help = "Samples per side of a generated ground", .rebuild = Rebuild::kOffline});
+    v(height, "height", {.min = 0.0, .max = 1.0e4, .unit = "m", .help = "Height scale of the generator", .rebuild = Rebuild::kOffline});
+    v(generator, "generator", {.help = "flat, fbm, ridged or hills_and_ridges (used when there is no height map)", .rebuild = Rebuild::kOffline});
+    v(noise, "noise");
+    v(map_scale, "map_scale", {.min = -1.0e5, .max = 1.0e5, .unit = "m", .help = "Metres per unit of the height map file", .rebuild = Rebuild::kOffline});
+    v(map_offset, "map_offset", {.min = -1.0e6, .max = 1.0e6, .unit = "m", .help = "Metres added to the height map", .rebuild = Rebuild::kOffline});
+  }
+};
+
+// The height map grid: read from `map_file` when given (errors name the file), else generated.
+// Heights in metres; texel centres are the height samples.
+Result<MapGrid> make_height_grid(const HeightSourceSettings& settings, const std::optional<std::filesystem::path>& map_file);
+
+// Sample spacing and origin for a grid of `columns` samples along x.
+double height_spacing(const HeightSourceSettings& settings, int columns);
+
+// A HeightField with the grid's samples and placement (texel size must be square, asserted).
+HeightField height_field_from_grid(const MapGrid& grid);
+// Copies the samples of `rect` from the grid into the field (same dimensions, asserted) and
+// refreshes its height range.
+void update_height_field(HeightField& field, const MapGrid& grid, const TexelRect& rect);
+
+}  // namespace sylva::scene

@@ -1,0 +1,80 @@
+#include <sylva/scene/height_source.hpp>
+
+#include <sylva/core/assert.hpp>
+
+#include <fmt/format.h>
+
+namespace sylva::scene {
+
+double height_spacing(const HeightSourceSettings& settings, int columns) {
+  return static_cast<double>(settings.size) / std::max(columns - 1, 1);
+}
+
+Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optional<std::filesystem::path>& map_file) {
+  if (map_file) {
+    // Placement needs the sample count, known only after reading: read with a unit placement,
+    // then place.
+    auto grid = read_map_image(*map_file, s.map_scale, s.map_offset, {0.0, 0.0}, {1.0, 1.0});
+    if (!grid.ok()) return grid.error();
+    if (grid->width < 2 || grid->height < 2) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: a height map needs at least 2x2 samples, got {}x{}", map_file->string(),
+                                    grid->width, grid->height));
+    }
+    const double spacing = height_spacing(s, grid->width);
+    grid->texel_size = {spacing, spacing};
+    grid->texel_origin = s.center - 0.5 * glm::dvec2(grid->width - 1, grid->height - 1) * spacing;
+    return grid;
+  }
+  const int n = s.resolution;
+  const double spacing = height_spacing(s, n);
+  const glm::dvec2 origin = s.center - 0.5 * glm::dvec2(n - 1) * spacing;
+  MapGrid grid(n, n, 0.0f, origin, {spacing, spacing});
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const glm::dvec2 p = grid.world(i, j);
+      float h = 0.0f;
+      switch (s.generator) {
+        case HeightGenerator::kFlat:
+          h = 0.0f;
+          break;
+        case HeightGenerator::kFbm:
+          h = s.height * fbm2(p, s.noise);
+          break;
+        case HeightGenerator::kRidged:
+          h = s.height * ridged2(p, s.noise);
+          break;
+        case HeightGenerator::kHillsAndRidges: {
+          // Ridged mountains blended over rolling fBm hills (the player's first ground).
+          const float hills = fbm2(p, s.noise);
+          const float ridges = ridged2(p * 0.8, s.noise);
+          h = s.height * (0.45f * hills + 0.75f * ridges * ridges);
+          break;
+        }
+      }
+      grid.at(i, j) = h;
+    }
+  }
+  return grid;
+}
+
+HeightField height_field_from_grid(const MapGrid& grid) {
+  SYLVA_ASSERT(grid.texel_size.x == grid.texel_size.y, "height samples must be square, got {} x {}", grid.texel_size.x,
+               grid.texel_size.y);
+  HeightField field(grid.width, grid.height, grid.texel_size.x, grid.texel_origin);
+  field.samples() = grid.values;
+  field.update_range();
+  return field;
+}
+
+void update_height_field(HeightField& field, const MapGrid& grid, const TexelRect& rect) {
+  SYLVA_ASSERT(field.columns() == grid.width && field.rows() == grid.height, "field {}x{} vs grid {}x{}",
+               field.columns(), field.rows(), grid.width, grid.height);
+  const TexelRect r = rect.intersect(grid.bounds());
+  for (int j = r.y0; j < r.y1; ++j) {
+    for (int i = r.x0; i < r.x1; ++i) field.sample(i, j) = grid.at(i, j);
+  }
+  field.update_range();
+}
+
+}  // namespace sylva::scene

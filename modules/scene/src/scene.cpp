@@ -1,0 +1,447 @@
+#include <sylva/scene/scene.hpp>
+
+#include <sylva/core/log.hpp>
+#include <sylva/core/params_json.hpp>
+#include <sylva/render/buffer.hpp>
+#include <sylva/render/lighting_uniforms.hpp>
+#include <sylva/render/shader_library.hpp>
+#include <sylva/render/sky.hpp>
+#include <sylva/render/vertex_array.hpp>
+#include <sylva/scene/height_source.hpp>
+#include <sylva/scene/module_registry.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <system_error>
+
+namespace sylva::render::embedded {
+void register_scene_shaders();
+}  // namespace sylva::render::embedded
+
+namespace sylva::scene {
+
+struct Scene::Gpu {
+  render::SkyRenderer sky;
+  render::LightingUniforms lighting;
+  render::Program lines;  // built the first time the chunk-bounds view is on
+  render::Buffer line_buffer;
+  render::VertexArray line_vao;
+};
+
+namespace {
+
+struct LineVertex {
+  glm::vec3 position;  // camera-relative
+  glm::vec4 color;
+};
+
+glm::vec4 module_color(std::string_view module) {
+  if (module == "terrain" || module == "ground") return {1.0f, 0.8f, 0.2f, 1.0f};
+  if (module == "grass") return {0.3f, 1.0f, 0.3f, 1.0f};
+  if (module == "vegetation") return {1.0f, 0.4f, 0.2f, 1.0f};
+  return {0.3f, 0.7f, 1.0f, 1.0f};
+}
+
+std::string_view first_segment(std::string_view path) { return path.substr(0, path.find('.')); }
+
+std::string map_extension(MapKind kind) { return kind == MapKind::kHeight ? ".exr" : ".png"; }
+
+}  // namespace
+
+Scene::~Scene() {
+  // Modules go first: their drawables may refer to the ground and the maps.
+  modules_.clear();
+}
+
+Result<std::unique_ptr<Scene>> Scene::create(SceneDocument document) {
+  SYLVA_TRY(document.validate());
+  auto scene = std::unique_ptr<Scene>(new Scene());
+  scene->document_ = std::make_unique<SceneDocument>(std::move(document));
+  scene->wind_ = WindField(scene->document_->wind);
+  scene->lighting_ = make_lighting(scene->document_->sun, scene->document_->environment);
+
+  render::embedded::register_render_shaders();
+  auto sky = render::SkyRenderer::create();
+  if (!sky.ok()) return sky.error();
+  scene->gpu_ = std::make_unique<Gpu>();
+  scene->gpu_->sky = std::move(*sky);
+  scene->gpu_->lighting = render::LightingUniforms::create();
+
+  SYLVA_TRY(scene->build_ground());
+  SYLVA_TRY(scene->build_modules());
+  return scene;
+}
+
+Status Scene::build_ground() {
+  for (const ModuleSection& section : document_->modules()) {
+    const ModuleDescriptor* d = find_module(section.name);
+    if (!d || !d->provides_ground) continue;
+    const HeightSourceSettings source = d->height_source(*section.settings);
+    const std::string id = section.name + ".height";
+    auto existing = maps_.find(id);
+    if (existing != maps_.end() && existing->second.unsaved()) {
+      // Painted and not saved: keep the painted heights, only re-place them.
+      MapGrid& grid = existing->second.grid;
+      const double spacing = height_spacing(source, grid.width);
+      grid.texel_size = {spacing, spacing};
+      grid.texel_origin = source.center - 0.5 * glm::dvec2(grid.width - 1, grid.height - 1) * spacing;
+    } else {
+      std::optional<std::filesystem::path> file;
+      std::string path;
+      if (auto m = section.maps.find("height"); m != section.maps.end()) {
+        path = m->second;
+        file = document_->resolve(path);
+      }
+      auto grid = make_height_grid(source, file);
+      if (!grid.ok()) return make_error(grid.error().code, fmt::format("{}.maps.height: {}", section.name, grid.error().message));
+      SceneMap map;
+      map.module = section.name;
+      map.slot = "height";
+      map.kind = MapKind::kHeight;
+      map.grid = std::move(*grid);
+      map.path = path;
+      map.file_scale = source.map_scale;
+      map.file_offset = source.map_offset;
+      if (existing != maps_.end()) {
+        map.revision = map.saved_revision = existing->second.revision;
+        existing->second = std::move(map);
+      } else {
+        maps_.emplace(id, std::move(map));
+      }
+    }
+    ground_ = std::make_unique<HeightField>(height_field_from_grid(maps_.at(id).grid));
+    ground_map_id_ = id;
+    return {};
+  }
+  ground_.reset();
+  ground_map_id_.clear();
+  return {};
+}
+
+ModuleBuildContext Scene::context_for(const ModuleSection& section) {
+  ModuleBuildContext ctx;
+  ctx.section = &section;
+  ctx.document = document_.get();
+  ctx.ground = ground_.get();
+  ctx.maps = &maps_;
+  ctx.wind = &wind_;
+  ctx.environment = &document_->environment;
+  ctx.debug = &debug_;
+  return ctx;
+}
+
+Result<std::unique_ptr<ModuleInstance>> Scene::create_module(const ModuleSection& section) {
+  const ModuleDescriptor* d = find_module(section.name);
+  if (!d) {
+    Status s = require_module(section.name, section.name);
+    return s.error();
+  }
+  return d->create(context_for(section));
+}
+
+Status Scene::build_modules() {
+  modules_.clear();
+  for (const ModuleSection& section : document_->modules()) {
+    auto inst = create_module(section);
+    if (!inst.ok()) return inst.error();
+    modules_.push_back(std::move(*inst));
+  }
+  return {};
+}
+
+ModuleInstance* Scene::module(std::string_view name) {
+  for (auto& m : modules_) {
+    if (m->module() == name) return m.get();
+  }
+  return nullptr;
+}
+
+double Scene::ground_height(double x, double z) const { return ground_ ? ground_->height(x, z) : 0.0; }
+
+Status Scene::rebuild_module(std::string_view name, Rebuild what) {
+  const ModuleDescriptor* d = find_module(name);
+  if (d && d->provides_ground) {
+    // A new ground: rebuild it, then every module (they all stand on it or draw it).
+    SYLVA_TRY(build_ground());
+    std::vector<std::unique_ptr<ModuleInstance>> fresh;
+    for (const ModuleSection& section : document_->modules()) {
+      auto inst = create_module(section);
+      if (!inst.ok()) return inst.error();
+      fresh.push_back(std::move(*inst));
+    }
+    modules_ = std::move(fresh);
+    return {};
+  }
+  ModuleInstance* m = module(name);
+  if (!m) return {};
+  return m->rebuild(what);
+}
+
+Status Scene::set_param(std::string_view path, std::string_view text) {
+  ParamRegistry registry = document_->params();
+  auto param = registry.find(path);
+  if (!param.ok()) return param.error();
+  const std::string before = param->get_string();
+  SYLVA_TRY(param->set_string(text));
+  const std::string section(first_segment(path));
+  ModuleSection* ms = document_->module(section);
+  auto revert = [&](const Error& error) -> Status {
+    (void)param->set_string(before);
+    return error;
+  };
+  if (ms) {
+    Status check = ms->settings->check(section);
+    if (!check.ok()) return revert(check.error());
+    if (param->info.rebuild != Rebuild::kNone) {
+      Status rebuilt = rebuild_module(section, param->info.rebuild);
+      if (!rebuilt.ok()) {
+        (void)param->set_string(before);
+        Status restored = rebuild_module(section, param->info.rebuild);
+        if (!restored.ok()) log_warn("{}: could not restore after a failed rebuild: {}", section, restored.error().message);
+        return rebuilt.error();
+      }
+    }
+  }
+  return {};
+}
+
+Result<std::string> Scene::get_param(std::string_view path) { return document_->params().get(path); }
+
+std::vector<ParamDescriptor> Scene::describe_params() { return document_->params().describe(); }
+
+CameraView Scene::resolve(const CameraView& view) const {
+  CameraView out = view;
+  if (view.height_mode == HeightMode::kAboveGround) {
+    out.position.y += ground_height(view.position.x, view.position.z);
+    out.height_mode = HeightMode::kAbsolute;
+  }
+  return out;
+}
+
+render::Camera Scene::make_camera(const CameraView& view, glm::ivec2 viewport) const {
+  const CameraView v = resolve(view);
+  render::Camera camera;
+  camera.set_position(v.position);
+  camera.set_yaw_pitch(glm::radians(v.yaw_deg), glm::radians(v.pitch_deg));
+  camera.perspective().fov_y = glm::radians(v.fov_deg);
+  camera.perspective().near_plane = 0.1f;
+  camera.set_aspect(viewport.x, viewport.y);
+  return camera;
+}
+
+Result<CameraView> Scene::camera_path_view(std::string_view name, double t) const {
+  auto it = document_->camera_paths.find(std::string(name));
+  if (it == document_->camera_paths.end()) {
+    std::string known;
+    for (const auto& [n, p] : document_->camera_paths) known += (known.empty() ? "" : ", ") + n;
+    return make_error(ErrorCode::kNotFound, fmt::format("camera_paths.{}: no such camera path (the scene has: {})", name,
+                                                        known.empty() ? "none" : known));
+  }
+  return resolve(it->second.evaluate(t));
+}
+
+CameraView Scene::view_of(const render::Camera& camera) {
+  CameraView v;
+  v.position = camera.position();
+  v.yaw_deg = glm::degrees(camera.yaw());
+  v.pitch_deg = glm::degrees(camera.pitch());
+  v.fov_deg = glm::degrees(camera.perspective().fov_y);
+  v.height_mode = HeightMode::kAbsolute;
+  return v;
+}
+
+void Scene::update(const render::Camera& camera, double time, float dt, glm::ivec2 viewport) {
+  camera_ = camera;
+  time_ = time;
+  dt_ = std::max(dt, 0.0f);
+  viewport_ = viewport;
+  ++frame_;
+  wind_ = WindField(document_->wind);
+  lighting_ = make_lighting(document_->sun, document_->environment);
+  const render::FrameContext ctx{camera_, time_, dt_, wind_, lighting_, viewport_, frame_};
+  for (auto& m : modules_) {
+    m->sync_settings();
+    for (render::Drawable* d : m->drawables()) d->update(ctx);
+  }
+}
+
+void Scene::draw_pass(render::Pass pass, render::FrameProfiler& profiler) {
+  const render::FrameContext ctx{camera_, time_, dt_, wind_, lighting_, viewport_, frame_};
+  const std::string pass_name = render::to_string(pass);
+  profiler.begin(pass_name, false);
+  const bool wire = debug_.wireframe && pass == render::Pass::kOpaque;
+  if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  for (auto& m : modules_) {
+    const std::string scope = module_scope(pass_name, m->module());
+    profiler.begin(scope, !m->counts_own_primitives());
+    render::PassStats counts;
+    for (render::Drawable* d : m->drawables()) d->draw(pass, ctx, counts);
+    profiler.end(scope);
+    profiler.add_cpu_counts(scope, counts);
+  }
+  if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  profiler.end(pass_name);
+}
+
+void Scene::render(const render::Framebuffer& target, render::FrameProfiler& profiler) {
+  const render::FrameContext ctx{camera_, time_, dt_, wind_, lighting_, viewport_, frame_};
+  profiler.begin_frame();
+  gpu_->lighting.update(lighting_, camera_.position().y, time_);
+  gpu_->lighting.bind();
+  target.bind();
+  render::apply_reversed_z_state();
+  target.clear(glm::vec4(lighting_.fog_color, 1.0f), 0.0f);
+
+  if (shadow_hook_) {
+    const std::string pass_name = render::to_string(render::Pass::kShadow);
+    profiler.begin(pass_name, false);
+    shadow_hook_(ctx, [&](render::PassStats& total) {
+      for (auto& m : modules_) {
+        const std::string scope = module_scope(pass_name, m->module());
+        profiler.begin(scope, false);
+        render::PassStats counts;
+        for (render::Drawable* d : m->drawables()) d->draw(render::Pass::kShadow, ctx, counts);
+        profiler.end(scope);
+        profiler.add_cpu_counts(scope, counts);
+        total += counts;
+      }
+    });
+    profiler.end(pass_name);
+    gpu_->lighting.bind();
+    target.bind();
+    render::apply_reversed_z_state();
+  }
+
+  draw_pass(render::Pass::kOpaque, profiler);
+  profiler.begin("sky");
+  gpu_->sky.draw(camera_, lighting_, time_);
+  profiler.end("sky");
+  profiler.add_cpu_counts("sky", render::PassStats{.draw_calls = 1});
+  gpu_->lighting.bind();
+  draw_pass(render::Pass::kTransparent, profiler);
+  if (debug_.chunk_bounds) {
+    profiler.begin("debug");
+    draw_debug_lines();
+    profiler.end("debug");
+  }
+  profiler.end_frame();
+}
+
+void Scene::draw_debug_lines() {
+  if (!gpu_->lines) {
+    render::embedded::register_scene_shaders();
+    auto program = render::Program::create({"scene/lines.vert", "scene/lines.frag"});
+    if (!program.ok()) {
+      log_warn("scene: chunk-bounds view unavailable: {}", program.error().message);
+      debug_.chunk_bounds = false;
+      return;
+    }
+    gpu_->lines = std::move(*program);
+    gpu_->line_buffer = render::Buffer::dynamic(1 << 16, GL_STREAM_DRAW);
+    gpu_->line_vao = render::VertexArray::create();
+    gpu_->line_vao.attribute(0, 0, 3, GL_FLOAT, offsetof(LineVertex, position));
+    gpu_->line_vao.attribute(1, 0, 4, GL_FLOAT, offsetof(LineVertex, color));
+  }
+  constexpr std::size_t kMaxBoxes = 50000;
+  std::vector<LineVertex> vertices;
+  for (auto& m : modules_) {
+    const glm::vec4 color = module_color(m->module());
+    const std::vector<render::Aabb> boxes = m->debug_bounds();
+    for (std::size_t b = 0; b < boxes.size() && vertices.size() < kMaxBoxes * 24; ++b) {
+      const glm::vec3 lo = camera_.to_relative(boxes[b].min), hi = camera_.to_relative(boxes[b].max);
+      const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, lo.y, hi.z}, {lo.x, lo.y, hi.z},
+                              {lo.x, hi.y, lo.z}, {hi.x, hi.y, lo.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+      static constexpr int kEdges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6},
+                                            {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+      for (const auto& e : kEdges) {
+        vertices.push_back({c[e[0]], color});
+        vertices.push_back({c[e[1]], color});
+      }
+    }
+  }
+  if (vertices.empty()) return;
+  gpu_->line_buffer.upload(std::span<const LineVertex>(vertices));
+  gpu_->line_vao.vertex_buffer(0, gpu_->line_buffer, sizeof(LineVertex));
+  gpu_->lines.use();
+  gpu_->lines.set("u_view_projection", camera_.view_projection());
+  gpu_->line_vao.bind();
+  glDepthMask(GL_FALSE);
+  glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(vertices.size()));
+  glDepthMask(GL_TRUE);
+}
+
+SceneMap* Scene::map(std::string_view id) {
+  auto it = maps_.find(std::string(id));
+  return it == maps_.end() ? nullptr : &it->second;
+}
+
+Status Scene::map_changed(std::string_view id, const TexelRect& rect) {
+  SceneMap* m = map(id);
+  if (!m) return make_error(ErrorCode::kNotFound, fmt::format("map \"{}\" does not exist in this scene", id));
+  const TexelRect r = rect.intersect(m->grid.bounds());
+  if (r.empty()) return {};
+  ++m->revision;
+  const WorldArea area = changed_world_area(m->grid, r);
+  if (m->id() == ground_map_id_ && ground_) {
+    update_height_field(*ground_, m->grid, r);
+    for (auto& mod : modules_) SYLVA_TRY(mod->on_map_changed(m->id(), area));
+    return {};
+  }
+  if (ModuleInstance* owner = module(m->module)) return owner->on_map_changed(m->id(), area);
+  return {};
+}
+
+bool Scene::maps_unsaved() const {
+  return std::any_of(maps_.begin(), maps_.end(), [](const auto& kv) { return kv.second.unsaved(); });
+}
+
+Status Scene::save(const std::filesystem::path& file) {
+  namespace fs = std::filesystem;
+  const fs::path new_dir = file.parent_path();
+  const fs::path old_dir = document_->directory();
+  std::error_code ec;
+  // Keep unedited relative map paths pointing at the same files from the new folder.
+  auto rebase = [&](const std::string& path) -> std::string {
+    const fs::path p(path);
+    if (p.is_absolute() || fs::absolute(old_dir, ec) == fs::absolute(new_dir, ec)) return path;
+    const fs::path target = fs::absolute(old_dir.empty() ? fs::path(".") : old_dir, ec) / p;
+    const fs::path rel = target.lexically_normal().lexically_relative(fs::absolute(new_dir.empty() ? fs::path(".") : new_dir, ec));
+    return rel.empty() ? target.lexically_normal().string() : rel.string();
+  };
+  for (auto& [id, map] : maps_) {
+    ModuleSection* section = document_->module(map.module);
+    if (!section) continue;
+    if (!map.unsaved()) {
+      if (!map.path.empty()) {
+        map.path = rebase(map.path);
+        section->maps[map.slot] = map.path;
+      }
+      continue;
+    }
+    if (map.path.empty()) {
+      map.path = fmt::format("{}_maps/{}_{}{}", file.stem().string(), map.module, map.slot, map_extension(map.kind));
+    }
+    const fs::path target = (new_dir.empty() ? fs::path(".") : new_dir) / map.path;
+    fs::create_directories(target.parent_path(), ec);
+    if (ec) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create the folder: {}", target.parent_path().string(), ec.message()));
+    SYLVA_TRY(write_map_image(target, map.grid, map.file_scale, map.file_offset));
+    map.saved_revision = map.revision;
+    section->maps[map.slot] = map.path;
+  }
+  for (ModuleSection& section : document_->modules()) {
+    for (auto& [slot, path] : section.maps) {
+      if (maps_.count(section.name + "." + slot) == 0) path = rebase(path);
+    }
+  }
+  document_->set_directory(new_dir);
+  return document_->save(file);
+}
+
+nlohmann::json Scene::module_stats() const {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto& m : modules_) j[m->module()] = m->stats();
+  return j;
+}
+
+}  // namespace sylva::scene
