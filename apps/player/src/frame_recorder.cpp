@@ -5,37 +5,64 @@
 
 namespace sylva::player {
 
+void FrameRecorder::add_update_ms(const std::map<std::string, double>& per_module) {
+  for (const auto& [module, ms] : per_module) update_ms_[module].push_back(ms);
+}
+
 void FrameRecorder::add_gpu_frame(const render::FrameStats& frame) {
   // The profiler reports its newest complete frame; the same one may be seen twice.
   if (any_gpu_frame_ && frame.frame <= last_gpu_frame_) return;
   any_gpu_frame_ = true;
   last_gpu_frame_ = frame.frame;
   gpu_ms_.push_back(frame.gpu_ms);
-  for (const auto& [name, pass] : frame.passes) {
+  const scene::SceneFrameStats split = scene::split_frame_stats(frame);
+  for (const auto& [name, pass] : split.passes) {
     pass_gpu_ms_[name].push_back(pass.gpu_ms);
     pass_last_[name] = pass;
+  }
+  for (const auto& [module, passes] : split.modules) {
+    double total = 0.0;
+    for (const auto& [pass, stats] : passes) {
+      module_pass_ms_[module][pass].push_back(stats.gpu_ms);
+      module_pass_last_[module][pass] = stats;
+      total += stats.gpu_ms;
+    }
+    module_gpu_ms_[module].push_back(total);
   }
 }
 
 nlohmann::json FrameRecorder::to_json(int frames, glm::ivec2 size) const {
+  auto counters = [](const render::PassStats& s) {
+    return nlohmann::json{{"primitives", s.primitives}, {"samples", s.samples},   {"triangles", s.triangles},
+                          {"draw_calls", s.draw_calls}, {"instances", s.instances}};
+  };
   nlohmann::json j;
   j["frames"] = frames;
   j["size"] = {size.x, size.y};
+  if (!scene_name_.empty()) j["scene"] = scene_name_;
   j["cpu_ms"] = summarize(cpu_ms_);
   j["gpu_ms"] = summarize(gpu_ms_);
   nlohmann::json passes = nlohmann::json::object();
   for (const auto& [name, samples] : pass_gpu_ms_) {
-    const render::PassStats& last = pass_last_.at(name);
-    passes[name] = {{"gpu_ms", summarize(samples)},
-                    {"primitives", last.primitives},
-                    {"samples", last.samples},
-                    {"triangles", last.triangles},
-                    {"draw_calls", last.draw_calls},
-                    {"instances", last.instances}};
+    nlohmann::json p = counters(pass_last_.at(name));
+    p["gpu_ms"] = summarize(samples);
+    passes[name] = std::move(p);
   }
   j["passes"] = passes;
   nlohmann::json modules = nlohmann::json::object();
-  for (const auto& [name, info] : modules_) modules[name] = info;
+  for (const auto& [name, info] : modules_) modules[name] = info.is_object() ? info : nlohmann::json::object();
+  for (const auto& [name, samples] : module_gpu_ms_) {
+    nlohmann::json& m = modules[name];
+    m["gpu_ms"] = summarize(samples);
+    nlohmann::json mp = nlohmann::json::object();
+    for (const auto& [pass, ms] : module_pass_ms_.at(name)) {
+      nlohmann::json p = counters(module_pass_last_.at(name).at(pass));
+      p["gpu_ms"] = summarize(ms);
+      mp[pass] = std::move(p);
+    }
+    m["passes"] = std::move(mp);
+  }
+  for (const auto& [name, samples] : update_ms_) modules[name]["update_ms"] = summarize(samples);
   j["modules"] = modules;
   return j;
 }

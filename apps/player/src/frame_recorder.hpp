@@ -1,10 +1,16 @@
 #pragma once
 // Collects per-frame statistics during a run and writes the --stats JSON:
-//   {"frames", "size", "cpu_ms": {...}, "gpu_ms": {...}, "passes": {...}, "modules": {...}}
-// where the timing objects are core SampleSummary records (count, mean, p50, p99, ...).
+//   {"frames", "size", "scene", "cpu_ms": {...}, "gpu_ms": {...},
+//    "passes":  {"<pass>": {"gpu_ms": {...}, "primitives", "samples", "triangles", "draw_calls", "instances"}},
+//    "modules": {"<module>": {"gpu_ms": {...}, "update_ms": {...},
+//                             "passes": {"<pass>": {"gpu_ms": {...}, counters...}}, ...module facts}}}
+// The timing objects are core SampleSummary records (count, mean, p50, p99, ...); counters are
+// those of the newest complete frame. Passes and modules come from the scene's profiler scopes
+// ("opaque", "opaque/grass": scene/frame_stats.hpp).
 
 #include <sylva/core/result.hpp>
 #include <sylva/render/queries.hpp>
+#include <sylva/scene/frame_stats.hpp>
 
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
@@ -20,10 +26,13 @@ class FrameRecorder {
  public:
   // One frame's CPU time [ms] measured by the caller.
   void add_cpu_ms(double ms) { cpu_ms_.push_back(ms); }
-  // A completed GPU frame record from the profiler (arrives a few frames late).
+  // CPU time of each module's update() in one frame [ms].
+  void add_update_ms(const std::map<std::string, double>& per_module);
+  // A completed GPU frame record from the profiler (arrives a few frames late; repeats ignored).
   void add_gpu_frame(const render::FrameStats& frame);
-  // Module-level facts (for example the ground's triangle count), copied into "modules".
+  // Module-level facts (triangles, chunks, blades...), merged into "modules".
   void set_module_info(const std::string& module, nlohmann::json info) { modules_[module] = std::move(info); }
+  void set_scene_name(std::string name) { scene_name_ = std::move(name); }
 
   nlohmann::json to_json(int frames, glm::ivec2 size) const;
   // Writes atomically (core write_file_atomic).
@@ -34,9 +43,14 @@ class FrameRecorder {
   std::vector<double> gpu_ms_;
   std::map<std::string, std::vector<double>> pass_gpu_ms_;
   std::map<std::string, render::PassStats> pass_last_;
+  std::map<std::string, std::vector<double>> module_gpu_ms_;                      // module -> total per frame
+  std::map<std::string, std::map<std::string, std::vector<double>>> module_pass_ms_;  // module -> pass -> ms
+  std::map<std::string, std::map<std::string, render::PassStats>> module_pass_last_;
+  std::map<std::string, std::vector<double>> update_ms_;
   std::uint64_t last_gpu_frame_ = 0;
   bool any_gpu_frame_ = false;
   std::map<std::string, nlohmann::json> modules_;
+  std::string scene_name_;
 };
 
 }  // namespace sylva::player

@@ -1,17 +1,16 @@
 #include "player_app.hpp"
 
 #include "frame_recorder.hpp"
-#include "ground_scene.hpp"
 #include "scene_loading.hpp"
 
 #include <sylva/core/timer.hpp>
 #include <sylva/render/camera.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/gl_context.hpp>
-#include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
-#include <sylva/render/sky.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/scene.hpp>
 
 #include <GLFW/glfw3.h>
 #include <fmt/format.h>
@@ -22,10 +21,8 @@
 namespace sylva::player {
 namespace {
 
-// The modules compiled into this player (the lean preset leaves some out).
-std::vector<std::string> built_modules() {
-  return {"core", "render"};
-}
+// Headless runs advance the clock by a fixed step so results do not depend on the machine.
+constexpr double kHeadlessStep = 1.0 / 30.0;
 
 // Reads WASD / mouse from the window into a fly-camera step (right mouse button looks).
 render::FlyInput read_fly_input(GLFWwindow* window, std::optional<glm::dvec2>& last_cursor) {
@@ -46,55 +43,37 @@ render::FlyInput read_fly_input(GLFWwindow* window, std::optional<glm::dvec2>& l
   return input;
 }
 
-struct Renderers {
-  GroundRenderer ground;
-  render::SkyRenderer sky;
-  render::LightingUniforms lighting;
-};
-
-Result<Renderers> create_renderers(const GroundSceneSettings& settings) {
-  render::embedded::register_render_shaders();
-  auto ground = GroundRenderer::create(settings.ground);
-  if (!ground.ok()) return ground.error();
-  auto sky = render::SkyRenderer::create();
-  if (!sky.ok()) return sky.error();
-  return Renderers{std::move(*ground), std::move(*sky), render::LightingUniforms::create()};
-}
-
-void render_frame(Renderers& r, const render::Framebuffer& target, const render::Camera& camera,
-                  const render::Lighting& lighting, double time, render::FrameProfiler& profiler) {
-  profiler.begin_frame();
-  r.lighting.update(lighting, camera.position().y, time);
-  r.lighting.bind();
-  target.bind();
-  render::apply_reversed_z_state();
-  target.clear(glm::vec4(lighting.fog_color, 1.0f), 0.0f);
-  profiler.begin("opaque");
-  render::PassStats ground_counts;
-  r.ground.draw(camera, ground_counts);
-  profiler.end("opaque");
-  profiler.add_cpu_counts("opaque", ground_counts);
-  profiler.begin("sky");
-  r.sky.draw(camera, lighting);
-  profiler.end("sky");
-  profiler.add_cpu_counts("sky", render::PassStats{.draw_calls = 1});
-  profiler.end_frame();
+void list_modules(std::ostream& out) {
+  out << "core    no-GL foundation (params, images, noise, wind, height fields)\n";
+  out << "render  OpenGL 4.5 core (contexts, shaders, camera, queries, sky)\n";
+  out << "scene   scene files, module assembly, frame loop\n";
+  for (const scene::ModuleDescriptor* d : scene::compiled_modules()) {
+    out << fmt::format("{:<7} {}\n", d->name, d->description);
+  }
 }
 
 }  // namespace
 
 int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& err) {
   if (options.list_modules) {
-    for (const std::string& m : built_modules()) out << m << "\n";
+    list_modules(out);
     return 0;
   }
 
-  auto scene = load_scene(options.scene_path, options.overrides);
-  if (!scene.ok()) {
-    err << "sylva-player: " << scene.error().message << "\n";
+  auto loaded = load_scene(options.scene_path, options.overrides);
+  if (!loaded.ok()) {
+    err << "sylva-player: " << loaded.error().message << "\n";
     return 2;
   }
-  for (const std::string& w : scene->warnings) err << "sylva-player: warning: " << w << "\n";
+  for (const std::string& w : loaded->warnings) err << "sylva-player: warning: " << w << "\n";
+  if (options.bookmark && loaded->document.bookmarks.count(*options.bookmark) == 0) {
+    err << "sylva-player: --bookmark " << *options.bookmark << ": the scene has no such bookmark\n";
+    return 2;
+  }
+  if (options.camera_path && loaded->document.camera_paths.count(*options.camera_path) == 0) {
+    err << "sylva-player: --camera-path " << *options.camera_path << ": the scene has no such camera path\n";
+    return 2;
+  }
 
   // Window when asked and possible; otherwise headless, and say why.
   bool headless = options.headless;
@@ -110,11 +89,13 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
     return 1;
   }
 
-  auto renderers = create_renderers(scene->settings);
-  if (!renderers.ok()) {
-    err << "sylva-player: " << renderers.error().message << "\n";
-    return 1;
+  const std::string scene_name = loaded->document.name;
+  auto created = scene::Scene::create(std::move(loaded->document));
+  if (!created.ok()) {
+    err << "sylva-player: " << created.error().message << "\n";
+    return created.error().code == ErrorCode::kGl ? 1 : 2;
   }
+  scene::Scene& scene = **created;
 
   glm::ivec2 size = options.size;
   auto target = render::Framebuffer::create({.width = size.x, .height = size.y, .color_formats = {GL_RGBA8}});
@@ -123,12 +104,12 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
     return 1;
   }
 
-  render::Camera camera = make_camera(scene->settings.camera, size);
-  const render::Lighting lighting = make_lighting(scene->settings.sun);
+  const scene::CameraView start =
+      options.bookmark ? scene.document().bookmarks.at(*options.bookmark) : scene.document().camera;
+  render::Camera camera = scene.make_camera(start, size);
   render::FrameProfiler profiler;
   FrameRecorder recorder;
-  recorder.set_module_info("ground", {{"triangles", renderers->ground.triangle_count()},
-                                      {"resolution", scene->settings.ground.resolution}});
+  recorder.set_scene_name(scene_name);
   const render::FlySettings fly;
   std::optional<glm::dvec2> last_cursor;
 
@@ -138,11 +119,11 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
   double time = 0.0;
   while (frame_limit == 0 || frames < frame_limit) {
     Stopwatch cpu;
-    const double dt = frame_clock.lap_ms() * 1e-3;
+    const double dt = headless ? kHeadlessStep : frame_clock.lap_ms() * 1e-3;
     if (!headless) {
       context->poll_events();
       if (context->should_close() || glfwGetKey(context->window(), GLFW_KEY_ESCAPE) == GLFW_PRESS) break;
-      render::fly_step(camera, read_fly_input(context->window(), last_cursor), fly, dt);
+      if (!options.camera_path) render::fly_step(camera, read_fly_input(context->window(), last_cursor), fly, dt);
       const glm::ivec2 fb = context->framebuffer_size();
       if (fb.x > 0 && fb.y > 0 && fb != size) {
         auto resized = render::Framebuffer::create({.width = fb.x, .height = fb.y, .color_formats = {GL_RGBA8}});
@@ -153,18 +134,26 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
         }
       }
     }
-    time += dt;
-    render_frame(*renderers, *target, camera, lighting, time, profiler);
+    if (frames > 0) time += dt;
+    if (options.camera_path) {
+      auto view = scene.camera_path_view(*options.camera_path, time);
+      if (view.ok()) camera = scene.make_camera(*view, size);
+    }
+    scene.update(camera, time, static_cast<float>(frames > 0 ? dt : 0.0), size);
+    scene.render(*target, profiler);
     if (!headless) {
       glBlitNamedFramebuffer(target->read_id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
                              GL_NEAREST);
       context->swap_buffers();
     }
     recorder.add_cpu_ms(cpu.elapsed_ms());
+    recorder.add_update_ms(scene.update_ms());
     if (const auto& latest = profiler.latest()) recorder.add_gpu_frame(*latest);
     ++frames;
   }
   if (auto last = profiler.flush()) recorder.add_gpu_frame(*last);
+  const nlohmann::json facts = scene.module_stats();
+  for (const auto& [module, info] : facts.items()) recorder.set_module_info(module, info);
 
   int status = 0;
   if (options.screenshot_path) {

@@ -87,6 +87,14 @@ Result<PlayerOptions> parse_player_options(const std::vector<std::string>& args)
       auto v = value("an output JSON path");
       if (!v.ok()) return v.error();
       options.stats_path = *v;
+    } else if (name == "--bookmark") {
+      auto v = value("the name of a bookmark in the scene");
+      if (!v.ok()) return v.error();
+      options.bookmark = *v;
+    } else if (name == "--camera-path") {
+      auto v = value("the name of a camera path in the scene");
+      if (!v.ok()) return v.error();
+      options.camera_path = *v;
     } else if (name == "--set" || arg.rfind("--set=", 0) == 0) {
       std::string assignment;
       if (arg.rfind("--set=", 0) == 0) {
@@ -124,7 +132,9 @@ std::string player_usage() {
          "  --screenshot PATH     save the last frame (PNG, EXR, TIFF, ...)\n"
          "  --stats PATH          write frame statistics as JSON\n"
          "  --set path=value      override a scene parameter, e.g. --set sun.elevation_deg=30\n"
-         "  --list-modules        list the modules built into this player and quit\n"
+         "  --bookmark NAME       start at a camera bookmark of the scene\n"
+         "  --camera-path NAME    fly a camera path of the scene (headless: 1/30 s per frame)\n"
+         "  --list-modules        list the modules compiled into this player and quit\n"
          "  --help                show this text\n"
          "Window controls: WASD fly, mouse look (hold right button), Shift faster, Esc quits.\n";
 }

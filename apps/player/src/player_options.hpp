@@ -1,7 +1,8 @@
 #pragma once
 // Command line of sylva-player (DESIGN.md §3):
 //   sylva-player [scene.json] [--headless] [--size WxH] [--frames N] [--screenshot PATH]
-//                [--stats PATH] [--set path=value]... [--list-modules] [--help]
+//                [--stats PATH] [--set path=value]... [--bookmark NAME] [--camera-path NAME]
+//                [--list-modules] [--help]
 // Parsing is separate from running so every bad argument is unit-tested.
 
 #include <sylva/core/result.hpp>
@@ -24,6 +25,8 @@ struct PlayerOptions {
   std::optional<std::string> screenshot_path;  // PNG (or any OIIO format) of the last frame
   std::optional<std::string> stats_path;       // JSON statistics of the run
   std::vector<std::pair<std::string, std::string>> overrides;  // --set path=value, in order
+  std::optional<std::string> bookmark;     // start at this bookmark of the scene
+  std::optional<std::string> camera_path;  // fly this camera path of the scene (time = frame clock)
   bool list_modules = false;
   bool help = false;
 };

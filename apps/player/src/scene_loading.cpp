@@ -1,34 +1,24 @@
 #include "scene_loading.hpp"
 
-#include <sylva/core/atomic_file.hpp>
-#include <sylva/core/params.hpp>
-#include <sylva/core/params_json.hpp>
-
 #include <fmt/format.h>
-
 
 namespace sylva::player {
 
 Result<LoadedScene> load_scene(const std::optional<std::string>& path,
                                const std::vector<std::pair<std::string, std::string>>& overrides) {
-  LoadedScene scene;
-  if (path) {
-    auto text = read_file(*path);
-    if (!text.ok()) return text.error();
-    auto json = parse_json_text(*text, *path);
-    if (!json.ok()) return json.error();
-    if (!json->is_object()) {
-      return make_error(ErrorCode::kParse, fmt::format("{}: a scene file must hold a JSON object", *path));
-    }
-    Status loaded = params_from_json(scene.settings, *json, scene.warnings);
-    if (!loaded.ok()) return make_error(loaded.error().code, fmt::format("{}: {}", *path, loaded.error().message));
-    for (std::string& w : scene.warnings) w = fmt::format("{}: {}", *path, w);
-  }
+  LoadedScene loaded;
+  auto document = path ? scene::SceneDocument::load(*path, loaded.warnings) : scene::default_scene(loaded.warnings);
+  if (!document.ok()) return document.error();
+  loaded.document = std::move(*document);
+  ParamRegistry params = loaded.document.params();
   for (const auto& [param_path, value] : overrides) {
-    Status set = set_param(scene.settings, param_path, value);
+    Status set = params.set(param_path, value);
     if (!set.ok()) return make_error(set.error().code, fmt::format("--set {}={}: {}", param_path, value, set.error().message));
   }
-  return scene;
+  // Overrides may break a cross-field rule (min above max): check the whole document again.
+  Status valid = loaded.document.validate();
+  if (!valid.ok()) return make_error(valid.error().code, fmt::format("after --set: {}", valid.error().message));
+  return loaded;
 }
 
 }  // namespace sylva::player

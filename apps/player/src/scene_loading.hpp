@@ -1,11 +1,11 @@
 #pragma once
-// Loads the player's scene settings: the embedded default, or a JSON file of the same shape,
-// then applies --set overrides. Errors name the file (with line:column for malformed JSON), the
-// JSON path, or the --set path.
-
-#include "ground_scene.hpp"
+// Loads the player's scene document: the embedded default (scene/scene_document.hpp), or a scene
+// file, then applies --set overrides by parameter path. Errors name the file (with line:column
+// for malformed JSON), the JSON path, or the --set path; a module the player was built without
+// is named with its CMake option.
 
 #include <sylva/core/result.hpp>
+#include <sylva/scene/scene_document.hpp>
 
 #include <optional>
 #include <string>
@@ -15,7 +15,7 @@
 namespace sylva::player {
 
 struct LoadedScene {
-  GroundSceneSettings settings;
+  scene::SceneDocument document;
   std::vector<std::string> warnings;  // unknown keys and the like: shown, never fatal
 };
 

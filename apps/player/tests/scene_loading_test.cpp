@@ -25,7 +25,9 @@ TEST(SceneLoading, DefaultSceneIsValid) {
   auto scene = load_scene(std::nullopt, {});
   ASSERT_TRUE(scene.ok()) << scene.error().message;
   EXPECT_TRUE(scene->warnings.empty());
-  EXPECT_EQ(scene->settings.ground.resolution, 257);
+  // The default stands on a ground (terrain when built in, else the plain ground).
+  EXPECT_TRUE(scene->document.has_module("terrain") || scene->document.has_module("ground"));
+  EXPECT_TRUE(scene->document.validate().ok());
 }
 
 TEST(SceneLoading, FileAndOverridesApplyInOrder) {
@@ -33,9 +35,10 @@ TEST(SceneLoading, FileAndOverridesApplyInOrder) {
                                                "camera": {"position": [1, 2, 3]}})");
   auto scene = load_scene(path.string(), {{"ground.noise.octaves", "5"}});
   ASSERT_TRUE(scene.ok()) << scene.error().message;
-  EXPECT_EQ(scene->settings.sun.elevation_deg, 45.f);
-  EXPECT_EQ(scene->settings.ground.noise.octaves, 5);
-  EXPECT_EQ(scene->settings.camera.position, glm::vec3(1, 2, 3));
+  EXPECT_EQ(scene->document.sun.elevation_deg, 45.f);
+  EXPECT_EQ(scene->document.to_json()["ground"]["noise"]["octaves"], 5);
+  EXPECT_EQ(scene->document.camera.position, glm::dvec3(1, 2, 3));
+  EXPECT_EQ(scene->document.directory(), path.parent_path());
 }
 
 TEST(SceneLoading, UnknownKeysWarnWithTheFileName) {
@@ -60,6 +63,7 @@ TEST(SceneLoading, BadInputNamesFileAndPath) {
       {R"([1, 2])", {}, "JSON object"},
       {R"({})", {{"ground.nope", "1"}}, "ground.nope"},
       {R"({})", {{"sun.elevation_deg", "nan"}}, "sun.elevation_deg"},
+      {R"({"camera_paths": {"p": {"keys": [{"time_s": 2}, {"time_s": 1}]}}})", {}, "camera_paths.p.keys[1].time_s"},
   };
   for (const Case& c : cases) {
     const fs::path path = write_temp("bad.json", c.file_text);

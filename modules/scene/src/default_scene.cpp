@@ -14,8 +14,8 @@ std::string default_scene_text() {
   // Standing in the meadow, looking along it toward the hills.
   j["camera"] = {{"position", {4.0, 1.7, 26.0}}, {"height_mode", "above_ground"}, {"yaw_deg", 8.0},
                  {"pitch_deg", -4.0}, {"fov_deg", 60.0}};
-  j["sun"] = {{"follow_clock", true}, {"fog_density", 0.0012}};
-  j["environment"] = {{"time_of_day_h", 16.5}, {"season", 0.2}, {"latitude_deg", 47.0}};
+  j["sun"] = {{"follow_clock", true}, {"intensity", 2.0}, {"fog_density", 0.0012}};
+  j["environment"] = {{"time_of_day_h", 10.0}, {"season", 0.2}, {"latitude_deg", 47.0}};
   j["wind"] = {{"direction_deg", 30.0}, {"strength", 4.0}, {"gust_amplitude", 3.0}};
   const nlohmann::json source = {{"size", 1600.0},
                                  {"resolution", 257},
@@ -26,9 +26,10 @@ std::string default_scene_text() {
     j["terrain"] = source;
   } else {
     j["ground"] = source;
+    j["ground"]["snow_fraction"] = 1.0;  // no snow on meadow hills
   }
   if (find_module("grass")) {
-    j["grass"] = {{"area_min", {-30.0, -40.0}}, {"area_max", {30.0, 40.0}}, {"field", {{"density", 60.0}}}};
+    j["grass"] = {{"area_min", {-30.0, -40.0}}, {"area_max", {30.0, 40.0}}, {"field", {{"density", 100.0}}}};
   }
   j["bookmarks"] = {{"overview", {{"position", {-160.0, 90.0, 160.0}}, {"yaw_deg", -45.0}, {"pitch_deg", -20.0}}}};
   j["camera_paths"] = {

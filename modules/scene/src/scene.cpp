@@ -2,6 +2,7 @@
 
 #include <sylva/core/log.hpp>
 #include <sylva/core/params_json.hpp>
+#include <sylva/core/timer.hpp>
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/render/shader_library.hpp>
@@ -260,9 +261,12 @@ void Scene::update(const render::Camera& camera, double time, float dt, glm::ive
   wind_ = WindField(document_->wind);
   lighting_ = make_lighting(document_->sun, document_->environment);
   const render::FrameContext ctx{camera_, time_, dt_, wind_, lighting_, viewport_, frame_};
+  update_ms_.clear();
   for (auto& m : modules_) {
+    Stopwatch watch;
     m->sync_settings();
     for (render::Drawable* d : m->drawables()) d->update(ctx);
+    update_ms_[m->module()] = watch.elapsed_ms();
   }
 }
 

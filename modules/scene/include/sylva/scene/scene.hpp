@@ -138,6 +138,8 @@ class Scene {
   // --- statistics ---
   // Per-module facts: {"<module>": module stats()} (triangles, chunks, blades, instances...).
   nlohmann::json module_stats() const;
+  // CPU time of each module's update() in the last update() [ms], by module name.
+  const std::map<std::string, double>& update_ms() const { return update_ms_; }
 
  private:
   Scene() = default;
@@ -167,6 +169,7 @@ class Scene {
   float dt_ = 0.0f;
   glm::ivec2 viewport_{1, 1};
   std::uint64_t frame_ = 0;
+  std::map<std::string, double> update_ms_;
 };
 
 }  // namespace sylva::scene
