@@ -2,12 +2,14 @@
 // Two-sided leaves (seed 000 §3.2, §4.6): per-side colour deviation, venation normal map and
 // Half-Life-2 translucency; diffuse + Cook-Torrance specular + ambient + translucency; the season
 // colour c_s from the season texture at seasonCoord, budding and leaf fall by discard; edges by
-// alpha-to-coverage (sharpened alpha) on multisampled targets, else by the alpha test.
+// alpha-to-coverage or the (hashed) alpha test, see lib/leaf_alpha.glsl.
 #include "render/lib/fog.glsl"
+#include "vegetation/lib/leaf_alpha.glsl"
 #include "vegetation/lib/leaf_shading.glsl"
 
 in vec2 v_uv;
 flat in float v_season_offset;
+in vec3 v_hash_position;
 in vec3 v_rel;
 in vec3 v_normal;
 in vec3 v_tangent;
@@ -17,9 +19,11 @@ layout(binding = 0) uniform sampler2DArray u_leaf_color;         // layer 0 fron
 layout(binding = 1) uniform sampler2DArray u_leaf_normal;
 layout(binding = 2) uniform sampler2DArray u_leaf_translucency;
 layout(binding = 3) uniform sampler2D u_season;
+layout(binding = 6) uniform sampler2DArray u_leaf_coverage;  // box-filtered alpha
 
 uniform float u_season_time;      // the season parameter (0 = 1 January)
-uniform int u_alpha_to_coverage;  // 1: write a sharpened alpha for GL_SAMPLE_ALPHA_TO_COVERAGE
+uniform int u_alpha_mode;  // 0 alpha test, 1 hashed alpha test, 2 alpha-to-coverage (AlphaMode)
+uniform int u_samples;     // samples per pixel of the target
 uniform float u_roughness;
 uniform float u_ior;
 uniform vec3 u_specular_color;
@@ -36,13 +40,12 @@ void main() {
 
   float layer = gl_FrontFacing ? 0.0 : 1.0;
   vec4 col = texture(u_leaf_color, vec3(v_uv, layer));
-  float alpha = col.a;
-  if (u_alpha_to_coverage != 0) {
-    // Sharpen to about one pixel so coverage follows the outline (Golus 2017).
-    alpha = (col.a - 0.5) / max(fwidth(col.a), 1.0e-4) + 0.5;
-    if (alpha <= 0.0) discard;
-  } else if (col.a < 0.5) {
-    discard;
+  float alpha = sylva_leaf_alpha(u_alpha_mode, col.a, u_leaf_coverage, v_uv, layer, v_hash_position);
+  if (alpha <= 0.0) discard;
+  if (u_alpha_mode == 2) {
+    int mask = sylva_coverage_mask(alpha, u_samples, v_hash_position);
+    if (mask == 0) discard;
+    gl_SampleMask[0] = mask;
   }
 
   // Tangent frame of the visible side: front (b, t, n); back (-b, t, -n).
@@ -73,5 +76,5 @@ void main() {
   vec3 color = sun_radiance() * (diffuse * u_diffuse * base + specular * u_specular_color +
                                  translucency * base * u_translucent_color) +
                hemisphere_ambient(N) * u_ambient * base;
-  o_color = vec4(apply_fog(color, v_rel), clamp(alpha, 0.0, 1.0));
+  o_color = vec4(apply_fog(color, v_rel), 1.0);
 }

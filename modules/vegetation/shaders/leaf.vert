@@ -16,7 +16,8 @@ uniform mat4 u_view_proj;
 uniform int u_instance_base;
 
 out vec2 v_uv;
-flat out float v_season_offset;  // leaf spread * leafSpecificNumber + instance offset, before the season
+flat out float v_season_offset;
+out vec3 v_hash_position;  // rest object-space position: the hashed alpha test's stable key  // leaf spread * leafSpecificNumber + instance offset, before the season
 #ifndef SYLVA_DEPTH_ONLY
 out vec3 v_rel;
 out vec3 v_normal;   // front side normal n2 (world)
@@ -52,6 +53,7 @@ void main() {
   vec3 rel = sylva_instance_point(inst, p);
   gl_Position = u_view_proj * vec4(rel, 1.0);
   v_uv = a_uv;
+  v_hash_position = a_position;
   v_season_offset = u_leaf_spread * sylva_leaves[a_leaf].t_parent.w + inst.rotation.w;
 #ifndef SYLVA_DEPTH_ONLY
   v_rel = rel;

@@ -116,6 +116,23 @@ Result<TreeAsset> TreeAsset::create(const TreeMesh& mesh, const TreeTextureSet& 
   }
   a.leaf_color_.set_filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
   a.leaf_color_.set_wrap(GL_CLAMP_TO_EDGE);
+  // Box-filtered alpha: the true covered share of a footprint, for alpha-to-coverage and the
+  // hashed alpha test of minified leaves.
+  a.leaf_coverage_ = render::Texture::create_2d_array(size, tex.leaves.front.color.height(), 2, GL_R8, levels);
+  for (int layer = 0; layer < 2; ++layer) {
+    const std::vector<Image> mips = box_mips(*sides[layer]);
+    for (int l = 0; l < levels && l < static_cast<int>(mips.size()); ++l) {
+      const Image& m = mips[static_cast<std::size_t>(l)];
+      std::vector<unsigned char> px;
+      px.reserve(m.pixel_count());
+      for (int y = m.height() - 1; y >= 0; --y)
+        for (int x = 0; x < m.width(); ++x)
+          px.push_back(static_cast<unsigned char>(std::lround(std::clamp(m.at(x, y, 3), 0.0f, 1.0f) * 255.0f)));
+      glTextureSubImage3D(a.leaf_coverage_.id(), l, 0, 0, layer, m.width(), m.height(), 1, GL_RED, GL_UNSIGNED_BYTE, px.data());
+    }
+  }
+  a.leaf_coverage_.set_filter(GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR);
+  a.leaf_coverage_.set_wrap(GL_CLAMP_TO_EDGE);
 
   render::TextureOptions lin;
   lin.wrap = GL_CLAMP_TO_EDGE;
@@ -240,12 +257,14 @@ Status TreeRenderer::draw_impl(render::Pass pass, const TreeAsset& asset, const 
     prog.set("u_instance_base", static_cast<int>(first));
     prog.set("u_leaf_spread", sh.leaf_season_spread);
     prog.set("u_season_time", sh.season);
-    bool a2c = false;
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLES, &samples);
+    const bool a2c = !depth && (sh.alpha_mode == AlphaMode::kAlphaToCoverage || (sh.alpha_mode == AlphaMode::kAuto && samples > 1));
+    // 0 plain alpha test, 1 hashed alpha test, 2 alpha-to-coverage (leaf.frag / leaf_depth.frag).
+    prog.set("u_alpha_mode", a2c ? 2 : (sh.alpha_mode == AlphaMode::kAlphaTest ? 0 : 1));
+    if (!depth) prog.set("u_samples", static_cast<int>(std::max(samples, 1)));
+    asset.leaf_coverage_.bind(6);
     if (!depth) {
-      GLint samples = 0;
-      glGetIntegerv(GL_SAMPLES, &samples);
-      a2c = sh.alpha_mode == AlphaMode::kAlphaToCoverage || (sh.alpha_mode == AlphaMode::kAuto && samples > 1);
-      prog.set("u_alpha_to_coverage", a2c ? 1 : 0);
       prog.set("u_roughness", sh.roughness);
       prog.set("u_ior", sh.refractive_index);
       prog.set("u_specular_color", sh.specular_color);
@@ -260,10 +279,13 @@ Status TreeRenderer::draw_impl(render::Pass pass, const TreeAsset& asset, const 
     prog.use();
     asset.leaf_vao_.bind();
     glDisable(GL_CULL_FACE);  // two-sided leaves
-    if (a2c) glEnable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    // Alpha-to-coverage (a sample mask written by leaf.frag) needs multisample rasterisation on;
+    // restore the caller's state after.
+    const GLboolean multisample = glIsEnabled(GL_MULTISAMPLE);
+    if (a2c) glEnable(GL_MULTISAMPLE);
     glDrawElementsInstanced(GL_TRIANGLES, static_cast<GLsizei>(asset.leaf_index_count_), GL_UNSIGNED_INT, nullptr,
                             static_cast<GLsizei>(count));
-    if (a2c) glDisable(GL_SAMPLE_ALPHA_TO_COVERAGE);
+    if (a2c && !multisample) glDisable(GL_MULTISAMPLE);
     stats.draw_calls += 1;
     stats.triangles += static_cast<std::uint64_t>(asset.leaf_index_count_ / 3) * count;
   }

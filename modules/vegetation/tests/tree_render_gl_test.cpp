@@ -58,7 +58,7 @@ TEST_F(TreeRenderGl, PresetsRenderAsTrees) {
     for (float v : mask->data()) cover += v;
     cover /= static_cast<double>(mask->pixel_count());
     std::printf("%s: covers %.1f %% of the frame\n", names[static_cast<int>(preset)], 100.0 * cover);
-    EXPECT_GT(cover, 0.08) << names[static_cast<int>(preset)];
+    EXPECT_GT(cover, 0.05) << names[static_cast<int>(preset)];
     EXPECT_LT(cover, 0.9) << names[static_cast<int>(preset)];
     Result<double> moved = share_exceeding(pictures[0], pictures[1], 0.1f);
     ASSERT_TRUE(moved.ok());

@@ -28,6 +28,12 @@ GlScene GlScene::create(int width, int height, int samples) {
 
 void GlScene::begin(double time) {
   render::apply_reversed_z_state();
+  // The shared test state turns multisampling off; a multisampled target wants it on.
+  if (target.multisampled()) {
+    glEnable(GL_MULTISAMPLE);
+  } else {
+    glDisable(GL_MULTISAMPLE);
+  }
   target.bind();
   target.clear(clear_color, 0.0f);
   lighting_ubo.update(lighting, camera.position().y, time);
@@ -39,8 +45,8 @@ Image GlScene::read() const {
   return render::read_color(target).value();
 }
 
-TreeOnGpu upload_tree(const TreeMesh& mesh, SpeciesPreset textures_of, const TreeAssetOptions& options) {
-  Result<TreeTextureSet> tex = make_texture_set(textures_of, 1, 64, 64);
+TreeOnGpu upload_tree(const TreeMesh& mesh, SpeciesPreset textures_of, const TreeAssetOptions& options, int leaf_size) {
+  Result<TreeTextureSet> tex = make_texture_set(textures_of, 1, leaf_size, 64);
   SYLVA_ASSERT(tex.ok(), "textures: {}", tex.error().message);
   Result<TreeAsset> asset = TreeAsset::create(mesh, *tex, options);
   SYLVA_ASSERT(asset.ok(), "asset: {}", asset.error().message);

@@ -36,8 +36,9 @@ struct TreeOnGpu {
   render::Buffer instances;
 };
 
-// Builds the asset with small textures (64 px leaves, 64 px bark).
-TreeOnGpu upload_tree(const TreeMesh& mesh, SpeciesPreset textures_of, const TreeAssetOptions& options = {});
+// Builds the asset with small textures (leaf_size px leaves, 64 px bark).
+TreeOnGpu upload_tree(const TreeMesh& mesh, SpeciesPreset textures_of, const TreeAssetOptions& options = {},
+                      int leaf_size = 64);
 
 // Writes the instance records.
 void set_instances(TreeOnGpu& tree, const std::vector<InstanceGpu>& instances);

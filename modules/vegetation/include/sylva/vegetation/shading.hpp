@@ -25,9 +25,25 @@
 
 namespace sylva::vegetation {
 
-enum class AlphaMode { kAuto, kAlphaToCoverage, kAlphaTest };
-constexpr std::array<EnumName<AlphaMode>, 3> enum_names(AlphaMode) {
-  return {{{AlphaMode::kAuto, "auto"}, {AlphaMode::kAlphaToCoverage, "alpha_to_coverage"}, {AlphaMode::kAlphaTest, "alpha_test"}}};
+// How leaf outlines become pixels (the seed lost its distant leaves to the alpha test, §5).
+//  kAlphaToCoverage: multisampled targets; the alpha is sharpened to one pixel where the texture is
+//    magnified and is the box-filtered coverage where it is minified, so a sub-pixel leaf covers
+//    its share of the samples. The shader writes the sample mask itself with a hashed dither
+//    (shaders/lib/leaf_alpha.glsl) because the fixed patterns of GL_SAMPLE_ALPHA_TO_COVERAGE give
+//    overlapping leaves the same samples and thin out distant crowns.
+//  kHashedAlphaTest: single-sampled targets; threshold 0.5 where magnified, a hashed threshold
+//    (Wyman & McGuire, "Hashed Alpha Testing", I3D 2017) on the box-filtered coverage where
+//    minified, so the expected covered share stays right at any distance. The hash is taken on the
+//    rest object-space position in power-of-two cells of the pixel footprint: stable under wind.
+//  kAlphaTest: threshold 0.5 everywhere (the seed's behaviour), on coverage-preserving mipmaps.
+//  kAuto: alpha-to-coverage on multisampled targets, else hashed. Depth passes use the hashed (or,
+//    for kAlphaTest, the plain) test, the same as the colour pass of a single-sampled target.
+enum class AlphaMode { kAuto, kAlphaToCoverage, kHashedAlphaTest, kAlphaTest };
+constexpr std::array<EnumName<AlphaMode>, 4> enum_names(AlphaMode) {
+  return {{{AlphaMode::kAuto, "auto"},
+           {AlphaMode::kAlphaToCoverage, "alpha_to_coverage"},
+           {AlphaMode::kHashedAlphaTest, "hashed_alpha_test"},
+           {AlphaMode::kAlphaTest, "alpha_test"}}};
 }
 
 struct ShadingSettings {
@@ -39,7 +55,7 @@ struct ShadingSettings {
   float ambient = 1.0f;                            // M_ambient scale
   float season = 0.55f;                            // 0 = 1 January, 1 = a year later; wraps
   float leaf_season_spread = 0.2f;                 // seed §4.6: seasonCoord += 0.2 * leafSpecificNumber
-  AlphaMode alpha_mode = AlphaMode::kAuto;         // auto: alpha-to-coverage on multisampled targets
+  AlphaMode alpha_mode = AlphaMode::kAuto;         // see AlphaMode
   float bark_specular = 0.04f;
 
   template <class V>

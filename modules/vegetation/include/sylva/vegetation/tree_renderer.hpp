@@ -14,7 +14,7 @@
 //
 // Binding points (shaders/lib/tree_data.glsl): uniform blocks wind 1, animation 2 (render's
 // lighting block stays at 0); storage buffers branches 3, leaves 4, instances 5, capture 7;
-// texture units 0-2 leaf arrays, 3 season, 4-5 bark.
+// texture units 0-2 leaf arrays, 3 season, 4-5 bark, 6 leaf coverage (box-filtered alpha).
 //
 // Failure: create() and draw() return kGl errors naming the shader file and line when a program
 // does not build; asset creation returns kInvalidArgument for textures of the wrong shape and
@@ -90,7 +90,7 @@ class TreeAsset {
   friend class TreeRenderer;
   render::Buffer branch_vbo_, branch_ibo_, leaf_vbo_, leaf_ibo_, branches_, leaves_;
   render::VertexArray branch_vao_, leaf_vao_;
-  render::Texture leaf_color_, leaf_normal_, leaf_translucency_, season_, bark_albedo_, bark_normal_;
+  render::Texture leaf_color_, leaf_normal_, leaf_translucency_, leaf_coverage_, season_, bark_albedo_, bark_normal_;
   std::size_t branch_index_count_ = 0;
   std::size_t leaf_index_count_ = 0;
   std::size_t branch_vertex_count_ = 0;
