@@ -107,9 +107,9 @@ TEST_F(QueriesTest, GpuTimeGrowsWithWork) {
     return best;
   };
   const double light = measure(1, 1);
-  const double heavy = measure(40, 400);
+  const double heavy = measure(20, 3000);
   EXPECT_GT(heavy, 0.0);
-  EXPECT_GT(heavy, light * 3.0) << "light " << light << " ms, heavy " << heavy << " ms";
+  EXPECT_GT(heavy, light * 2.0) << "light " << light << " ms, heavy " << heavy << " ms";
   EXPECT_LT(heavy, 10000.0);
 }
 
@@ -187,7 +187,7 @@ TEST_F(QueriesTest, SynchronousModeMeasuresWallTime) {
     draw_quads(1, 1);
     profiler.end("light");
     profiler.begin("heavy");
-    draw_quads(40, 400);
+    draw_quads(20, 3000);
     profiler.end("heavy");
     profiler.end_frame();
   }
@@ -196,8 +196,10 @@ TEST_F(QueriesTest, SynchronousModeMeasuresWallTime) {
   const double light = stats->passes.at("light").sync_ms;
   const double heavy = stats->passes.at("heavy").sync_ms;
   EXPECT_GT(light, 0.0);
-  EXPECT_GT(heavy, light * 3.0) << "light " << light << " ms, heavy " << heavy << " ms";
-  EXPECT_EQ(stats->passes.at("heavy").samples, 40u * kW * kH);
+  // ~100000x the fragment work; a loose factor because glFinish latency on a loaded 2-core
+  // machine dominates the light scope.
+  EXPECT_GT(heavy, light * 2.0) << "light " << light << " ms, heavy " << heavy << " ms";
+  EXPECT_EQ(stats->passes.at("heavy").samples, 20u * kW * kH);
 }
 
 TEST(PassStatsTest, Accumulates) {
