@@ -15,7 +15,9 @@ void BM_Mesh(benchmark::State& state) {
   const auto content = static_cast<Content>(state.range(1));
   const int n = static_cast<int>(state.range(2));
   const PaddedBlocks blocks = make_content(content, n);
-  auto mesher = make_mesher(kind);
+  MesherOptions options;
+  options.ambient_occlusion = state.range(3) != 0;
+  auto mesher = make_mesher(kind, options);
   ChunkMesh mesh;
   for (auto _ : state) {
     mesher->mesh(blocks, BlockPalette::standard(), mesh);
@@ -25,13 +27,17 @@ void BM_Mesh(benchmark::State& state) {
   state.counters["voxels_per_ns"] =
       benchmark::Counter(voxels * static_cast<double>(state.iterations()) * 1e-9, benchmark::Counter::kIsRate);
   state.counters["quads"] = static_cast<double>(mesh.quad_count());
-  state.SetLabel(std::string(to_string(kind)) + "/" + content_name(content) + "/" + std::to_string(n));
+  state.SetLabel(std::string(to_string(kind)) + "/" + content_name(content) + "/" + std::to_string(n) +
+                 (options.ambient_occlusion ? "" : "/no_ao"));
 }
 
 void args(benchmark::internal::Benchmark* b) {
   for (int n : {32, 64})
     for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) b->Args({k, c, n});
+      for (int k = 0; k < 3; ++k) b->Args({k, c, n, 1});
+  // Without AO, as the public binary greedy mesher measures.
+  for (int n : {32, 64})
+    for (int c = 0; c < 3; ++c) b->Args({2, c, n, 0});
 }
 
 BENCHMARK(BM_Mesh)->Apply(args)->Unit(benchmark::kMicrosecond);

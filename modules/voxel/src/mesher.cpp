@@ -69,11 +69,11 @@ void face_ao(const PaddedBlocks& blocks, const BlockPalette& palette, int x, int
   sampler.face(x, y, z, face, out);
 }
 
-std::unique_ptr<Mesher> make_mesher(MesherKind kind) {
+std::unique_ptr<Mesher> make_mesher(MesherKind kind, const MesherOptions& options) {
   switch (kind) {
-    case MesherKind::kCulled: return detail::make_culled_mesher();
-    case MesherKind::kGreedy: return detail::make_greedy_mesher();
-    case MesherKind::kBitmask: return detail::make_bitmask_mesher();
+    case MesherKind::kCulled: return detail::make_culled_mesher(options);
+    case MesherKind::kGreedy: return detail::make_greedy_mesher(options);
+    case MesherKind::kBitmask: return detail::make_bitmask_mesher(options);
   }
   SYLVA_ASSERT(false, "unknown mesher kind {}", static_cast<int>(kind));
   return nullptr;

@@ -57,6 +57,7 @@ struct AoPlanes {
 
 class BitmaskMesher final : public Mesher {
  public:
+  explicit BitmaskMesher(const MesherOptions& options) : options_(options) {}
   MesherKind kind() const override { return MesherKind::kBitmask; }
 
   void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) override {
@@ -149,14 +150,9 @@ class BitmaskMesher final : public Mesher {
     const int n = n_;
     const int p = p_;
     const auto pp = static_cast<std::size_t>(p * p);
-    ax_.assign(pp, 0);
-    ox_.assign(pp, 0);
-    ay_.assign(pp, 0);
-    oy_.assign(pp, 0);
-    xlo_.assign(pp, 0);
-    xhi_.assign(pp, 0);
-    ylo_.assign(pp, 0);
-    yhi_.assign(pp, 0);
+    // Every entry is written below (no clearing pass: it cost as much as a transpose).
+    for (auto* v : {&ax_, &ox_, &ay_, &oy_}) v->resize(pp);
+    for (auto* v : {&xlo_, &xhi_, &ylo_, &yhi_}) v->resize(pp);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const BlockId* ids = blocks.ids.data();
     const BlockId first_special = palette.first_alpha_cut();
@@ -205,6 +201,11 @@ class BitmaskMesher final : public Mesher {
         for (int x = 0; x < n; ++x) {
           ay_[static_cast<std::size_t>((x + 1) * p + zz)] = a[x];
           oy_[static_cast<std::size_t>((x + 1) * p + zz)] = o[x];
+        }
+      } else {
+        for (int x = 0; x < n; ++x) {
+          ay_[static_cast<std::size_t>((x + 1) * p + zz)] = 0;
+          oy_[static_cast<std::size_t>((x + 1) * p + zz)] = 0;
         }
       }
       // Padding columns x = -1 and x = n come from the rows' end bits.
@@ -285,11 +286,23 @@ class BitmaskMesher final : public Mesher {
   }
 
   void ao_planes(int f, int layer, int r, AoPlanes& out) const {
+    if (!options_.ambient_occlusion) {
+      for (int k = 0; k < 4; ++k) out.hi[k] = out.lo[k] = ~std::uint64_t{0};
+      out.uniform = ~std::uint64_t{0};
+      return;
+    }
     // occ[dr + 1][db + 1]: opaque neighbour at row offset dr and bit offset db, per face bit.
+    std::uint64_t rows[3], los[3], his[3];
+    for (int dr = -1; dr <= 1; ++dr) layer_row(f, layer, r + dr, rows[dr + 1], los[dr + 1], his[dr + 1]);
+    if ((rows[0] | rows[1] | rows[2] | los[0] | los[1] | los[2] | his[0] | his[1] | his[2]) == 0) {
+      // Nothing opaque in front: every corner is open (ao 3) - the common case on open ground.
+      for (int k = 0; k < 4; ++k) out.hi[k] = out.lo[k] = ~std::uint64_t{0};
+      out.uniform = ~std::uint64_t{0};
+      return;
+    }
     std::uint64_t occ[3][3];
     for (int dr = -1; dr <= 1; ++dr) {
-      std::uint64_t m, lo, hi;
-      layer_row(f, layer, r + dr, m, lo, hi);
+      const std::uint64_t m = rows[dr + 1], lo = los[dr + 1], hi = his[dr + 1];
       occ[dr + 1][0] = ((m << 1) | lo) & full_;            // value at b - 1
       occ[dr + 1][1] = m;                                   // value at b
       occ[dr + 1][2] = (m >> 1) | (hi << (n_ - 1));         // value at b + 1
@@ -366,6 +379,7 @@ class BitmaskMesher final : public Mesher {
     }
   }
 
+  MesherOptions options_;
   int n_ = 0;
   int p_ = 0;
   std::uint64_t full_ = 0;
@@ -378,6 +392,6 @@ class BitmaskMesher final : public Mesher {
 
 }  // namespace
 
-std::unique_ptr<Mesher> make_bitmask_mesher() { return std::make_unique<BitmaskMesher>(); }
+std::unique_ptr<Mesher> make_bitmask_mesher(const MesherOptions& options) { return std::make_unique<BitmaskMesher>(options); }
 
 }  // namespace sylva::voxel::detail

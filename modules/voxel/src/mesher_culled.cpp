@@ -9,13 +9,14 @@ namespace {
 
 class CulledMesher final : public Mesher {
  public:
+  explicit CulledMesher(const MesherOptions& options) : options_(options) {}
   MesherKind kind() const override { return MesherKind::kCulled; }
 
   void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) override {
     SYLVA_ASSERT(blocks.n >= 1 && blocks.n <= 64, "chunk size {}", blocks.n);
     out.clear();
     const int n = blocks.n;
-    const AoSampler ao(blocks, palette.opaque_table());
+    const AoSampler ao(blocks, palette.opaque_table(), options_.ambient_occlusion);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const std::uint8_t* render = palette.render_table().data();
     const BlockId* ids = blocks.ids.data();
@@ -37,10 +38,13 @@ class CulledMesher final : public Mesher {
       }
     }
   }
+
+ private:
+  MesherOptions options_;
 };
 
 }  // namespace
 
-std::unique_ptr<Mesher> make_culled_mesher() { return std::make_unique<CulledMesher>(); }
+std::unique_ptr<Mesher> make_culled_mesher(const MesherOptions& options) { return std::make_unique<CulledMesher>(options); }
 
 }  // namespace sylva::voxel::detail

@@ -11,6 +11,7 @@ namespace {
 
 class GreedyMesher final : public Mesher {
  public:
+  explicit GreedyMesher(const MesherOptions& options) : options_(options) {}
   MesherKind kind() const override { return MesherKind::kGreedy; }
 
   void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) override {
@@ -18,7 +19,7 @@ class GreedyMesher final : public Mesher {
     out.clear();
     const int n = blocks.n;
     mask_.assign(static_cast<std::size_t>(n * n), 0u);
-    const AoSampler ao(blocks, palette.opaque_table());
+    const AoSampler ao(blocks, palette.opaque_table(), options_.ambient_occlusion);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const std::uint8_t* render = palette.render_table().data();
     const BlockId* ids = blocks.ids.data();
@@ -88,11 +89,12 @@ class GreedyMesher final : public Mesher {
   }
 
  private:
+  MesherOptions options_;
   std::vector<std::uint32_t> mask_;
 };
 
 }  // namespace
 
-std::unique_ptr<Mesher> make_greedy_mesher() { return std::make_unique<GreedyMesher>(); }
+std::unique_ptr<Mesher> make_greedy_mesher(const MesherOptions& options) { return std::make_unique<GreedyMesher>(options); }
 
 }  // namespace sylva::voxel::detail

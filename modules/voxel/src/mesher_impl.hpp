@@ -27,8 +27,8 @@ inline bool ao_uniform(std::uint32_t ao_bits) { return ao_bits == (ao_bits & 3u)
 // Samples opaque occupancy around faces by padded-array index arithmetic.
 class AoSampler {
  public:
-  AoSampler(const PaddedBlocks& blocks, const std::vector<std::uint8_t>& opaque)
-      : ids_(blocks.ids.data()), opaque_(opaque.data()) {
+  AoSampler(const PaddedBlocks& blocks, const std::vector<std::uint8_t>& opaque, bool enabled = true)
+      : ids_(blocks.ids.data()), opaque_(opaque.data()), enabled_(enabled) {
     const int p = blocks.pitch();
     const int stride[3] = {1, p * p, p};  // x, y, z
     for (int f = 0; f < 6; ++f) {
@@ -54,6 +54,7 @@ class AoSampler {
 
   // AO bits (pack_ao order) of unit face `face` of the block at padded index idx.
   std::uint32_t face_bits(int idx, int face) const {
+    if (!enabled_) return 0xffu;
     const int q = idx + front_[face];
     const auto& r = ring_[face];
     auto occ = [&](int k) -> int { return opaque_[ids_[q + r[k]]]; };
@@ -77,13 +78,14 @@ class AoSampler {
  private:
   const BlockId* ids_;
   const std::uint8_t* opaque_;
+  bool enabled_ = true;
   int front_[6] = {};
   std::array<std::array<int, 8>, 6> ring_{};
   int pitch_ = 0;
 };
 
-std::unique_ptr<Mesher> make_culled_mesher();
-std::unique_ptr<Mesher> make_greedy_mesher();
-std::unique_ptr<Mesher> make_bitmask_mesher();
+std::unique_ptr<Mesher> make_culled_mesher(const MesherOptions& options);
+std::unique_ptr<Mesher> make_greedy_mesher(const MesherOptions& options);
+std::unique_ptr<Mesher> make_bitmask_mesher(const MesherOptions& options);
 
 }  // namespace sylva::voxel::detail

@@ -172,3 +172,35 @@ TEST(Mesher, ParseKind) {
 
 }  // namespace
 }  // namespace sylva::voxel
+
+namespace sylva::voxel {
+namespace {
+
+TEST(Mesher, WithoutAoAllMeshersAgreeAndMergeMore) {
+  const auto& palette = testing::test_palette();
+  for (auto pattern : {testing::Pattern::kTerrain, testing::Pattern::kRandom, testing::Pattern::kMixedAlpha}) {
+    const PaddedBlocks blocks = testing::make_pattern(pattern, 32, 4);
+    ChunkMesh with_ao, reference;
+    make_mesher(MesherKind::kBitmask)->mesh(blocks, palette, with_ao);
+    MesherOptions off;
+    off.ambient_occlusion = false;
+    make_mesher(MesherKind::kCulled, off)->mesh(blocks, palette, reference);
+    const auto want = testing::coverage_of(reference, 32);
+    for (auto kind : {MesherKind::kGreedy, MesherKind::kBitmask}) {
+      ChunkMesh mesh;
+      make_mesher(kind, off)->mesh(blocks, palette, mesh);
+      const auto got = testing::coverage_of(mesh, 32);
+      EXPECT_EQ(got.count, want.count) << to_string(kind);
+      EXPECT_EQ(got.block, want.block) << to_string(kind);
+      for (auto ao : got.ao) {
+        ASSERT_TRUE(ao == 0 || ao == 0xff);
+      }
+      if (kind == MesherKind::kBitmask) {
+        EXPECT_LE(mesh.quad_count(), with_ao.quad_count());
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sylva::voxel

@@ -10,6 +10,9 @@
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <sylva/render/readback.hpp>
+
 #include "support/test_chunks.hpp"
 #include "support/voxel_gl_scene.hpp"
 
@@ -174,6 +177,70 @@ TEST_F(VoxelRenderGl, FrustumCullingSkipsChunksBehindTheCamera) {
   scene.render(**renderer);
   EXPECT_GT((*renderer)->frame_stats().chunks_drawn, 0u);
   EXPECT_GT(scene.last_stats.triangles, 0u);
+}
+
+TEST_F(VoxelRenderGl, ShadowHookIsPluggableAndDepthPassDraws) {
+  // The Lighting issue's cascades plug in through set_shadow_receiver; here a hook that puts
+  // everything in shadow must darken sunlit faces, and draw_depth must fill a depth-only target.
+  World world = make_test_world(0);
+  remesh_all(world, MesherKind::kBitmask);
+  auto scene = testing::VoxelGlScene::create();
+  scene.camera.set_position({-10.0, 25.0, -10.0});
+  scene.camera.look_at({32.0, 5.0, 32.0});
+  auto renderer = VoxelRenderer::create(world, nullptr);
+  ASSERT_TRUE(renderer.ok());
+  scene.render(**renderer);
+  const Image lit = scene.color();
+  int bound = 0;
+  ShadowReceiver hook;
+  hook.glsl_source = "uniform float u_test_shadow;\nfloat voxel_shadow(vec3 rel_pos, vec3 normal) { return u_test_shadow; }\n";
+  hook.bind = [&bound](GLuint program) {
+    ++bound;
+    glProgramUniform1f(program, glGetUniformLocation(program, "u_test_shadow"), 0.0f);
+  };
+  ASSERT_TRUE((*renderer)->set_shadow_receiver(hook).ok());
+  scene.render(**renderer);
+  const Image shadowed = scene.color();
+  EXPECT_GT(bound, 0);
+  // Over the pixels showing geometry (not the clear colour).
+  double sum_lit = 0.0, sum_shadowed = 0.0;
+  for (int y = 0; y < lit.height(); ++y) {
+    for (int x = 0; x < lit.width(); ++x) {
+      if (std::abs(lit.at(x, y, 2) - scene.clear_color.b) < 0.02f) continue;
+      for (int c = 0; c < 3; ++c) {
+        sum_lit += lit.at(x, y, c);
+        sum_shadowed += shadowed.at(x, y, c);
+      }
+    }
+  }
+  EXPECT_LT(sum_shadowed, sum_lit * 0.7);
+  // A broken hook reports the compile error instead of crashing.
+  ShadowReceiver broken;
+  broken.glsl_source = "float voxel_shadow(vec3 p, vec3 n) { return undefined_thing; }\n";
+  const Status st = (*renderer)->set_shadow_receiver(broken);
+  EXPECT_FALSE(st.ok());
+  (void)take_errors();
+  ASSERT_TRUE((*renderer)->set_shadow_receiver({}).ok());
+  // Depth-only pass from above with an orthographic light-like matrix.
+  render::FramebufferDesc desc;
+  desc.width = desc.height = 128;
+  desc.color_formats.clear();
+  auto depth_fb = render::Framebuffer::create(desc);
+  ASSERT_TRUE(depth_fb.ok()) << depth_fb.error().message;
+  depth_fb->bind();
+  depth_fb->clear(glm::vec4(0.0f), 0.0f);
+  const glm::mat4 ortho = glm::ortho(-40.0f, 40.0f, -40.0f, 40.0f, -100.0f, 100.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), glm::vec3(0.3f, -1.0f, 0.2f), glm::vec3(0.0f, 0.0f, 1.0f));
+  render::PassStats stats;
+  glDepthFunc(GL_ALWAYS);
+  (*renderer)->draw_depth(ortho * view, glm::dvec3(32.0, 10.0, 32.0), stats);
+  glDepthFunc(GL_GREATER);
+  EXPECT_GT(stats.draw_calls, 0u);
+  auto depth = render::read_depth(*depth_fb);
+  ASSERT_TRUE(depth.ok());
+  std::size_t written = 0;
+  for (float d : depth->data()) written += d != 0.0f;
+  EXPECT_GT(written, depth->pixel_count() / 2);
 }
 
 TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -136,6 +137,32 @@ TEST(WorldGen, CorruptRegionIsReportedAndRegenerated) {
   EXPECT_EQ(recovered.get({5, 25, 5}), kAir) << "regenerated from the seed";
   EXPECT_EQ(recovered.chunk_count(), 2u);
   std::filesystem::remove_all(dir);
+}
+
+TEST(WorldGen, PopulateReportsProgressAndCanBeCancelled) {
+  auto g = make_generator(9);
+  ASSERT_TRUE(g);
+  const auto coords = chunk_box({0, 0, 0}, 3, 0, 1);  // 98 chunks
+  WorkerPool pool(2);
+  World world;
+  std::atomic<bool> cancel{false};
+  std::size_t calls = 0, last = 0;
+  const auto report = populate(world, *g, coords, pool, nullptr, &cancel, [&](std::size_t done, std::size_t total) {
+    ++calls;
+    EXPECT_EQ(total, coords.size());
+    EXPECT_GT(done, last);
+    last = done;
+    if (done >= 16) cancel = true;
+  });
+  EXPECT_TRUE(report.cancelled);
+  EXPECT_GE(calls, 1u);
+  EXPECT_LT(world.chunk_count(), coords.size());
+  EXPECT_EQ(world.chunk_count(), report.generated);
+  // Resuming fills in the rest.
+  cancel = false;
+  const auto rest = populate(world, *g, coords, pool);
+  EXPECT_FALSE(rest.cancelled);
+  EXPECT_EQ(world.chunk_count(), coords.size());
 }
 
 TEST(WorldGen, BadSettingsNameTheParameter) {

@@ -100,7 +100,13 @@ class Mesher {
   virtual void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) = 0;
 };
 
-std::unique_ptr<Mesher> make_mesher(MesherKind kind);
+struct MesherOptions {
+  // false: every AO value is 3 (open) and faces merge on block alone. Shading then loses the
+  // corner darkening; kept for comparing with binary greedy meshers that have no AO.
+  bool ambient_occlusion = true;
+};
+
+std::unique_ptr<Mesher> make_mesher(MesherKind kind, const MesherOptions& options = {});
 
 // The shared definitions all meshers implement (and the tests check against).
 bool face_visible(BlockId self, BlockId neighbour, const BlockPalette& palette);
