@@ -33,9 +33,7 @@ void print_params(BenchTarget& target, std::ostream& out) {
 }
 
 void print_paths(BenchTarget& target, std::ostream& out) {
-  for (const CameraPath& p : target.camera_paths()) {
-    out << fmt::format("{}: {} ({} keys)\n", p.name, p.description, p.keys.size());
-  }
+  for (const CameraPathInfo& p : target.camera_paths()) out << fmt::format("{}: {}\n", p.name, p.description);
 }
 
 // Runs one sweep and writes its outputs; returns the exit code.

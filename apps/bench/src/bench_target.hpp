@@ -27,8 +27,8 @@
 namespace sylva::bench {
 
 struct FrameInput {
-  int frame = 0;          // index along the camera path (warm-up frames repeat frame 0: -1..)
-  double time = 0.0;      // scene time [s] = warm-up offset + frame * dt, identical in every run
+  int frame = 0;          // index along the camera path (warm-up frames are -1, -2, ...)
+  double time = 0.0;      // scene time [s] = (warm-up frames + frame) * dt, identical in every run
   float dt = 0.0f;        // fixed step [s]
   CameraPose pose;
 };
@@ -49,8 +49,12 @@ class BenchTarget {
   virtual std::vector<ParamDescriptor> params() = 0;
   // Builds everything for rendering at `size` after the parameters are final (needs GL).
   virtual Status prepare(glm::ivec2 size) = 0;
-  // Camera paths by name; the first is the default.
-  virtual std::vector<CameraPath> camera_paths() const = 0;
+  // Camera paths by name (available before prepare()); the first is the default.
+  virtual std::vector<CameraPathInfo> camera_paths() const = 0;
+  // Pose of frame `frame` of `frames` (0 <= frame < frames) along path `name`, after prepare()
+  // (a scene resolves heights above its ground). Frame i samples the path at i / (frames - 1)
+  // of its length, so any frame count sees the whole path. kNotFound for an unknown name.
+  virtual Result<CameraPose> camera_pose(const std::string& name, int frame, int frames) = 0;
   // One frame into `target` (bound and cleared by the target itself). Must not read back.
   virtual Status render(const FrameInput& input, const render::Framebuffer& target, FrameOutput& out) = 0;
   // Modules this target draws ("terrain", "grass", ...); for the report.

@@ -22,6 +22,12 @@ struct CameraPose {
   float fov_deg = 60.0f;     // vertical field of view
 };
 
+// What a target tells about one of its paths before it is built.
+struct CameraPathInfo {
+  std::string name;
+  std::string description;
+};
+
 struct CameraPath {
   std::string name;
   std::string description;   // what the path shows

@@ -113,7 +113,18 @@ class GroundTarget final : public BenchTarget {
     return {};
   }
 
-  std::vector<CameraPath> camera_paths() const override { return ground_camera_paths(); }
+  std::vector<CameraPathInfo> camera_paths() const override {
+    std::vector<CameraPathInfo> out;
+    for (const CameraPath& p : ground_camera_paths()) out.push_back({p.name, p.description});
+    return out;
+  }
+
+  Result<CameraPose> camera_pose(const std::string& name, int frame, int frames) override {
+    for (const CameraPath& p : ground_camera_paths()) {
+      if (p.name == name) return p.frame(frame, frames);
+    }
+    return make_error(ErrorCode::kNotFound, fmt::format("builtin:ground has no camera path \"{}\"", name));
+  }
 
   Status render(const FrameInput& input, const render::Framebuffer& target, FrameOutput& out) override {
     Stopwatch cpu;

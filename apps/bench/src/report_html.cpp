@@ -52,7 +52,11 @@ std::string report_plot_svg(const BenchReport& report) {
     points.push_back({cost_of(r, info.cost), error_of(r, info.error), r.setting.id(), point_tooltip(r, info), r.pareto,
                       false});
   }
-  return scatter_svg(points, {axis_title(info.cost), axis_title(info.error)});
+  PlotSpec spec{axis_title(info.cost), axis_title(info.error)};
+  std::vector<double> xs;
+  for (const PlotPoint& p : points) xs.push_back(p.x);
+  spec.log_x = wants_log_axis(xs);
+  return scatter_svg(points, spec);
 }
 
 std::string render_report_html(const BenchReport& report, const ImageSource& image_src) {
@@ -95,8 +99,8 @@ std::string render_report_html(const BenchReport& report, const ImageSource& ima
   fact("Scene", info.scene);
   if (!info.suite.empty()) fact("Suite", info.suite);
   fact("Camera path", info.camera_path);
-  fact("Frames", fmt::format("{} measured after {} warm-up frame(s), fixed step {} s", info.frames, info.warmup_frames,
-                             info.dt));
+  fact("Frames", fmt::format("{} measured after {} warm-up frame(s), fixed step {:.4g} s", info.frames,
+                             info.warmup_frames, info.dt));
   fact("Size", fmt::format("{}x{}", info.width, info.height));
   std::string sweeps;
   for (std::size_t g = 0; g < info.sweep_groups.size(); ++g) {

@@ -37,13 +37,13 @@ Result<std::unique_ptr<BenchTarget>> make_target(const RunSpec& spec, const std:
   return std::move(*target);
 }
 
-Result<CameraPath> pick_path(const BenchTarget& target, const std::optional<std::string>& name) {
-  const std::vector<CameraPath> paths = target.camera_paths();
+Result<std::string> pick_path(const BenchTarget& target, const std::optional<std::string>& name) {
+  const std::vector<CameraPathInfo> paths = target.camera_paths();
   if (paths.empty()) return make_error(ErrorCode::kNotFound, "the scene has no camera path to render");
-  if (!name) return paths.front();
+  if (!name) return paths.front().name;
   std::string known;
-  for (const CameraPath& p : paths) {
-    if (p.name == *name) return p;
+  for (const CameraPathInfo& p : paths) {
+    if (p.name == *name) return p.name;
     known += (known.empty() ? "" : ", ") + p.name;
   }
   return make_error(ErrorCode::kNotFound, fmt::format("--camera-path: the scene has no path \"{}\"; it has {}", *name, known));
@@ -56,17 +56,23 @@ struct RenderedFrame {
 
 // Renders warm-up frames and then every frame of the path; `on_frame` sees each measured frame.
 template <class OnFrame>
-Status render_path(BenchTarget& target, const RunSpec& spec, const CameraPath& path, const render::Framebuffer& fb,
+Status render_path(BenchTarget& target, const RunSpec& spec, const std::string& path, const render::Framebuffer& fb,
                    std::vector<FrameRecord>& records, OnFrame&& on_frame) {
-  // Warm-up: the first pose, at times before 0, so caches, shader variants and simulations
-  // settle the same way in every run.
+  std::vector<CameraPose> poses;
+  for (int i = 0; i < spec.frames; ++i) {
+    auto pose = target.camera_pose(path, i, spec.frames);
+    if (!pose.ok()) return pose.error();
+    poses.push_back(*pose);
+  }
+  // Warm-up: the first pose at times 0, dt, ..., so caches, shader variants and simulations
+  // settle the same way in every run; measured frame i runs at time (warmup + i) * dt.
   for (int w = 0; w < spec.warmup; ++w) {
-    FrameInput in{-1 - w, (w - spec.warmup) * spec.dt, static_cast<float>(spec.dt), path.frame(0, spec.frames)};
+    FrameInput in{-1 - w, w * spec.dt, static_cast<float>(spec.dt), poses.front()};
     FrameOutput out;
     SYLVA_TRY(target.render(in, fb, out));
   }
   for (int i = 0; i < spec.frames; ++i) {
-    FrameInput in{i, i * spec.dt, static_cast<float>(spec.dt), path.frame(i, spec.frames)};
+    FrameInput in{i, (spec.warmup + i) * spec.dt, static_cast<float>(spec.dt), poses[static_cast<std::size_t>(i)]};
     FrameOutput out;
     Stopwatch wall;
     SYLVA_TRY(target.render(in, fb, out));
@@ -212,9 +218,9 @@ Result<BenchReport> run_sweep(const RunSpec& spec, std::ostream& log) {
                          "relative to it rather than to maximum quality");
   }
   if (default_cost_metric(info.machine.gl_renderer) == CostMetric::kFrameMs) {
-    info.notes.push_back("the GL renderer is a software rasteriser: its timer queries see only command submission "
-                         "(gpu_ms is near zero), so frame_ms (submission until glFinish) is the cost to compare; it "
-                         "runs on the CPU and scales with pixels and triangles unlike a GPU");
+    info.notes.push_back("the GL renderer is a software rasteriser: its timer queries need not cover the rasterisation "
+                         "(which runs on CPU threads when the commands are flushed), so frame_ms (submission until "
+                         "glFinish) is the cost to compare; it scales with pixels and triangles unlike a GPU");
   }
 
   std::error_code ec;
@@ -234,10 +240,10 @@ Result<BenchReport> run_sweep(const RunSpec& spec, std::ostream& log) {
     if (!target.ok()) return target.error();
     auto path = pick_path(**target, spec.camera_path);
     if (!path.ok()) return path.error();
-    info.camera_path = path->name;
+    info.camera_path = *path;
     log << fmt::format("reference ({}) along \"{}\", {} frames at {}x{}\n",
                        spec.reference.empty() ? std::string("scene as loaded") : Setting{0, spec.reference}.label(),
-                       path->name, spec.frames, spec.size.x, spec.size.y);
+                       *path, spec.frames, spec.size.x, spec.size.y);
     Status prepared = (*target)->prepare(spec.size);
     if (!prepared.ok()) {
       return make_error(prepared.error().code, fmt::format("reference render: {}", prepared.error().message));

@@ -49,6 +49,34 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return ticks;
 }
 
+bool wants_log_axis(const std::vector<double>& values) {
+  double lo = INFINITY, hi = 0.0;
+  for (double v : values) {
+    if (std::isfinite(v) && v > 0.0) {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  return std::isfinite(lo) && hi / lo > 10.0;
+}
+
+std::vector<double> log_ticks(double lo, double hi) {
+  if (!(lo > 0.0) || !(hi >= lo) || !std::isfinite(hi)) return {1.0, 10.0};
+  const int k0 = static_cast<int>(std::floor(std::log10(lo)));
+  const int k1 = static_cast<int>(std::ceil(std::log10(hi)));
+  const bool fine = k1 - k0 <= 3;  // few decades: also 2 and 5
+  std::vector<double> ticks;
+  for (int k = k0; k <= k1; ++k) {
+    for (double m : {1.0, 2.0, 5.0}) {
+      if (m != 1.0 && !fine) continue;
+      const double t = m * std::pow(10.0, k);
+      if (t >= lo / (fine ? 2.0 : 10.0) && (ticks.empty() || ticks.back() < hi)) ticks.push_back(t);
+    }
+  }
+  if (ticks.size() < 2) ticks.push_back(ticks.empty() ? 1.0 : ticks.back() * 10.0);
+  return ticks;
+}
+
 namespace {
 
 std::string tick_label(double v, double step) {
@@ -69,7 +97,7 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
   std::size_t hidden = 0;
   double xmin = INFINITY, xmax = -INFINITY, ymin = INFINITY, ymax = -INFINITY;
   for (const PlotPoint& p : points) {
-    if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || (spec.log_x && p.x <= 0.0)) {
       ++hidden;
       continue;
     }
@@ -81,10 +109,13 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
   }
   if (shown.empty()) xmin = xmax = ymin = ymax = 0.0;
   // Time and error are both non-negative: start the axes at 0 so distances read as ratios.
-  const std::vector<double> xt = nice_ticks(std::min(0.0, xmin), xmax);
+  const std::vector<double> xt = spec.log_x ? log_ticks(xmin, xmax) : nice_ticks(std::min(0.0, xmin), xmax);
   const std::vector<double> yt = nice_ticks(std::min(0.0, ymin), ymax);
   const double x0 = xt.front(), x1 = xt.back(), y0 = yt.front(), y1 = yt.back();
-  auto sx = [&](double x) { return left + (x - x0) / (x1 - x0) * pw; };
+  auto sx = [&](double x) {
+    if (spec.log_x) return left + (std::log10(x) - std::log10(x0)) / (std::log10(x1) - std::log10(x0)) * pw;
+    return left + (x - x0) / (x1 - x0) * pw;
+  };
   auto sy = [&](double y) { return top + ph - (y - y0) / (y1 - y0) * ph; };
 
   std::string s = fmt::format(
@@ -93,12 +124,12 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
       "<rect x=\"0\" y=\"0\" width=\"{0}\" height=\"{1}\" fill=\"#ffffff\"/>\n",
       spec.width, spec.height);
   // Grid and ticks.
-  const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1.0;
+  const double xstep = spec.log_x ? 0.0 : (xt.size() > 1 ? xt[1] - xt[0] : 1.0);
   const double ystep = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
   for (double t : xt) {
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#e4e4e4\"/>\n"
                      "<text x=\"{0:.1f}\" y=\"{3:.1f}\" text-anchor=\"middle\" fill=\"#333\">{4}</text>\n",
-                     sx(t), top, top + ph, top + ph + 16, tick_label(t, xstep));
+                     sx(t), top, top + ph, top + ph + 16, spec.log_x ? fmt::format("{:g}", t) : tick_label(t, xstep));
   }
   for (double t : yt) {
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#e4e4e4\"/>\n"
@@ -107,8 +138,8 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
   }
   s += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#888\"/>\n", left, top,
                    pw, ph);
-  s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\" fill=\"#111\">{}</text>\n",
-                   left + pw / 2, spec.height - 14.0, html_escape(spec.x_title));
+  s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" text-anchor=\"middle\" fill=\"#111\">{}{}</text>\n",
+                   left + pw / 2, spec.height - 14.0, html_escape(spec.x_title), spec.log_x ? " (log scale)" : "");
   s += fmt::format("<text transform=\"translate(18,{:.1f}) rotate(-90)\" text-anchor=\"middle\" fill=\"#111\">{}</text>\n",
                    top + ph / 2, html_escape(spec.y_title));
 

@@ -25,7 +25,15 @@ struct PlotSpec {
   std::string y_title;
   int width = 760;   // pixels
   int height = 440;
+  bool log_x = false;  // logarithmic x axis (points with x <= 0 are then not drawn)
 };
+
+// Whether costs spread over more than a factor of 10 (a log axis then keeps the cheap settings
+// apart when the reference is much slower).
+bool wants_log_axis(const std::vector<double>& values);
+
+// Ticks 1, 2, 5 x 10^k covering [lo, hi] (both > 0) for a log axis.
+std::vector<double> log_ticks(double lo, double hi);
 
 // Ticks covering [lo, hi] with about `target` steps; lo == hi gets a small range around it.
 std::vector<double> nice_ticks(double lo, double hi, int target = 6);

@@ -1,0 +1,179 @@
+#include "with_scene/scene_target.hpp"
+
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/log.hpp>
+#include <sylva/core/timer.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/scene/frame_stats.hpp>
+#include <sylva/scene/scene.hpp>
+#include <sylva/scene/scene_document.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace sylva::bench {
+namespace {
+
+constexpr const char* kStartPath = "start";
+constexpr const char* kBookmarkPrefix = "bookmark:";
+
+// Numeric leaves of a module's stats as metrics; "lod_instances" objects as LOD counts.
+void collect_stats(const nlohmann::json& j, const std::string& prefix, const std::string& module, FrameOutput& out) {
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
+    const nlohmann::json& v = it.value();
+    if (it.key() == "lod_instances" && v.is_object()) {
+      for (auto l = v.begin(); l != v.end(); ++l) {
+        if (l.value().is_number_unsigned() || l.value().is_number_integer()) {
+          out.counts.lod_instances[module + "." + l.key()] += l.value().get<std::uint64_t>();
+        }
+      }
+    } else if (v.is_object()) {
+      collect_stats(v, key, module, out);
+    } else if (v.is_number()) {
+      out.metrics[module + "." + key] = v.get<double>();
+    }
+  }
+}
+
+class SceneTarget final : public BenchTarget {
+ public:
+  explicit SceneTarget(scene::SceneDocument document)
+      : document_(std::make_unique<scene::SceneDocument>(std::move(document))) {}
+
+  std::vector<ParamDescriptor> params() override {
+    if (scene_) return scene_->describe_params();
+    registry_ = document_->params();
+    return registry_.describe();
+  }
+
+  Status prepare(glm::ivec2 size) override {
+    size_ = size;
+    auto created = scene::Scene::create(std::move(*document_));
+    if (!created.ok()) return created.error();
+    scene_ = std::move(*created);
+    return {};
+  }
+
+  std::vector<CameraPathInfo> camera_paths() const override {
+    const scene::SceneDocument& doc = scene_ ? scene_->document() : *document_;
+    std::vector<CameraPathInfo> out;
+    for (const auto& [name, path] : doc.camera_paths) {
+      out.push_back({name, fmt::format("{} keys over {:.3g} s{}", path.keys.size(), path.duration(),
+                                       path.settings.loop ? ", looping" : "")});
+    }
+    out.push_back({kStartPath, "the scene's start camera, not moving"});
+    for (const auto& [name, view] : doc.bookmarks) {
+      out.push_back({kBookmarkPrefix + name, "bookmark, not moving"});
+    }
+    return out;
+  }
+
+  Result<CameraPose> camera_pose(const std::string& name, int frame, int frames) override {
+    if (!scene_) return make_error(ErrorCode::kInvalidArgument, "camera_pose() before prepare()");
+    const scene::SceneDocument& doc = scene_->document();
+    scene::CameraView view;
+    if (name == kStartPath) {
+      view = scene_->resolve(doc.camera);
+    } else if (name.rfind(kBookmarkPrefix, 0) == 0) {
+      auto it = doc.bookmarks.find(name.substr(std::string(kBookmarkPrefix).size()));
+      if (it == doc.bookmarks.end()) return make_error(ErrorCode::kNotFound, fmt::format("no bookmark \"{}\"", name));
+      view = scene_->resolve(it->second);
+    } else {
+      auto it = doc.camera_paths.find(name);
+      if (it == doc.camera_paths.end()) {
+        return make_error(ErrorCode::kNotFound, fmt::format("camera_paths.{}: no such camera path", name));
+      }
+      const scene::CameraPath& path = it->second;
+      const double u = frames > 1 ? static_cast<double>(frame) / (frames - 1) : 0.0;
+      // A looping path wraps at its end time, which would show the first pose twice: stop one
+      // frame's step short of it.
+      const double span = path.settings.loop && frames > 1 ? path.duration() * (frames - 1) / frames : path.duration();
+      auto v = scene_->camera_path_view(name, path.start_time() + u * span);
+      if (!v.ok()) return v.error();
+      view = *v;
+    }
+    return CameraPose{view.position, view.yaw_deg, view.pitch_deg, view.fov_deg};
+  }
+
+  Status render(const FrameInput& input, const render::Framebuffer& target, FrameOutput& out) override {
+    scene::CameraView view;
+    view.position = input.pose.position;
+    view.yaw_deg = input.pose.yaw_deg;
+    view.pitch_deg = input.pose.pitch_deg;
+    view.fov_deg = input.pose.fov_deg;
+    const render::Camera camera = scene_->make_camera(view, size_);
+    Stopwatch cpu;
+    scene_->update(camera, input.time, input.dt, size_);
+    scene_->render(target, profiler_);
+    out.cpu_ms = cpu.elapsed_ms();
+    const std::optional<render::FrameStats> stats = profiler_.flush();
+    if (!stats) return make_error(ErrorCode::kGl, "scene frame: the GPU queries returned no result");
+    const scene::SceneFrameStats s = scene::split_frame_stats(*stats);
+    out.gpu_ms = s.gpu_ms;
+    out.counts = {};
+    for (const auto& [pass, p] : s.passes) {
+      out.counts.primitives += p.primitives;
+      out.counts.fragments += p.samples;
+      out.counts.triangles += p.triangles;
+      out.counts.draw_calls += p.draw_calls;
+      out.counts.instances += p.instances;
+    }
+    const nlohmann::json modules = scene_->module_stats();
+    for (auto it = modules.begin(); it != modules.end(); ++it) {
+      if (it.value().is_object()) collect_stats(it.value(), "", it.key(), out);
+    }
+    // Per-module GPU time, for the CSV and JSON.
+    for (const auto& [module, passes] : s.modules) {
+      double ms = 0.0;
+      for (const auto& [pass, p] : passes) ms += p.gpu_ms;
+      out.metrics[module + ".gpu_ms"] = ms;
+    }
+    return {};
+  }
+
+  std::vector<std::string> modules() const override {
+    std::vector<std::string> out;
+    const scene::SceneDocument& doc = scene_ ? scene_->document() : *document_;
+    for (const scene::ModuleSection& m : doc.modules()) out.push_back(m.name);
+    return out;
+  }
+
+ private:
+  std::unique_ptr<scene::SceneDocument> document_;
+  ParamRegistry registry_;
+  std::unique_ptr<scene::Scene> scene_;
+  render::FrameProfiler profiler_;
+  glm::ivec2 size_{256, 144};
+};
+
+}  // namespace
+
+Result<TargetFactory> scene_file_factory(const std::string& path) {
+  // Load once now so a broken file fails before any GL work, with the loader's message.
+  std::vector<std::string> warnings;
+  auto doc = scene::SceneDocument::load(path, warnings);
+  if (!doc.ok()) return doc.error();
+  for (const std::string& w : warnings) log_warn("sylva-bench: {}", w);
+  return TargetFactory([path]() -> Result<std::unique_ptr<BenchTarget>> {
+    std::vector<std::string> ignored;  // reported once above
+    auto d = scene::SceneDocument::load(path, ignored);
+    if (!d.ok()) return d.error();
+    return std::unique_ptr<BenchTarget>(std::make_unique<SceneTarget>(std::move(*d)));
+  });
+}
+
+TargetFactory scene_text_factory(std::string text, std::string source, std::filesystem::path directory) {
+  return [text = std::move(text), source = std::move(source),
+          directory = std::move(directory)]() -> Result<std::unique_ptr<BenchTarget>> {
+    std::vector<std::string> warnings;
+    auto d = scene::SceneDocument::from_text(text, source, warnings);
+    if (!d.ok()) return d.error();
+    for (const std::string& w : warnings) log_warn("sylva-bench: {}", w);
+    d->set_directory(directory);
+    return std::unique_ptr<BenchTarget>(std::make_unique<SceneTarget>(std::move(*d)));
+  };
+}
+
+}  // namespace sylva::bench
