@@ -164,6 +164,7 @@ Status Scene::rebuild_module(std::string_view name, Rebuild what) {
   const ModuleDescriptor* d = find_module(name);
   if (d && d->provides_ground) {
     // A new ground: rebuild it, then every module (they all stand on it or draw it).
+    modules_.clear();
     SYLVA_TRY(build_ground());
     std::vector<std::unique_ptr<ModuleInstance>> fresh;
     for (const ModuleSection& section : document_->modules()) {
@@ -203,6 +204,23 @@ Status Scene::set_param(std::string_view path, std::string_view text) {
         return rebuilt.error();
       }
     }
+  }
+  return {};
+}
+
+Status Scene::replace_document(SceneDocument document) {
+  SYLVA_TRY(document.validate());
+  auto old = std::make_unique<SceneDocument>(std::move(*document_));
+  *document_ = std::move(document);
+  modules_.clear();  // they refer to the ground that is about to be replaced
+  Status built = build_ground();
+  if (built.ok()) built = build_modules();
+  if (!built.ok()) {
+    *document_ = std::move(*old);
+    Status restored = build_ground();
+    if (restored.ok()) restored = build_modules();
+    if (!restored.ok()) log_warn("scene: could not restore the previous document: {}", restored.error().message);
+    return built;
   }
   return {};
 }
@@ -405,6 +423,10 @@ Status Scene::save(const std::filesystem::path& file) {
   const fs::path new_dir = file.parent_path();
   const fs::path old_dir = document_->directory();
   std::error_code ec;
+  if (!new_dir.empty()) {
+    fs::create_directories(new_dir, ec);
+    if (ec) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create the folder: {}", new_dir.string(), ec.message()));
+  }
   // Keep unedited relative map paths pointing at the same files from the new folder.
   auto rebase = [&](const std::string& path) -> std::string {
     const fs::path p(path);

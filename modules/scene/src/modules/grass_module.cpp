@@ -26,8 +26,8 @@ namespace sylva::scene::detail {
 namespace {
 
 struct GrassSectionSettings {
-  glm::dvec2 area_min{-30.0, -30.0};  // world x/z rectangle of the field [m]
-  glm::dvec2 area_max{30.0, 30.0};
+  glm::dvec2 area_min{-10.0, -10.0};  // world x/z rectangle of the field [m]
+  glm::dvec2 area_max{10.0, 10.0};
   int map_resolution = 128;           // texels along the longer side of a new density/height map
   grass::GrassFieldSettings field;
   grass::BladeSettings blade;

@@ -98,6 +98,11 @@ class Scene {
   // Validates and writes `text` to the parameter at `path` ("grass.field.density"), then
   // rebuilds what the parameter's Rebuild level asks for. On failure nothing changes.
   Status set_param(std::string_view path, std::string_view text);
+  // Replaces the document (sections added, removed or changed as a whole: the editor's module
+  // add/remove and its undo) and rebuilds every module; maps already in the scene are kept with
+  // their edits. The new document is validated first; on any failure the scene keeps the old
+  // document and modules.
+  Status replace_document(SceneDocument document);
   // Current value as text (round-trips through set_param bit-exactly).
   Result<std::string> get_param(std::string_view path);
   // Every parameter of the document (for panels, sweeps and listings).

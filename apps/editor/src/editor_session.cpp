@@ -1,0 +1,308 @@
+#include "editor_session.hpp"
+
+#include <sylva/core/log.hpp>
+#include <sylva/render/readback.hpp>
+#include <sylva/scene/module_registry.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::editor {
+
+Result<std::unique_ptr<EditorSession>> EditorSession::create(glm::ivec2 viewport) {
+  auto session = std::unique_ptr<EditorSession>(new EditorSession());
+  SYLVA_TRY(session->set_viewport(viewport));
+  SYLVA_TRY(session->new_scene());
+  return session;
+}
+
+Status EditorSession::adopt(scene::SceneDocument document, std::optional<std::filesystem::path> path) {
+  end_stroke();
+  auto created = scene::Scene::create(std::move(document));
+  if (!created.ok()) return created.error();
+  scene_ = std::move(*created);
+  path_ = std::move(path);
+  history_.reset_saved();
+  camera_ = scene_->make_camera(scene_->document().camera, viewport_);
+  profiler_ = render::FrameProfiler();
+  time_ = 0.0;
+  return {};
+}
+
+Status EditorSession::load(const std::filesystem::path& file) {
+  std::vector<std::string> warnings;
+  auto doc = scene::SceneDocument::load(file, warnings);
+  if (!doc.ok()) return doc.error();
+  SYLVA_TRY(adopt(std::move(*doc), file));
+  warnings_ = std::move(warnings);
+  return {};
+}
+
+Status EditorSession::new_scene() {
+  warnings_.clear();
+  return adopt(scene::SceneDocument{}, std::nullopt);
+}
+
+Status EditorSession::save() {
+  if (!path_) return make_error(ErrorCode::kInvalidArgument, "the scene has no file yet; use save as");
+  return save_as(*path_);
+}
+
+Status EditorSession::save_as(const std::filesystem::path& file) {
+  end_stroke();
+  // The document's camera is where the editor's camera is when saving.
+  scene_->document().camera = scene::Scene::view_of(camera_);
+  SYLVA_TRY(scene_->save(file));
+  path_ = file;
+  history_.mark_saved();
+  return {};
+}
+
+Status EditorSession::set_param(const std::string& path, const std::string& text, bool merge) {
+  auto before = scene_->get_param(path);
+  if (!before.ok()) return before.error();
+  SYLVA_TRY(scene_->set_param(path, text));
+  const std::string after = scene_->get_param(path).value();
+  if (after == *before) return {};
+  if (merge) {
+    if (UndoEntry* top = history_.mergeable_top(); top && top->edits.size() == 1) {
+      if (auto* p = std::get_if<ParamEdit>(&top->edits[0]); p && p->path == path) {
+        p->after = after;
+        return {};
+      }
+    }
+  }
+  history_.push({"set " + path, {ParamEdit{path, *before, after}}});
+  return {};
+}
+
+Status EditorSession::add_module(const std::string& name) {
+  if (scene_->document().has_module(name)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("add_module {}: the scene already has it", name));
+  }
+  scene::SceneDocument probe;
+  auto added = probe.add_module(name);
+  if (!added.ok()) return added.error();
+  const nlohmann::json section = probe.to_json()[name];
+  SYLVA_TRY(write_section(name, section));
+  history_.push({"add " + name, {SectionEdit{name, nullptr, section}}});
+  return {};
+}
+
+Status EditorSession::remove_module(const std::string& name) {
+  if (!scene_->document().has_module(name)) {
+    return make_error(ErrorCode::kNotFound, fmt::format("remove_module {}: the scene has no such module", name));
+  }
+  const nlohmann::json section = scene_->document().to_json()[name];
+  SYLVA_TRY(write_section(name, nullptr));
+  history_.push({"remove " + name, {SectionEdit{name, section, nullptr}}});
+  return {};
+}
+
+Status EditorSession::add_bookmark(const std::string& name) {
+  if (name.empty() || name.find_first_of(". []=") != std::string::npos) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("bookmark \"{}\": use a name without spaces, dots or brackets", name));
+  }
+  std::optional<scene::CameraView> before;
+  if (auto it = scene_->document().bookmarks.find(name); it != scene_->document().bookmarks.end()) before = it->second;
+  const scene::CameraView view = scene::Scene::view_of(camera_);
+  SYLVA_TRY(write_bookmark(name, view));
+  history_.push({"bookmark " + name, {BookmarkEdit{name, before, view}}});
+  return {};
+}
+
+Status EditorSession::remove_bookmark(const std::string& name) {
+  auto it = scene_->document().bookmarks.find(name);
+  if (it == scene_->document().bookmarks.end()) return make_error(ErrorCode::kNotFound, fmt::format("no bookmark \"{}\"", name));
+  const scene::CameraView before = it->second;
+  SYLVA_TRY(write_bookmark(name, std::nullopt));
+  history_.push({"remove bookmark " + name, {BookmarkEdit{name, before, std::nullopt}}});
+  return {};
+}
+
+std::vector<std::string> EditorSession::map_ids() const {
+  std::vector<std::string> ids;
+  for (const auto& [id, map] : const_cast<scene::Scene&>(*scene_).maps()) {
+    if (scene_->document().has_module(map.module)) ids.push_back(id);
+  }
+  return ids;
+}
+
+Status EditorSession::begin_stroke(const std::string& map_id, glm::dvec2 world_xz) {
+  end_stroke();
+  scene::SceneMap* map = scene_->map(map_id);
+  if (!map || !scene_->document().has_module(map->module)) {
+    std::string known;
+    for (const std::string& id : map_ids()) known += (known.empty() ? "" : ", ") + id;
+    return make_error(ErrorCode::kNotFound,
+                      fmt::format("no map \"{}\" to paint (this scene has: {})", map_id, known.empty() ? "none" : known));
+  }
+  if (!(brush_.radius > 0.0f) || !std::isfinite(world_xz.x) || !std::isfinite(world_xz.y)) {
+    return make_error(ErrorCode::kInvalidArgument, "stroke: the brush radius and the points must be positive/finite");
+  }
+  stroke_.emplace(Stroke{map_id, StrokeRecorder(map_id, map->grid), resolve_target(map->grid, brush_, world_xz), world_xz});
+  dab_to(world_xz);
+  return {};
+}
+
+void EditorSession::dab_to(glm::dvec2 p) {
+  scene::SceneMap* map = scene_->map(stroke_->map_id);
+  if (!map) return;
+  const BrushSettings& b = brush_;
+  scene::TexelRect changed;
+  auto dab = [&](glm::dvec2 c) {
+    stroke_->recorder.before_dab(dab_rect(map->grid, c, b.radius));
+    changed = changed.unite(apply_dab(map->grid, map->kind, b, c, stroke_->target));
+  };
+  if (p == stroke_->last_dab && stroke_->recorder.rect().empty()) {
+    dab(p);  // the first dab of the stroke
+  } else {
+    const std::vector<glm::dvec2> segment = {stroke_->last_dab, p};
+    const std::vector<glm::dvec2> dabs = stroke_dabs(segment, std::max(0.01, static_cast<double>(b.spacing * b.radius)));
+    for (std::size_t k = 1; k < dabs.size(); ++k) {
+      dab(dabs[k]);
+      stroke_->last_dab = dabs[k];
+    }
+  }
+  if (!changed.empty()) {
+    Status s = scene_->map_changed(stroke_->map_id, changed);
+    if (!s.ok()) log_warn("editor: {}", s.error().message);
+  }
+}
+
+Status EditorSession::continue_stroke(glm::dvec2 world_xz) {
+  if (!stroke_) return make_error(ErrorCode::kInvalidArgument, "no stroke in progress");
+  if (!std::isfinite(world_xz.x) || !std::isfinite(world_xz.y)) return {};
+  dab_to(world_xz);
+  return {};
+}
+
+void EditorSession::end_stroke() {
+  if (!stroke_) return;
+  if (auto edit = stroke_->recorder.finish()) {
+    history_.push({"paint " + stroke_->map_id, {std::move(*edit)}});
+  }
+  stroke_.reset();
+}
+
+Status EditorSession::stroke(const std::string& map_id, const std::vector<glm::dvec2>& points) {
+  if (points.empty()) return make_error(ErrorCode::kInvalidArgument, "stroke: no points");
+  SYLVA_TRY(begin_stroke(map_id, points.front()));
+  for (std::size_t k = 1; k < points.size(); ++k) SYLVA_TRY(continue_stroke(points[k]));
+  end_stroke();
+  return {};
+}
+
+void EditorSession::set_camera(const scene::CameraView& view) { camera_ = scene_->make_camera(view, viewport_); }
+
+Status EditorSession::go_to_bookmark(const std::string& name) {
+  auto it = scene_->document().bookmarks.find(name);
+  if (it == scene_->document().bookmarks.end()) {
+    return make_error(ErrorCode::kNotFound, fmt::format("no bookmark \"{}\" in this scene", name));
+  }
+  set_camera(it->second);
+  return {};
+}
+
+Status EditorSession::set_viewport(glm::ivec2 size) {
+  size = glm::max(size, glm::ivec2(16));
+  if (framebuffer_ && size == viewport_) return {};
+  auto fb = render::Framebuffer::create({.width = size.x, .height = size.y, .color_formats = {GL_RGBA8}});
+  if (!fb.ok()) return fb.error();
+  framebuffer_ = std::move(*fb);
+  viewport_ = size;
+  camera_.set_aspect(size.x, size.y);
+  return {};
+}
+
+void EditorSession::render_frame(double dt) {
+  time_ += std::max(dt, 0.0);
+  scene_->update(camera_, time_, static_cast<float>(std::max(dt, 0.0)), viewport_);
+  scene_->render(framebuffer_, profiler_);
+}
+
+Status EditorSession::screenshot(const std::filesystem::path& file, std::optional<glm::ivec2> size) {
+  if (!size || *size == viewport_) {
+    render_frame(0.0);
+    return render::save_screenshot(framebuffer_, file);
+  }
+  auto fb = render::Framebuffer::create({.width = size->x, .height = size->y, .color_formats = {GL_RGBA8}});
+  if (!fb.ok()) return fb.error();
+  render::Camera camera = camera_;
+  camera.set_aspect(size->x, size->y);
+  scene_->update(camera, time_, 0.0f, *size);
+  scene_->render(*fb, profiler_);
+  return render::save_screenshot(*fb, file);
+}
+
+std::optional<glm::dvec3> EditorSession::pick_ground(glm::vec2 pixel) const {
+  const glm::vec2 ndc(2.0f * (pixel.x + 0.5f) / static_cast<float>(viewport_.x) - 1.0f,
+                      1.0f - 2.0f * (pixel.y + 0.5f) / static_cast<float>(viewport_.y));
+  const glm::mat4 inv = glm::inverse(camera_.view_projection());
+  // Reversed-Z: depth 1 is the near plane, 0.5 a finite point beyond it.
+  const glm::vec4 a = inv * glm::vec4(ndc, 1.0f, 1.0f), b = inv * glm::vec4(ndc, 0.5f, 1.0f);
+  const glm::dvec3 dir = glm::normalize(glm::dvec3(glm::vec3(b) / b.w - glm::vec3(a) / a.w));
+  const glm::dvec3 origin = camera_.position();
+  const HeightField* ground = scene_->ground();
+  auto above = [&](double t) {
+    const glm::dvec3 p = origin + dir * t;
+    return p.y - (ground ? ground->height(p.x, p.z) : 0.0);
+  };
+  if (!ground) {
+    if (std::abs(dir.y) < 1e-9) return std::nullopt;
+    const double t = -origin.y / dir.y;
+    if (t <= 0.0) return std::nullopt;
+    return origin + dir * t;
+  }
+  const double base = 0.5 * ground->spacing();
+  double t0 = 0.0, f0 = above(0.0);
+  if (f0 < 0.0) return std::nullopt;  // under the ground
+  for (double t = base; t < 2.0e5; t += std::max(base, 0.002 * t)) {
+    const double f = above(t);
+    if (f <= 0.0) {
+      double lo = t0, hi = t;
+      for (int k = 0; k < 40; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (above(mid) > 0.0 ? lo : hi) = mid;
+      }
+      return origin + dir * hi;
+    }
+    t0 = t;
+    f0 = f;
+  }
+  return std::nullopt;
+}
+
+Status EditorSession::write_map_rect(const std::string& map_id, const scene::TexelRect& rect, const std::vector<float>& values) {
+  scene::SceneMap* map = scene_->map(map_id);
+  if (!map) return make_error(ErrorCode::kNotFound, fmt::format("map \"{}\" no longer exists", map_id));
+  const scene::TexelRect r = rect.intersect(map->grid.bounds());
+  if (static_cast<std::size_t>(r.width()) * static_cast<std::size_t>(r.height()) != values.size() || !(r == rect)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("map \"{}\" changed size since the edit", map_id));
+  }
+  map->grid.paste_rect(rect, values);
+  return scene_->map_changed(map_id, rect);
+}
+
+Status EditorSession::write_param(const std::string& path, const std::string& text) { return scene_->set_param(path, text); }
+
+Status EditorSession::write_section(const std::string& module, const nlohmann::json& section) {
+  nlohmann::json j = scene_->document().to_json();
+  if (section.is_null()) j.erase(module);
+  else j[module] = section;
+  std::vector<std::string> warnings;
+  auto doc = scene::SceneDocument::from_json(j, "scene", warnings);
+  if (!doc.ok()) return doc.error();
+  doc->set_directory(scene_->document().directory());
+  return scene_->replace_document(std::move(*doc));
+}
+
+Status EditorSession::write_bookmark(const std::string& name, const std::optional<scene::CameraView>& view) {
+  if (view) scene_->document().bookmarks[name] = *view;
+  else scene_->document().bookmarks.erase(name);
+  return {};
+}
+
+}  // namespace sylva::editor

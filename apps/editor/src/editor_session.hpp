@@ -1,0 +1,119 @@
+#pragma once
+// The edited scene and every editing operation, without any UI (GL, no Dear ImGui): what the
+// ImGui panels and the --script runner both call. Needs a current GL 4.5 context.
+//
+// Every change goes through here and lands on the undo stack: parameter changes (ParamEdit, with
+// consecutive changes of one parameter during a slider drag merged into one entry), brush strokes
+// (MapEdit with the dirty rectangle's before/after values), module sections added or removed
+// (SectionEdit) and bookmarks (BookmarkEdit). The session is the undo stack's EditTarget.
+//
+// Documents: load / new / save / save_as. Saving writes the edited maps and then the scene file,
+// each atomically (scene::Scene::save), so an interrupted save leaves the previous files whole.
+// unsaved() is what the "unsaved changes" prompt asks.
+
+#include "brush.hpp"
+#include "undo.hpp"
+
+#include <sylva/core/result.hpp>
+#include <sylva/render/camera.hpp>
+#include <sylva/render/framebuffer.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/scene/scene.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace sylva::editor {
+
+class EditorSession final : public EditTarget {
+ public:
+  // An empty scene (sky only) with a viewport of `viewport` pixels.
+  static Result<std::unique_ptr<EditorSession>> create(glm::ivec2 viewport);
+
+  // --- documents ---
+  Status load(const std::filesystem::path& file);  // replaces the scene, clears the undo history
+  Status new_scene();
+  Status save();                                   // kInvalidArgument when the scene has no file yet
+  Status save_as(const std::filesystem::path& file);
+  const std::optional<std::filesystem::path>& path() const { return path_; }
+  bool unsaved() const { return history_.unsaved(); }
+  // Warnings of the last load (unknown keys...).
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  scene::Scene& scene() { return *scene_; }
+  const scene::Scene& scene() const { return *scene_; }
+
+  // --- undoable edits ---
+  // merge: fold into the previous entry when it changed the same parameter (slider drags).
+  Status set_param(const std::string& path, const std::string& text, bool merge = false);
+  Status add_module(const std::string& name);
+  Status remove_module(const std::string& name);
+  Status add_bookmark(const std::string& name);  // the current camera
+  Status remove_bookmark(const std::string& name);
+
+  // --- painting ---
+  BrushSettings& brush() { return brush_; }
+  // Names of the paintable maps ("ground.height", "grass.density", ...).
+  std::vector<std::string> map_ids() const;
+  Status begin_stroke(const std::string& map_id, glm::dvec2 world_xz);
+  Status continue_stroke(glm::dvec2 world_xz);
+  void end_stroke();  // pushes the stroke's undo entry
+  bool stroking() const { return stroke_.has_value(); }
+  // A whole stroke through world points.
+  Status stroke(const std::string& map_id, const std::vector<glm::dvec2>& points);
+
+  Status undo() { return history_.undo(*this); }
+  Status redo() { return history_.redo(*this); }
+  UndoStack& history() { return history_; }
+
+  // --- camera and frames ---
+  render::Camera& camera() { return camera_; }
+  void set_camera(const scene::CameraView& view);
+  Status go_to_bookmark(const std::string& name);
+  glm::ivec2 viewport() const { return viewport_; }
+  Status set_viewport(glm::ivec2 size);
+  // update + render into framebuffer(); the scene clock advances by dt seconds.
+  void render_frame(double dt);
+  const render::Framebuffer& framebuffer() const { return framebuffer_; }
+  render::FrameProfiler& profiler() { return profiler_; }
+  // Renders one frame at `size` (default: the viewport) and saves it. Errors name the file.
+  Status screenshot(const std::filesystem::path& file, std::optional<glm::ivec2> size = std::nullopt);
+  // World point of the ground under a viewport pixel (top-left origin), by marching the view ray
+  // over the scene's ground (the plane y = 0 without one). nullopt when the ray misses.
+  std::optional<glm::dvec3> pick_ground(glm::vec2 pixel) const;
+
+  // --- EditTarget (undo/redo) ---
+  Status write_map_rect(const std::string& map_id, const scene::TexelRect& rect, const std::vector<float>& values) override;
+  Status write_param(const std::string& path, const std::string& text) override;
+  Status write_section(const std::string& module, const nlohmann::json& section) override;
+  Status write_bookmark(const std::string& name, const std::optional<scene::CameraView>& view) override;
+
+ private:
+  EditorSession() = default;
+  Status adopt(scene::SceneDocument document, std::optional<std::filesystem::path> path);
+  void dab_to(glm::dvec2 world_xz);
+
+  struct Stroke {
+    std::string map_id;
+    StrokeRecorder recorder;
+    float target = 0.0f;
+    glm::dvec2 last_dab{0.0};
+  };
+
+  std::unique_ptr<scene::Scene> scene_;
+  std::optional<std::filesystem::path> path_;
+  std::vector<std::string> warnings_;
+  UndoStack history_;
+  BrushSettings brush_;
+  std::optional<Stroke> stroke_;
+  render::Camera camera_;
+  glm::ivec2 viewport_{1280, 720};
+  render::Framebuffer framebuffer_;
+  render::FrameProfiler profiler_;
+  double time_ = 0.0;
+};
+
+}  // namespace sylva::editor

@@ -1,0 +1,66 @@
+#pragma once
+// The Dear ImGui front end of sylva-editor: menu, scene outline, generated parameter panels,
+// brush panel, viewport with fly/orbit cameras and painting, debug views, stats overlay, and the
+// modal dialogs (open, save as, screenshot, unsaved changes). All edits go through the
+// EditorSession, so they are validated and undoable exactly like scripted ones.
+
+#include "camera_control.hpp"
+#include "editor_session.hpp"
+
+#include <deque>
+#include <string>
+
+struct GLFWwindow;
+
+namespace sylva::editor {
+
+enum class CameraMode { kFly, kOrbit };
+
+class EditorUi {
+ public:
+  EditorUi(EditorSession& session, GLFWwindow* window);
+
+  // Builds and handles one ImGui frame (between ImGui::NewFrame and ImGui::Render): input, panels,
+  // viewport (renders the scene). dt in seconds.
+  void frame(double dt);
+  // True once the user confirmed quitting (after the unsaved-changes prompt).
+  bool quit_requested() const { return quit_confirmed_; }
+  // The window's close button: asks about unsaved changes first.
+  void request_quit();
+  void message(std::string text);
+
+ private:
+  enum class Pending { kNone, kNew, kOpen, kQuit };
+
+  void menu_bar();
+  void outline_panel();
+  void properties_panel();
+  void section_params(const std::string& section);
+  void brush_panel();
+  void viewport_panel(double dt);
+  void stats_overlay(const glm::vec2& origin);
+  void brush_outline(const glm::vec2& origin, const glm::dvec3& centre);
+  void dialogs();
+  void handle_shortcuts();
+  void apply(Status status);
+  void continue_pending();
+
+  EditorSession& session_;
+  GLFWwindow* window_;
+  std::string selected_ = "environment";
+  CameraMode camera_mode_ = CameraMode::kFly;
+  OrbitState orbit_;
+  bool paint_ = false;
+  std::string paint_map_;
+  Pending pending_ = Pending::kNone;
+  bool quit_confirmed_ = false;
+  bool open_dialog_ = false, save_as_dialog_ = false, screenshot_dialog_ = false, unsaved_dialog_ = false;
+  char path_buffer_[512] = {};
+  char bookmark_buffer_[64] = "view";
+  std::deque<std::string> messages_;
+  std::optional<glm::dvec3> brush_hit_;
+  std::string playing_path_;
+  double path_time_ = 0.0;
+};
+
+}  // namespace sylva::editor

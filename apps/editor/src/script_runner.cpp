@@ -1,0 +1,140 @@
+#include "script_runner.hpp"
+
+#include <sylva/core/atomic_file.hpp>
+
+#include <fmt/format.h>
+
+#include <charconv>
+
+namespace sylva::editor {
+namespace {
+
+double number(const std::string& s) {
+  double v = 0.0;
+  std::from_chars(s.data(), s.data() + s.size(), v);  // validated by the parser
+  return v;
+}
+
+std::filesystem::path resolve(const std::filesystem::path& base, const std::string& p) {
+  const std::filesystem::path path(p);
+  return path.is_absolute() || base.empty() ? path : base / path;
+}
+
+Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::path& base, std::ostream& out,
+               const ScriptHooks& hooks) {
+  const auto& a = c.args;
+  if (c.name == "load") return s.load(resolve(base, a[0]));
+  if (c.name == "new") return s.new_scene();
+  if (c.name == "add_module") return s.add_module(a[0]);
+  if (c.name == "remove_module") return s.remove_module(a[0]);
+  if (c.name == "set") return s.set_param(a[0], a[1]);
+  if (c.name == "brush") {
+    // Staged on a copy, so a bad key leaves the brush unchanged.
+    BrushSettings staged = s.brush();
+    for (const std::string& kv : a) {
+      auto assignment = parse_param_assignment(kv);
+      if (!assignment.ok()) return assignment.error();
+      SYLVA_TRY(set_param(staged, assignment->first, assignment->second));
+    }
+    s.brush() = staged;
+    return {};
+  }
+  if (c.name == "stroke") return s.stroke(a[0], c.points);
+  if (c.name == "undo" || c.name == "redo") {
+    for (int k = 0; k < c.count; ++k) SYLVA_TRY(c.name == "undo" ? s.undo() : s.redo());
+    return {};
+  }
+  if (c.name == "camera") {
+    if (a[0] == "bookmark") return s.go_to_bookmark(a[1]);
+    scene::CameraView view = scene::Scene::view_of(s.camera());
+    view.position = {number(a[0]), number(a[1]), number(a[2])};
+    if (a.size() >= 5) {
+      view.yaw_deg = static_cast<float>(number(a[3]));
+      view.pitch_deg = static_cast<float>(number(a[4]));
+    }
+    if (a.size() == 6) view.fov_deg = static_cast<float>(number(a[5]));
+    SYLVA_TRY(validate_params(view, "camera"));
+    s.set_camera(view);
+    return {};
+  }
+  if (c.name == "bookmark") return s.add_bookmark(a[0]);
+  if (c.name == "frames") {
+    for (int k = 0; k < c.count; ++k) s.render_frame(1.0 / 30.0);
+    return {};
+  }
+  if (c.name == "debug") {
+    auto set = set_param(s.scene().debug(), a[0], a[1] == "on" ? "true" : "false");
+    return set;
+  }
+  if (c.name == "screenshot") {
+    std::optional<glm::ivec2> size;
+    if (a.size() == 2) size = parse_size(a[1]).value();
+    const std::filesystem::path file = resolve(base, a[0]);
+    SYLVA_TRY(s.screenshot(file, size));
+    out << "sylva-editor: wrote " << std::filesystem::absolute(file).string() << "\n";
+    return {};
+  }
+  if (c.name == "screenshot_ui") {
+    if (!hooks.screenshot_ui) return make_error(ErrorCode::kUnsupported, "there is no window in a headless run");
+    const std::filesystem::path file = resolve(base, a[0]);
+    SYLVA_TRY(hooks.screenshot_ui(file));
+    out << "sylva-editor: wrote " << std::filesystem::absolute(file).string() << "\n";
+    return {};
+  }
+  if (c.name == "save") {
+    if (a.empty()) return s.save();
+    return s.save_as(resolve(base, a[0]));
+  }
+  if (c.name == "expect") {
+    auto value = s.scene().get_param(a[0]);
+    if (!value.ok()) return value.error();
+    if (*value != a[1]) return make_error(ErrorCode::kInvalidArgument, fmt::format("{} is {}, expected {}", a[0], *value, a[1]));
+    return {};
+  }
+  if (c.name == "expect_unsaved") {
+    const bool want = a[0] == "yes";
+    if (s.unsaved() != want) {
+      return make_error(ErrorCode::kInvalidArgument, fmt::format("the scene {} unsaved changes", s.unsaved() ? "has" : "has no"));
+    }
+    return {};
+  }
+  if (c.name == "print") {
+    std::string line;
+    for (const std::string& w : a) line += (line.empty() ? "" : " ") + w;
+    out << line << "\n";
+    return {};
+  }
+  return make_error(ErrorCode::kInvalidArgument, "unknown command");  // the parser rejects these first
+}
+
+}  // namespace
+
+Result<ScriptOutcome> run_script(EditorSession& session, const std::vector<ScriptCommand>& commands,
+                                 const std::string& source, const std::filesystem::path& base_dir, std::ostream& out,
+                                 const ScriptHooks& hooks) {
+  ScriptOutcome outcome;
+  for (const ScriptCommand& c : commands) {
+    if (c.name == "quit") {
+      outcome.quit = true;
+      break;
+    }
+    Status s = run_one(session, c, base_dir, out, hooks);
+    if (!s.ok()) {
+      return make_error(s.error().code, fmt::format("{}: {}: {}", script_location(source, c.line), c.name, s.error().message));
+    }
+    ++outcome.commands_run;
+    if (hooks.after_command) hooks.after_command();
+  }
+  return outcome;
+}
+
+Result<ScriptOutcome> run_script_file(EditorSession& session, const std::filesystem::path& file, std::ostream& out,
+                                      const ScriptHooks& hooks) {
+  auto text = read_file(file);
+  if (!text.ok()) return text.error();
+  auto commands = parse_script(*text, file.string());
+  if (!commands.ok()) return commands.error();
+  return run_script(session, *commands, file.string(), file.parent_path(), out, hooks);
+}
+
+}  // namespace sylva::editor
