@@ -155,62 +155,86 @@ glm::vec3 decode_normal(const Image& img, int x, int y) {
 }
 
 // Eq. 3.28 projected on the HL2 lobes: h(x0) for light arriving on the side whose normal map is
-// `lit_normal` (its tangent space) and passing to the other side.
+// `lit_normal` (its tangent space) and passing to the other side. The kernel factors into a
+// Gaussian of the distance times exp(-k d(x_i)) of the source texel, so the convolution runs as
+// two 1D Gaussian passes over exp(-k d) g(n(x_i)) (plain float loops: this runs per texture).
 void translucency_coefficients(const LeafTextureSettings& st, const Image& lit_normal, const Image& thickness_src,
                                const Image& coverage, Image& out) {
   const int size = lit_normal.width();
+  const auto n_px = static_cast<std::size_t>(size) * static_cast<std::size_t>(size);
   constexpr int kDirections = 64;
   const std::array<glm::vec3, 3> H = hl2_basis();
   const float k = std::sqrt(3.0f / (2.0f * kPi));
-  std::vector<glm::vec3> dirs;
+  float dirs[kDirections][3];
+  float basis[kDirections][3];
   for (int i = 0; i < kDirections; ++i) {
     const float z = 1.0f - (static_cast<float>(i) + 0.5f) / static_cast<float>(kDirections);
     const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
     const float phi = static_cast<float>(i) * 2.39996323f;
-    dirs.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    const glm::vec3 L(r * std::cos(phi), r * std::sin(phi), z);
+    for (int c = 0; c < 3; ++c) {
+      dirs[i][c] = L[c];
+      basis[i][c] = k * glm::dot(H[static_cast<std::size_t>(c)], L);
+    }
   }
   glm::dmat3 gram(0.0);
-  for (const glm::vec3& L : dirs)
+  for (int i = 0; i < kDirections; ++i)
     for (int a = 0; a < 3; ++a)
-      for (int b = 0; b < 3; ++b) gram[a][b] += static_cast<double>(k * glm::dot(H[static_cast<std::size_t>(a)], L) * k * glm::dot(H[static_cast<std::size_t>(b)], L));
+      for (int b = 0; b < 3; ++b) gram[a][b] += static_cast<double>(basis[i][a]) * static_cast<double>(basis[i][b]);
   const glm::dmat3 gram_inv = glm::inverse(gram);
-  // g(n) = sum_L max(n . L, 0) basis(L), per texel.
-  std::vector<glm::vec3> g(static_cast<std::size_t>(size) * static_cast<std::size_t>(size));
+  // Source term per texel and lobe: coverage * exp(-k d) * sum_L max(n . L, 0) basis(L).
+  std::vector<float> src[3];
+  for (auto& v : src) v.assign(n_px, 0.0f);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
       const glm::vec3 n = decode_normal(lit_normal, x, y);
-      glm::vec3 acc(0.0f);
-      for (const glm::vec3& L : dirs) {
-        const float e = std::max(glm::dot(n, L), 0.0f);
-        acc += e * glm::vec3(k * glm::dot(H[0], L), k * glm::dot(H[1], L), k * glm::dot(H[2], L));
+      float acc[3] = {0.0f, 0.0f, 0.0f};
+      for (int i = 0; i < kDirections; ++i) {
+        const float e = std::max(n.x * dirs[i][0] + n.y * dirs[i][1] + n.z * dirs[i][2], 0.0f);
+        acc[0] += e * basis[i][0];
+        acc[1] += e * basis[i][1];
+        acc[2] += e * basis[i][2];
       }
-      g[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] =
-          acc * coverage.at(x, y);
+      const float w = coverage.at(x, y) * std::exp(-st.thickness_absorption * thickness_src.at(x, y));
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+      for (int c = 0; c < 3; ++c) src[c][p] = acc[c] * w;
     }
   }
+  // Normalised 1D Gaussian; clamped borders as the 2D kernel had.
   const float sigma = st.scattering_radius;
   const int radius = static_cast<int>(std::ceil(2.0f * sigma));
-  std::vector<float> kernel;
+  std::vector<float> g1;
   float norm = 0.0f;
-  for (int dy = -radius; dy <= radius; ++dy)
-    for (int dx = -radius; dx <= radius; ++dx) {
-      const float w = std::exp(-static_cast<float>(dx * dx + dy * dy) / (2.0f * sigma * sigma));
-      kernel.push_back(w);
-      norm += w;
-    }
+  for (int d = -radius; d <= radius; ++d) {
+    g1.push_back(std::exp(-static_cast<float>(d * d) / (2.0f * sigma * sigma)));
+    norm += g1.back();
+  }
+  for (float& v : g1) v /= norm;
+  std::vector<float> tmp(n_px);
+  for (int c = 0; c < 3; ++c) {
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        float acc = 0.0f;
+        for (int d = -radius; d <= radius; ++d) {
+          const int xx = std::clamp(x + d, 0, size - 1);
+          acc += g1[static_cast<std::size_t>(d + radius)] * src[c][static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(xx)];
+        }
+        tmp[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = acc;
+      }
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        float acc = 0.0f;
+        for (int d = -radius; d <= radius; ++d) {
+          const int yy = std::clamp(y + d, 0, size - 1);
+          acc += g1[static_cast<std::size_t>(d + radius)] * tmp[static_cast<std::size_t>(yy) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)];
+        }
+        src[c][static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)] = acc;
+      }
+  }
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
-      glm::dvec3 b(0.0);
-      std::size_t ki = 0;
-      for (int dy = -radius; dy <= radius; ++dy) {
-        for (int dx = -radius; dx <= radius; ++dx, ++ki) {
-          const int xx = std::clamp(x + dx, 0, size - 1);
-          const int yy = std::clamp(y + dy, 0, size - 1);
-          const float t = kernel[ki] / norm * std::exp(-st.thickness_absorption * thickness_src.at(xx, yy));
-          b += glm::dvec3(t * g[static_cast<std::size_t>(yy) * static_cast<std::size_t>(size) + static_cast<std::size_t>(xx)]);
-        }
-      }
-      const glm::dvec3 h = gram_inv * b;
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x);
+      const glm::dvec3 h = gram_inv * glm::dvec3(src[0][p], src[1][p], src[2][p]);
       for (int c = 0; c < 3; ++c) out.at(x, y, c) = std::clamp(0.5f + 0.5f * static_cast<float>(h[c]), 0.0f, 1.0f);
     }
   }
