@@ -8,10 +8,10 @@
 //    64x64 bit-matrix transposes (Hacker's Delight §7-3) instead of per-block scatter.
 // 2. Visible faces of a whole row in one expression, e.g. +Y at height s, row z:
 //        faces = nonair_x[s][z] & ~opaque_x[s + 1][z]
-// 3. Ambient occlusion of a whole row in bit-planes: the eight neighbours in front of the face
-//    are the three neighbouring rows shifted by -1, 0, +1 bit; per corner the count
-//    s1 + s2 + c is summed with bitwise adders, ao = 3 - count (0 when both sides are set), and
-//    "all four corners equal" is an XOR test. No per-face neighbour lookups remain.
+// 3. Ambient occlusion without per-face neighbour lookups: the eight opaque neighbours in front of
+//    a row of faces are the three neighbouring rows shifted by -1, 0, +1 bit (eight masks); an
+//    8x8 bit-matrix transpose turns them into one byte per face, and a 256-entry table gives the
+//    face's four AO values. A row with nothing in front skips all of it (open ground).
 // 4. Faces are bucketed by key (block, face, uniform AO) into per-slice bit planes and merged into
 //    rectangles with count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs
 //    between corners stay unit quads, so every mesher shades identically.
@@ -24,6 +24,7 @@
 #include "mesher_impl.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 
 #if defined(__SSE2__)
@@ -49,11 +50,21 @@ void transpose_bits(std::uint64_t* a, int width) {
   }
 }
 
-struct AoPlanes {
-  std::uint64_t hi[4];
-  std::uint64_t lo[4];
-  std::uint64_t uniform;
-};
+
+// Packed AO (pack_ao order) of a face from its eight ring neighbours (bit k = ring position k,
+// see ring_masks), by the same vertex rule as AoSampler.
+constexpr std::array<std::uint8_t, 256> make_ao_table() {
+  std::array<std::uint8_t, 256> t{};
+  for (int m = 0; m < 256; ++m) {
+    auto bit = [m](int k) { return (m >> k) & 1; };
+    auto vertex = [](int s1, int s2, int c) { return (s1 && s2) ? 0 : 3 - (s1 + s2 + c); };
+    const int mm = bit(0), zm = bit(1), pm = bit(2), mz = bit(3), pz = bit(4), mp = bit(5), zp = bit(6), pp = bit(7);
+    const int a0 = vertex(mz, zm, mm), a1 = vertex(pz, zm, pm), a2 = vertex(pz, zp, pp), a3 = vertex(mz, zp, mp);
+    t[static_cast<std::size_t>(m)] = static_cast<std::uint8_t>(a0 | a1 << 2 | a2 << 4 | a3 << 6);
+  }
+  return t;
+}
+constexpr std::array<std::uint8_t, 256> kAoFromRing = make_ao_table();
 
 class BitmaskMesher final : public Mesher {
  public:
@@ -105,8 +116,10 @@ class BitmaskMesher final : public Mesher {
           faces = ax_[idx2(r, s)] & ~ox_[idx2(r, layer)];
         }
         if (!faces) continue;
-        AoPlanes ao;
-        ao_planes(F, layer, r, ao);
+        std::uint64_t ring[8];
+        const bool occluded = ring_masks(F, layer, r, ring);
+        int group = -1;
+        std::uint64_t group_bytes = 0;
         int x0, y0, z0;
         origin(F, s, r, 0, x0, y0, z0);
         const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
@@ -118,9 +131,18 @@ class BitmaskMesher final : public Mesher {
           const BlockId self = ids[idx];
           const bool alpha = render[self] == alpha_class;
           if (alpha && ids[idx + front] == self && palette.culls_same(self)) continue;
-          if ((ao.uniform >> b) & 1u) {
-            const auto level = static_cast<std::uint32_t>(((ao.hi[0] >> b) & 1u) << 1 | ((ao.lo[0] >> b) & 1u));
-            const std::uint32_t key = pack_word1(self, F, level * 0x55u);
+          std::uint32_t aob = 0xffu;  // all four corners open
+          if (occluded) {
+            // The eight neighbours of 8 faces at once: an 8x8 bit transpose turns "mask k, face
+            // j" into "face j, neighbour k"; one table lookup then gives the face's AO.
+            if ((b >> 3) != group) {
+              group = b >> 3;
+              group_bytes = gather_ring_bytes(ring, group);
+            }
+            aob = kAoFromRing[(group_bytes >> (8 * (b & 7))) & 0xffu];
+          }
+          if (ao_uniform(aob)) {
+            const std::uint32_t key = pack_word1(self, F, aob);
             if (last_slot < 0 || keys_[static_cast<std::size_t>(last_slot)] != key) {
               last_slot = find_slot(key);
               slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
@@ -129,13 +151,9 @@ class BitmaskMesher final : public Mesher {
             }
             *slot_row |= std::uint64_t{1} << b;
           } else {
-            std::uint32_t bits = 0;
-            for (int k = 0; k < 4; ++k) {
-              bits |= static_cast<std::uint32_t>(((ao.hi[k] >> b) & 1u) << 1 | ((ao.lo[k] >> b) & 1u)) << (2 * k);
-            }
             int x, y, z;
             origin(F, s, r, b, x, y, z);
-            (alpha ? out.alpha_cut : out.opaque).push_back(PackedQuad{pack_word0(x, y, z, 1, 1), pack_word1(self, F, bits)});
+            (alpha ? out.alpha_cut : out.opaque).push_back(PackedQuad{pack_word0(x, y, z, 1, 1), pack_word1(self, F, aob)});
           }
         }
       }
@@ -285,49 +303,42 @@ class BitmaskMesher final : public Mesher {
     hi = xhi_[k];
   }
 
-  void ao_planes(int f, int layer, int r, AoPlanes& out) const {
-    if (!options_.ambient_occlusion) {
-      for (int k = 0; k < 4; ++k) out.hi[k] = out.lo[k] = ~std::uint64_t{0};
-      out.uniform = ~std::uint64_t{0};
-      return;
-    }
-    // occ[dr + 1][db + 1]: opaque neighbour at row offset dr and bit offset db, per face bit.
+  // The opaque neighbours in front of the faces of row r, one mask per ring position k (order of
+  // kAoFromRing: (du, dv) = (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1) in face axes).
+  // Returns false when none is set (or AO is off): every corner of the row is open.
+  bool ring_masks(int f, int layer, int r, std::uint64_t ring[8]) const {
+    if (!options_.ambient_occlusion) return false;
     std::uint64_t rows[3], los[3], his[3];
     for (int dr = -1; dr <= 1; ++dr) layer_row(f, layer, r + dr, rows[dr + 1], los[dr + 1], his[dr + 1]);
-    if ((rows[0] | rows[1] | rows[2] | los[0] | los[1] | los[2] | his[0] | his[1] | his[2]) == 0) {
-      // Nothing opaque in front: every corner is open (ao 3) - the common case on open ground.
-      for (int k = 0; k < 4; ++k) out.hi[k] = out.lo[k] = ~std::uint64_t{0};
-      out.uniform = ~std::uint64_t{0};
-      return;
-    }
-    std::uint64_t occ[3][3];
-    for (int dr = -1; dr <= 1; ++dr) {
-      const std::uint64_t m = rows[dr + 1], lo = los[dr + 1], hi = his[dr + 1];
-      occ[dr + 1][0] = ((m << 1) | lo) & full_;            // value at b - 1
-      occ[dr + 1][1] = m;                                   // value at b
-      occ[dr + 1][2] = (m >> 1) | (hi << (n_ - 1));         // value at b + 1
+    if ((rows[0] | rows[1] | rows[2] | los[0] | los[1] | los[2] | his[0] | his[1] | his[2]) == 0) return false;
+    std::uint64_t occ[3][3];  // [dr + 1][db + 1]: neighbour at row offset dr, bit offset db
+    for (int dr = 0; dr < 3; ++dr) {
+      occ[dr][0] = ((rows[dr] << 1) | los[dr]) & full_;       // value at b - 1
+      occ[dr][1] = rows[dr];                                   // value at b
+      occ[dr][2] = (rows[dr] >> 1) | (his[dr] << (n_ - 1));   // value at b + 1
     }
     // Face axes: for +-Y the u axis runs along rows and v along bits; otherwise u along bits.
     const bool u_is_row = (f >> 1) == 1;
-    auto at = [&](int du, int dv) -> std::uint64_t {
+    static constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
+    for (int k = 0; k < 8; ++k) {
+      const int du = kRing[k][0], dv = kRing[k][1];
       const int db = u_is_row ? dv : du;
       const int dr = u_is_row ? du : dv;
-      return occ[dr + 1][db + 1];
-    };
-    static constexpr int kCorner[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
-    for (int k = 0; k < 4; ++k) {
-      const std::uint64_t s1 = at(kCorner[k][0], 0);
-      const std::uint64_t s2 = at(0, kCorner[k][1]);
-      const std::uint64_t c = at(kCorner[k][0], kCorner[k][1]);
-      // count = s1 + s2 + c as two bit-planes; ao = 3 - count = ~count; both sides -> 0.
-      const std::uint64_t sum0 = s1 ^ s2 ^ c;
-      const std::uint64_t sum1 = (s1 & s2) | (c & (s1 ^ s2));
-      const std::uint64_t both = s1 & s2;
-      out.hi[k] = ~sum1 & ~both;
-      out.lo[k] = ~sum0 & ~both;
+      ring[k] = occ[dr + 1][db + 1];
     }
-    out.uniform = ~((out.hi[0] ^ out.hi[1]) | (out.hi[0] ^ out.hi[2]) | (out.hi[0] ^ out.hi[3]) |
-                    (out.lo[0] ^ out.lo[1]) | (out.lo[0] ^ out.lo[2]) | (out.lo[0] ^ out.lo[3]));
+    return true;
+  }
+
+  // Byte j of the result holds bit (8 * group + j) of ring[0..7] as bits 0..7.
+  static std::uint64_t gather_ring_bytes(const std::uint64_t ring[8], int group) {
+    std::uint64_t x = 0;
+    const int shift = 8 * group;
+    for (int k = 0; k < 8; ++k) x |= ((ring[k] >> shift) & 0xffu) << (8 * k);
+    // 8x8 bit-matrix transpose (Hacker's Delight, transpose8rS64).
+    x = (x & 0xAA55AA55AA55AA55ULL) | ((x & 0x00AA00AA00AA00AAULL) << 7) | ((x >> 7) & 0x00AA00AA00AA00AAULL);
+    x = (x & 0xCCCC3333CCCC3333ULL) | ((x & 0x0000CCCC0000CCCCULL) << 14) | ((x >> 14) & 0x0000CCCC0000CCCCULL);
+    x = (x & 0xF0F0F0F00F0F0F0FULL) | ((x & 0x00000000F0F0F0F0ULL) << 28) | ((x >> 28) & 0x00000000F0F0F0F0ULL);
+    return x;
   }
 
   // Block coordinates of bit b in row r of slice s for face f.
