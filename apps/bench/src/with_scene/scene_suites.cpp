@@ -68,6 +68,97 @@ Result<SuiteSpec> grass_suite() {
   return s;
 }
 
+// Trees: a forest on rolling hills, approached from outside so trees are seen from 150 m down
+// to a few metres (where the LOD thresholds and the mesh detail matter).
+constexpr const char* kTreesScene = R"json({
+  "sylva_scene": 1,
+  "name": "bench: forest approach",
+  "camera": {"position": [0.0, 12.0, 110.0], "height_mode": "above_ground", "yaw_deg": 0.0, "pitch_deg": -5.0, "fov_deg": 60.0},
+  "sun": {"azimuth_deg": 150.0, "elevation_deg": 40.0, "fog_density": 0.002},
+  "environment": {"season": 0.3},
+  "wind": {"direction_deg": 10.0, "strength": 6.0, "gust_amplitude": 4.0, "seed": 2},
+  "ground": {"size": 1024.0, "resolution": 129, "height": 25.0, "generator": "fbm",
+             "noise": {"octaves": 5, "frequency": 0.002, "seed": 3}, "snow_fraction": 1.0},
+  "vegetation": {"area_min": [-50.0, -50.0], "area_max": [50.0, 50.0], "trees_per_hectare": 40.0, "min_spacing": 6.0,
+                 "species": "broadleaf", "seed": 4},
+  "camera_paths": {
+    "approach": {"interpolation": "catmull_rom", "keys": [
+      {"time_s": 0.0, "position": [0.0, 12.0, 110.0], "height_mode": "above_ground", "pitch_deg": -5.0},
+      {"time_s": 6.0, "position": [-10.0, 6.0, 45.0], "height_mode": "above_ground", "yaw_deg": 10.0, "pitch_deg": -2.0},
+      {"time_s": 12.0, "position": [5.0, 2.5, 5.0], "height_mode": "above_ground", "yaw_deg": 30.0, "pitch_deg": 8.0}]}
+  }
+})json";
+
+Result<SuiteSpec> trees_suite() {
+  if (scene::find_module("vegetation") == nullptr) return unavailable("trees", "vegetation");
+  SuiteSpec s;
+  s.name = "trees";
+  s.module = "vegetation";
+  RunSpec& r = s.run;
+  r.factory = scene_text_factory(kTreesScene, "<bench trees suite>");
+  r.scene = "trees suite forest (100 m x 100 m, 40 broadleaf trees per hectare, fBm hills)";
+  r.suite = "trees";
+  r.description =
+      "Tree LOD as far as the vegetation module exposes it: the drawing distance (max_distance), the animation "
+      "level (the seed's table 5.5: static, trunk, branches, leaves) and the bark mesh detail (ring spacing), "
+      "against all trees drawn at the finest mesh with full animation. The image-based LOD1/LOD2 thresholds join "
+      "this suite when the module offers them.";
+  r.sweep_groups = {
+      {{"vegetation.max_distance", {"25", "50", "100"}}},
+      {{"vegetation.animation", {"static", "trunk", "branches"}}},
+      {{"vegetation.mesh.ring_spacing", {"0.5", "1", "2", "4"}}},
+  };
+  r.reference = {{"vegetation.max_distance", "2000"},
+                 {"vegetation.animation", "leaves"},
+                 {"vegetation.mesh.ring_spacing", "0.25"}};
+  r.reference_note = "every tree drawn (max_distance 2 km), full animation, bark rings every 0.25 m";
+  r.camera_path = "approach";
+  r.frames = 8;
+  r.size = {256, 144};
+  return s;
+}
+
+// Voxels: a generated world seen from above and then at eye level; the meshers must give the
+// same picture (any difference is a bug), at different quad counts and times.
+constexpr const char* kVoxelScene = R"json({
+  "sylva_scene": 1,
+  "name": "bench: voxel world",
+  "camera": {"position": [-50.0, 75.0, -50.0], "yaw_deg": -135.0, "pitch_deg": -30.0, "fov_deg": 60.0},
+  "sun": {"azimuth_deg": 140.0, "elevation_deg": 40.0, "fog_density": 0.004},
+  "voxel": {"center": [16.0, 16.0], "radius_chunks": 2, "threads": 2, "worldgen": {"seed": 3, "variants_per_species": 2}},
+  "camera_paths": {
+    "flyover": {"interpolation": "catmull_rom", "keys": [
+      {"time_s": 0.0, "position": [-50.0, 75.0, -50.0], "yaw_deg": -135.0, "pitch_deg": -30.0},
+      {"time_s": 5.0, "position": [0.0, 60.0, -30.0], "yaw_deg": -170.0, "pitch_deg": -25.0},
+      {"time_s": 10.0, "position": [40.0, 50.0, 10.0], "yaw_deg": 150.0, "pitch_deg": -15.0}]}
+  }
+})json";
+
+Result<SuiteSpec> voxel_suite() {
+  if (scene::find_module("voxel") == nullptr) return unavailable("voxel", "voxel");
+  SuiteSpec s;
+  s.name = "voxel";
+  s.module = "voxel";
+  RunSpec& r = s.run;
+  r.factory = scene_text_factory(kVoxelScene, "<bench voxel suite>");
+  r.scene = "voxel suite world (5 x 5 chunk columns, seed 3)";
+  r.suite = "voxel";
+  r.description =
+      "Voxel mesher choice (hidden-face culling, greedy, bitmask greedy): the same visible surface from fewer "
+      "quads, so the image error must stay at zero while the cost drops; and the view radius in chunks against the "
+      "full world.";
+  r.sweep_groups = {
+      {{"voxel.mesher", {"culled", "greedy", "bitmask"}}},
+      {{"voxel.radius_chunks", {"0", "1"}}},
+  };
+  r.reference = {{"voxel.mesher", "culled"}, {"voxel.radius_chunks", "2"}};
+  r.reference_note = "hidden-face culling only (one quad per visible block face) over the whole 5 x 5 chunk world";
+  r.camera_path = "flyover";
+  r.frames = 8;
+  r.size = {256, 144};
+  return s;
+}
+
 }  // namespace
 
 Result<SuiteSpec> make_scene_suite(const std::string& name) {
@@ -75,12 +166,8 @@ Result<SuiteSpec> make_scene_suite(const std::string& name) {
   if (name == "terrain") {
     if (scene::find_module("terrain") == nullptr) return unavailable("terrain", "terrain");
   }
-  if (name == "trees") {
-    if (scene::find_module("vegetation") == nullptr) return unavailable("trees", "vegetation");
-  }
-  if (name == "voxel") {
-    if (scene::find_module("voxel") == nullptr) return unavailable("voxel", "voxel");
-  }
+  if (name == "trees") return trees_suite();
+  if (name == "voxel") return voxel_suite();
   return make_error(ErrorCode::kUnsupported,
                     fmt::format("module not available: the {} module is in the scene registry but the bench has no "
                                 "curated sweep for it yet", name));

@@ -23,7 +23,7 @@ void collect_stats(const nlohmann::json& j, const std::string& prefix, const std
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string key = prefix.empty() ? it.key() : prefix + "." + it.key();
     const nlohmann::json& v = it.value();
-    if (it.key() == "lod_instances" && v.is_object()) {
+    if ((it.key() == "lod_instances" || it.key() == "instances_per_lod") && v.is_object()) {
       for (auto l = v.begin(); l != v.end(); ++l) {
         if (l.value().is_number_unsigned() || l.value().is_number_integer()) {
           out.counts.lod_instances[module + "." + l.key()] += l.value().get<std::uint64_t>();

@@ -8,7 +8,8 @@
 // the scene's pass totals (frame_stats.hpp). Module facts come from Scene::module_stats(): every
 // numeric entry becomes a metric "<module>.<key>" (nested keys joined with '.'), and an object
 // "lod_instances": {"<level>": n} becomes the LOD instance counts "<module>.<level>". The terrain
-// module's "max_projected_error_px" is the report's max geometric error.
+// module's "max_projected_error_px" is the report's max geometric error. ("instances_per_lod" is
+// accepted as a synonym of "lod_instances".)
 
 #include "bench_target.hpp"
 
