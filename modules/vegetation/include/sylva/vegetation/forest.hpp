@@ -1,0 +1,106 @@
+#pragma once
+// Forest: many LOD0 trees of several species as one render::Drawable (DESIGN.md §2b).
+//
+// Per frame, update() evaluates the animation clock and the shared wind (WindField::frame at the
+// camera), culls every instance's bounding sphere (rest bounds grown by cull_margin for the wind's
+// motion) against the camera frustum and max_distance, computes the surviving instances' GPU records
+// (camera-relative translation in double precision, wind at the tree rotated into object space)
+// and uploads them; draw(kOpaque) issues one instanced draw per species for the bark and one for
+// the leaves. Instances are the seed's per-instance data (§4.5): transform, scale, animation phase
+// (time offset), season offset and colour variation.
+//
+// Shadows: the render core has no shadow cascades yet (the Lighting issue adds them), so
+// draw(kShadow) draws nothing; draw_depth() is the depth-only pass with the very same deformation
+// that a shadow caster calls with its light's camera-relative view-projection. It culls against
+// that matrix's frustum, not the camera's, since trees outside the view still cast into it.
+//
+// The forest keeps each species' TreeModel and TreeMesh so the image-based levels of the next
+// issue can bake from them.
+
+#include <sylva/core/params.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/render/drawable.hpp>
+#include <sylva/vegetation/generator.hpp>
+#include <sylva/vegetation/tree_renderer.hpp>
+
+#include <memory>
+#include <vector>
+
+namespace sylva::vegetation {
+
+struct ForestSettings {
+  AnimationSettings animation;
+  ShadingSettings shading;
+  float season_speed = 0.0f;  // years per second added to shading.season (animated seasons)
+  AnimationLevel animation_level = AnimationLevel::kLeaves;
+  bool frustum_culling = true;
+  float cull_margin = 0.3f;       // bounding sphere growth for the wind's motion (relative radius)
+  float max_distance = 3000.0f;   // trees farther than this from the camera are not drawn [m]
+
+  template <class V>
+  void visit(V& v) {
+    v(animation, "animation");
+    v(shading, "shading");
+    v(season_speed, "season_speed", {.min = -10.0, .max = 10.0, .unit = "1/s", .help = "Seasons (years) per second of scene time"});
+    v(animation_level, "animation_level", {.help = "How much of the tree is animated (seed table 5.5)"});
+    v(frustum_culling, "frustum_culling", {.help = "Cull instances outside the view frustum"});
+    v(cull_margin, "cull_margin", {.min = 0.0, .max = 10.0, .help = "Bounding sphere growth for wind motion"});
+    v(max_distance, "max_distance", {.min = 0.0, .max = 1.0e6, .unit = "m", .help = "Farthest drawn tree"});
+  }
+};
+
+struct ForestStats {
+  struct Species {
+    std::size_t instances = 0;
+    std::size_t visible = 0;
+  };
+  std::vector<Species> species;
+  std::size_t instances = 0;
+  std::size_t visible = 0;
+  double update_cpu_ms = 0.0;  // culling + instance records of the last update()
+};
+
+class Forest : public render::Drawable {
+ public:
+  // Needs a current GL 4.5 context; compiles the tree programs.
+  static Result<Forest> create(const ForestSettings& settings = {});
+  Forest();
+  Forest(Forest&&) noexcept;
+  Forest& operator=(Forest&&) noexcept;
+  ~Forest() override;
+
+  // Adds a species; returns its index.
+  Result<int> add_species(const TreeModel& model, const TreeTextureSet& textures, const MeshSettings& mesh = {},
+                          const TreeAssetOptions& options = {});
+  // Generates the preset's model and textures (texture_size: leaf and bark side, a power of two).
+  Result<int> add_preset(SpeciesPreset preset, std::uint32_t seed = 1, int texture_size = 256);
+  // Replaces the instances of a species (kInvalidArgument for a bad index or a non-positive scale).
+  Status set_instances(int species, std::vector<TreeInstance> instances);
+
+  std::size_t species_count() const;
+  const TreeModel& model(int species) const;
+  const TreeMesh& mesh(int species) const;
+  const TreeAsset& asset(int species) const;
+  const std::vector<TreeInstance>& instances(int species) const;
+  // Indices (into instances(species)) of the instances the last update() kept, in draw order.
+  const std::vector<std::uint32_t>& visible(int species) const;
+
+  ForestSettings& settings();
+  const ForestSettings& settings() const;
+  // The season used in the last update (shading.season + season_speed * time).
+  float current_season() const;
+
+  void update(const render::FrameContext& frame) override;
+  void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+  // Depth-only pass for shadow casters: `relative_view_proj` is camera-relative like the
+  // camera's matrices (the instance records are relative to the camera of the last update()).
+  Status draw_depth(const glm::mat4& relative_view_proj, render::PassStats& stats);
+
+  const ForestStats& stats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sylva::vegetation
