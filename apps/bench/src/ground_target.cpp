@@ -177,7 +177,6 @@ class GroundTarget final : public BenchTarget {
       out.counts.draw_calls += pass.draw_calls;
       out.counts.instances += pass.instances;
     }
-    out.counts.lod_instances["ground.grid"] = 1;
     return {};
   }
 
