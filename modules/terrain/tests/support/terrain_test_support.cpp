@@ -220,3 +220,33 @@ std::vector<float> drawn_heights(const HeightField& field, const VertexFrame& fr
 }
 
 }  // namespace sylva::terrain::testing
+
+namespace sylva::terrain::testing {
+PolygonMesh grid_cage(int n, double size, const std::function<float(double, double)>& h) {
+  PolygonMesh m;
+  for (int j = 0; j <= n; ++j) {
+    for (int i = 0; i <= n; ++i) {
+      const double x = size * i / n, z = size * j / n;
+      m.positions.emplace_back(static_cast<float>(x), h(x, z), static_cast<float>(z));
+    }
+  }
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t a = static_cast<std::uint32_t>(j * (n + 1) + i);
+      // Counter-clockwise seen from above (normal +y).
+      m.face_sizes.push_back(4);
+      m.face_indices.insert(m.face_indices.end(), {a, a + static_cast<std::uint32_t>(n + 1) , a + static_cast<std::uint32_t>(n + 2), a + 1});
+    }
+  }
+  return m;
+}
+
+PolygonMesh overhang_cage(int n, double size, float lean) {
+  PolygonMesh m = grid_cage(n, size, [&](double x, double z) {
+    const double r = std::hypot(x - 0.5 * size, z - 0.5 * size) / size;
+    return static_cast<float>(0.6 * size * std::exp(-12.0 * r * r) + 0.03 * size * std::sin(x * 0.3) * std::cos(z * 0.2));
+  });
+  for (glm::vec3& p : m.positions) p.x += lean * p.y * p.y / static_cast<float>(size);
+  return m;
+}
+}  // namespace sylva::terrain::testing

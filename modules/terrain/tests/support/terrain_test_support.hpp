@@ -65,3 +65,13 @@ ProjectedError projected_error(const HeightField& field, const VertexFrame& fram
 std::vector<float> drawn_heights(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh);
 
 }  // namespace sylva::terrain::testing
+
+#include <sylva/terrain/mesh.hpp>
+
+namespace sylva::terrain::testing {
+// An n x n quad grid over [0, size]^2 with heights h(x, z), as a polygon (quad) mesh.
+PolygonMesh grid_cage(int n, double size, const std::function<float(double, double)>& h);
+// A terrain with overhangs: a grid whose high parts lean sideways (x += lean * y), so several
+// surface points share one ground position.
+PolygonMesh overhang_cage(int n, double size, float lean);
+}  // namespace sylva::terrain::testing

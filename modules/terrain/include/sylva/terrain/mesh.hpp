@@ -1,0 +1,64 @@
+#pragma once
+// Triangle and polygon meshes for the general-model terrain (seed 002 §4), the OBJ loader and
+// the topology checks every reduction result must pass (no holes, no degenerate or flipped
+// triangles, manifold edges). Positions in metres, y up.
+
+#include <sylva/core/result.hpp>
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace sylva::terrain {
+
+struct TriangleMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> indices;  // three per triangle
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// Faces of any size (a subdivision control cage keeps its quads).
+struct PolygonMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<std::uint32_t> face_sizes;    // vertices per face, >= 3
+  std::vector<std::uint32_t> face_indices;  // concatenated
+  std::size_t face_count() const { return face_sizes.size(); }
+  bool all_triangles() const;
+};
+
+// Parses Wavefront OBJ text: `v x y z [w]` and `f a b c ...` with a, a/t, a/t/n or a//n
+// (1-based or negative relative indices); comments, vt, vn, o, g, s, usemtl and mtllib are
+// ignored; other statements are skipped with a warning naming the line. Errors (kParse) name
+// `source:line` and say what is wrong: a bad number, a face with fewer than 3 vertices, an
+// index of 0 or outside the vertices, a non-finite coordinate, no faces at all.
+Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source = "<obj>");
+Result<PolygonMesh> load_obj(const std::filesystem::path& path);
+// Writes OBJ text (vertices and faces) through an atomic file write.
+Status save_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
+
+// Fan triangulation of every face (faces of a cage are planar-ish quads or triangles).
+TriangleMesh triangulate(const PolygonMesh& mesh);
+
+struct MeshCheck {
+  std::size_t degenerate = 0;      // repeated index or |e1 x e2|^2 <= 1e-12 |e1|^2 |e2|^2
+  std::size_t duplicate = 0;       // two triangles with the same three vertices
+  std::size_t non_manifold = 0;    // edges used by more than two triangles
+  std::size_t boundary_edges = 0;  // edges used by one triangle
+  bool ok() const { return degenerate == 0 && duplicate == 0 && non_manifold == 0; }
+};
+MeshCheck check_mesh(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& indices);
+
+// Undirected boundary edges (used by exactly one triangle) as (min, max) vertex pairs, sorted.
+std::vector<std::pair<std::uint32_t, std::uint32_t>> boundary_edges(const std::vector<std::uint32_t>& indices);
+
+// Triangles of `reduced` whose normal points against the original surface around their
+// vertices (area-weighted normal of the original triangles using those vertices). Both index the
+// same position array.
+std::size_t count_flipped(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& original,
+                          const std::vector<std::uint32_t>& reduced);
+
+}  // namespace sylva::terrain
