@@ -14,6 +14,7 @@ BlockPalette::BlockPalette() {
   types_.push_back(air);
   opaque_.push_back(0);
   render_.push_back(static_cast<std::uint8_t>(RenderClass::kAir));
+  sides_only_.push_back(0);
 }
 
 Result<BlockId> BlockPalette::add(BlockType type) {
@@ -39,6 +40,7 @@ Result<BlockId> BlockPalette::add(BlockType type) {
   if (type.render == RenderClass::kAlphaCut && id < first_alpha_cut_) first_alpha_cut_ = id;
   opaque_.push_back(type.render == RenderClass::kOpaque ? 1 : 0);
   render_.push_back(static_cast<std::uint8_t>(type.render));
+  sides_only_.push_back(type.sides_only ? 1 : 0);
   types_.push_back(std::move(type));
   return id;
 }
@@ -109,9 +111,11 @@ BlockPalette build_standard() {
   }
   BlockType tall_grass = same("tall_grass", R::kAlphaCut, T::kTallGrass);
   tall_grass.cull_same = false;
+  tall_grass.sides_only = true;
   add(tall_grass);
   BlockType flowers = same("flowers", R::kAlphaCut, T::kFlowers);
   flowers.cull_same = false;
+  flowers.sides_only = true;
   add(flowers);
   BlockType lantern = same("lantern", R::kOpaque, T::kLantern);
   lantern.emission = {1.0f, 0.75f, 0.4f};

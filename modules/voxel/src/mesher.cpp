@@ -57,8 +57,9 @@ Result<MesherKind> parse_mesher_kind(std::string_view name) {
                     fmt::format("voxel.mesher: '{}' is not one of culled, greedy, bitmask", name));
 }
 
-bool face_visible(BlockId self, BlockId neighbour, const BlockPalette& palette) {
+bool face_visible(BlockId self, BlockId neighbour, int face, const BlockPalette& palette) {
   if (self == kAir || palette.is_opaque(neighbour)) return false;
+  if (face_axis(face) == 1 && palette.sides_only(self)) return false;
   if (self == neighbour && palette.render(self) == RenderClass::kAlphaCut && palette.culls_same(self)) return false;
   return true;
 }

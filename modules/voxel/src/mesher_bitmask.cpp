@@ -131,6 +131,7 @@ class BitmaskMesher final : public Mesher {
           const BlockId self = ids[idx];
           const bool alpha = render[self] == alpha_class;
           if (alpha && ids[idx + front] == self && palette.culls_same(self)) continue;
+          if (kAxis == 1 && palette.sides_only(self)) continue;
           std::uint32_t aob = 0xffu;  // all four corners open
           if (occluded) {
             // The eight neighbours of 8 faces at once: an 8x8 bit transpose turns "mask k, face

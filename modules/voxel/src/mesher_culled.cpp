@@ -28,7 +28,9 @@ class CulledMesher final : public Mesher {
           if (self == kAir) continue;
           const bool alpha = render[self] == static_cast<std::uint8_t>(RenderClass::kAlphaCut);
           const bool cull_same = alpha && palette.culls_same(self);
+          const bool sides_only = palette.sides_only(self);
           for (int f = 0; f < 6; ++f) {
+            if (sides_only && face_axis(f) == 1) continue;
             const BlockId nb = ids[idx + ao.front_offset(f)];
             if (opaque[nb] || (cull_same && nb == self)) continue;
             const PackedQuad q{pack_word0(x, y, z, 1, 1), pack_word1(self, f, ao.face_bits(idx, f))};

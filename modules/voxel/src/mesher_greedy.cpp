@@ -40,7 +40,7 @@ class GreedyMesher final : public Mesher {
             const int idx = ao.index(p[0], p[1], p[2]);
             const BlockId self = ids[idx];
             std::uint32_t key = 0;
-            if (self != kAir) {
+            if (self != kAir && !(a == 1 && palette.sides_only(self))) {
               const BlockId nb = ids[idx + ao.front_offset(f)];
               const bool cull_same = render[self] == alpha_class && palette.culls_same(self);
               if (!opaque[nb] && !(cull_same && nb == self)) key = pack_word1(self, f, ao.face_bits(idx, f));

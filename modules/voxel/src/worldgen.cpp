@@ -49,7 +49,7 @@ struct SpeciesDef {
 
 // Growth ranges: trees 4-6 derivations; bushes the seed's three phases, 2-4 (§4.6.1).
 constexpr SpeciesDef kSpecies[kSpeciesCount] = {
-    {Species::kAcacia, "acacia.lsys", 0, "acacia_log", "acacia_leaves", 4, 6, 0.8f, 1.0f},
+    {Species::kAcacia, "acacia.lsys", 0, "acacia_log", "acacia_leaves", 5, 7, 1.0f, 1.2f},
     {Species::kBirch, "broadleaf.lsys", 0, "birch_log", "birch_leaves", 4, 5, 0.7f, 0.9f},
     {Species::kOak, "broadleaf.lsys", 0, "oak_log", "oak_leaves", 4, 5, 0.9f, 1.1f},
     {Species::kJungle, "jungle.lsys", 0, "jungle_log", "jungle_leaves", 4, 5, 1.2f, 1.5f},

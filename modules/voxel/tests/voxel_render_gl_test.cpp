@@ -271,6 +271,24 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x) drawn += std::abs(img.at(x, y, 2) - scene.clear_color.b) > 0.05f;
   EXPECT_GT(drawn, img.pixel_count() / 3);
+  // A close view of the first tree found, for a person to look at the L-system plants.
+  for (const auto& c : world.chunk_coords()) {
+    const auto* plants = world.plants(c);
+    if (!plants || plants->empty()) continue;
+    const PlantInstance* tree = nullptr;
+    for (const auto& p : *plants) {
+      if (p.species != Species::kForkedBush && p.species != Species::kBerryBush) tree = &p;
+    }
+    if (!tree) continue;
+    const glm::dvec3 base(static_cast<double>(tree->ground.x), static_cast<double>(tree->ground.y),
+                          static_cast<double>(tree->ground.z));
+    scene.lighting.fog_density = 0.0f;
+    scene.camera.set_position(base + glm::dvec3(-11.0, 12.0, -11.0));
+    scene.camera.look_at(base + glm::dvec3(0.0, 7.0, 0.0));
+    scene.render(**renderer);
+    testing::save_png(scene.color(), std::string("voxel_tree_") + std::string(to_string(tree->species)));
+    break;
+  }
 }
 
 }  // namespace

@@ -21,11 +21,12 @@ std::string to_string(Pattern p) {
 const BlockPalette& test_palette() {
   static const BlockPalette palette = [] {
     BlockPalette p;
-    auto add = [&p](const char* name, RenderClass r, bool cull_same, float emission) {
+    auto add = [&p](const char* name, RenderClass r, bool cull_same, float emission, bool sides_only = false) {
       BlockType t;
       t.name = name;
       t.render = r;
       t.cull_same = cull_same;
+      t.sides_only = sides_only;
       t.emission = glm::vec3(emission);
       (void)p.add(t);
     };
@@ -35,6 +36,7 @@ const BlockPalette& test_palette() {
     add("leaves", RenderClass::kAlphaCut, false, 0.0f);
     add("glass", RenderClass::kAlphaCut, true, 0.0f);
     add("lamp", RenderClass::kOpaque, true, 1.0f);
+    add("tuft", RenderClass::kAlphaCut, false, 0.0f, true);
     return p;
   }();
   return palette;
@@ -68,7 +70,7 @@ PaddedBlocks make_pattern(Pattern pattern, int n, std::uint64_t seed) {
           case Pattern::kFull: id = 1; break;
           case Pattern::kMixedAlpha: {
             const auto r = rng.next_below(10);
-            id = r < 3 ? kAir : r < 5 ? 4 : r < 7 ? 5 : r < 9 ? 1 : 6;
+            id = r < 3 ? kAir : r < 5 ? 4 : r < 6 ? 5 : r < 7 ? 7 : r < 9 ? 1 : 6;
             break;
           }
         }
@@ -128,7 +130,7 @@ FaceCoverage reference_coverage(const PaddedBlocks& blocks, const BlockPalette& 
         for (int f = 0; f < 6; ++f) {
           const BlockId self = blocks.at(x, y, z);
           const BlockId nb = blocks.at(x + d[f][0], y + d[f][1], z + d[f][2]);
-          if (!face_visible(self, nb, palette)) continue;
+          if (!face_visible(self, nb, f, palette)) continue;
           const auto k = c.index(x, y, z, f);
           c.count[k] = 1;
           c.block[k] = self;

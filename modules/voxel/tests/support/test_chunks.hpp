@@ -16,7 +16,7 @@ inline const Pattern kAllPatterns[] = {Pattern::kRandom, Pattern::kTerrain, Patt
                                        Pattern::kEmpty, Pattern::kFull, Pattern::kMixedAlpha};
 
 // A small palette: stone, dirt, grass (opaque), leaves (alpha-cut, keeps same faces),
-// glass (alpha-cut, culls same faces), lamp (opaque, emissive).
+// glass (alpha-cut, culls same faces), lamp (opaque, emissive), tuft (alpha-cut, sides only).
 const BlockPalette& test_palette();
 
 // Fills the whole padded volume (ring included, so border faces and AO are exercised).

@@ -44,6 +44,9 @@ struct BlockType {
   // Faces between two blocks of this same alpha-cut type are removed (like glass). Leaves keep
   // them (false) so a crown seen through its holes is not hollow.
   bool cull_same = true;
+  // Drawn without top and bottom faces: the seed's "cube without bases" geometry (§1.3) for grass
+  // tufts and flowers, whose cut-out texture looks wrong seen from above.
+  bool sides_only = false;
   // Linear RGB emitted light; non-zero makes the block a point-light source (seed §2.3.3.2) and
   // draws it unlit at this colour.
   glm::vec3 emission{0.0f};
@@ -80,6 +83,8 @@ class BlockPalette {
   bool is_opaque(BlockId id) const { return opaque_[id] != 0; }
   RenderClass render(BlockId id) const { return static_cast<RenderClass>(render_[id]); }
   bool culls_same(BlockId id) const { return types_[id].cull_same; }
+  const std::vector<std::uint8_t>& sides_only_table() const { return sides_only_; }
+  bool sides_only(BlockId id) const { return sides_only_[id] != 0; }
   // Smallest alpha-cut id (0xffff when there is none): ids below it are air or opaque, which lets
   // the bitmask mesher classify whole rows with SIMD compares.
   BlockId first_alpha_cut() const { return first_alpha_cut_; }
@@ -88,6 +93,7 @@ class BlockPalette {
   std::vector<BlockType> types_;
   std::vector<std::uint8_t> opaque_;
   std::vector<std::uint8_t> render_;
+  std::vector<std::uint8_t> sides_only_;
   BlockId first_alpha_cut_ = 0xffff;
 };
 

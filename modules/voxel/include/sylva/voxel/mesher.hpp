@@ -15,7 +15,8 @@
 // quads shade exactly like the unit faces they replace.
 //
 // Visibility rule (one place: face_visible()): a face of block A towards neighbour B is drawn
-// iff A is not air, B is not opaque, and not (A is alpha-cut with cull_same and B == A).
+// iff A is not air, B is not opaque, not (A is alpha-cut with cull_same and B == A), and not
+// (A is sides_only and the face points along y).
 // Ambient occlusion (per vertex, 0 = darkest .. 3 = open; Lysenko 2012): for a vertex with two
 // side neighbours s1, s2 and a corner neighbour c in the layer in front of the face,
 // ao = (s1 && s2) ? 0 : 3 - (s1 + s2 + c); only opaque blocks occlude.
@@ -109,7 +110,7 @@ struct MesherOptions {
 std::unique_ptr<Mesher> make_mesher(MesherKind kind, const MesherOptions& options = {});
 
 // The shared definitions all meshers implement (and the tests check against).
-bool face_visible(BlockId self, BlockId neighbour, const BlockPalette& palette);
+bool face_visible(BlockId self, BlockId neighbour, int face, const BlockPalette& palette);
 // AO of the four corners of unit face `face` of block (x, y, z), in PackedQuad corner order.
 void face_ao(const PaddedBlocks& blocks, const BlockPalette& palette, int x, int y, int z, int face,
              std::uint8_t out[4]);
