@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <bit>
@@ -312,13 +313,25 @@ Status write_region_file(const std::filesystem::path& path, const RegionCoord& r
   return ok_status();
 }
 
-RegionStore::RegionStore(std::filesystem::path folder, const BlockPalette& palette)
-    : folder_(std::move(folder)), palette_(&palette) {}
+RegionStore::RegionStore(std::filesystem::path folder, const BlockPalette& palette, std::size_t cache_regions)
+    : folder_(std::move(folder)), palette_(&palette), cache_limit_(std::max<std::size_t>(1, cache_regions)) {}
 
 const RegionStore::CacheEntry& RegionStore::region(const RegionCoord& r) {
   auto it = cache_.find(r);
-  if (it != cache_.end()) return it->second;
+  if (it != cache_.end()) {
+    it->second.last_use = ++use_clock_;
+    return it->second;
+  }
+  // Evict the least recently used region before adding one.
+  while (cache_.size() >= cache_limit_) {
+    auto oldest = cache_.begin();
+    for (auto e = cache_.begin(); e != cache_.end(); ++e) {
+      if (e->second.last_use < oldest->second.last_use) oldest = e;
+    }
+    cache_.erase(oldest);
+  }
   CacheEntry entry;
+  entry.last_use = ++use_clock_;
   const auto path = path_of(r);
   std::error_code ec;
   if (std::filesystem::exists(path, ec)) {

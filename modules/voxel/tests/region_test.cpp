@@ -143,6 +143,25 @@ TEST(Region, CorruptHeaderTruncationAndGarbageAreReported) {
   fs::remove_all(dir);
 }
 
+TEST(Region, CacheHoldsAtMostItsLimit) {
+  const auto dir = temp_dir("cache");
+  const auto& palette = testing::test_palette();
+  Chunk a = pattern_chunk(1);
+  RegionStore store(dir, palette, 3);
+  for (int r = 0; r < 10; ++r) {
+    const ChunkCoord c{r * kRegionSize, 0, 0};
+    const std::vector<std::pair<ChunkCoord, const Chunk*>> list = {{c, &a}};
+    ASSERT_TRUE(store.save(list).ok());
+  }
+  for (int r = 0; r < 10; ++r) {
+    auto loaded = store.load({r * kRegionSize, 0, 0});
+    ASSERT_TRUE(loaded.ok() && loaded->has_value());
+    EXPECT_TRUE(same_blocks(**loaded, a));
+    EXPECT_LE(store.cached_regions(), 3u);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(Region, FailedWriteKeepsTheOldFile) {
   const auto dir = temp_dir("atomic");
   const auto& palette = testing::test_palette();

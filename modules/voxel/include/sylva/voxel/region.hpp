@@ -69,10 +69,11 @@ Result<RegionContents> read_region_file(const std::filesystem::path& path, const
 Status write_region_file(const std::filesystem::path& path, const RegionCoord& r, const BlockPalette& palette,
                          std::span<const std::pair<ChunkCoord, const Chunk*>> chunks);
 
-// A folder of region files with a cache of decoded regions.
+// A folder of region files with a small LRU cache of decoded regions (a streamed world visits
+// regions one after another; the cache never holds more than `cache_regions` of them).
 class RegionStore {
  public:
-  RegionStore(std::filesystem::path folder, const BlockPalette& palette);
+  RegionStore(std::filesystem::path folder, const BlockPalette& palette, std::size_t cache_regions = 8);
 
   // nullopt when the chunk was never saved; kCorrupt/kNotFound when its region or payload is
   // damaged (the message names the file and chunk; the caller regenerates the chunk).
@@ -87,17 +88,21 @@ class RegionStore {
 
   // Forgets cached regions (after files changed on disk behind the store's back).
   void clear_cache() { cache_.clear(); }
+  std::size_t cached_regions() const { return cache_.size(); }
 
  private:
   struct CacheEntry {
     std::shared_ptr<RegionContents> contents;  // null when the file does not exist
     std::optional<Error> error;                // whole-file failure
+    std::uint64_t last_use = 0;
   };
   const CacheEntry& region(const RegionCoord& r);
 
   std::filesystem::path folder_;
   const BlockPalette* palette_;
   std::map<RegionCoord, CacheEntry> cache_;
+  std::size_t cache_limit_ = 8;
+  std::uint64_t use_clock_ = 0;
 };
 
 }  // namespace sylva::voxel
