@@ -2,11 +2,19 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
+
 namespace sylva::bench {
 
 #ifdef SYLVA_BENCH_WITH_SCENE
 // with_scene/scene_suites.cpp: the suites as scene files driven through modules/scene.
 Result<SuiteSpec> make_scene_suite(const std::string& name);
+#endif
+#ifdef SYLVA_BENCH_WITH_TERRAIN
+// with_terrain/terrain_suite.cpp: the terrain module's LOD pipeline on the bench's own target
+// until the terrain renderer is part of modules/scene.
+Result<SuiteSpec> make_terrain_suite();
 #endif
 
 std::vector<std::string> suite_names() { return {"terrain", "grass", "trees", "voxel"}; }
@@ -15,6 +23,14 @@ Result<SuiteSpec> make_suite(const std::string& name) {
   const std::vector<std::string> names = suite_names();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
     return make_error(ErrorCode::kNotFound, fmt::format("unknown suite \"{}\"; suites are terrain, grass, trees, voxel", name));
+  }
+  if (name == "terrain") {
+#ifdef SYLVA_BENCH_WITH_TERRAIN
+    return make_terrain_suite();
+#else
+    return make_error(ErrorCode::kUnsupported, "module not available: the terrain suite needs the terrain module, "
+                                               "which is not part of this build (SYLVA_WITH_TERRAIN=OFF)");
+#endif
   }
 #ifdef SYLVA_BENCH_WITH_SCENE
   return make_scene_suite(name);

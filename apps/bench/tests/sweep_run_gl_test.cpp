@@ -151,7 +151,7 @@ TEST(BenchSweepRun, SuiteNeverPassesSilently) {
   // Either the suite's module is available and the report is written, or the run says
   // "module not available" and exits with 3.
   const fs::path out = test_dir("suite");
-  const RunResult r = run_bench("--suite voxel --frames 2 --size 64x36 --out '" + (out / "o").string() + "'",
+  const RunResult r = run_bench("--suite voxel --frames 1 --warmup 0 --size 32x18 --out '" + (out / "o").string() + "'",
                                 out / "log.txt");
   if (r.exit_code == 3) {
     EXPECT_NE(r.output.find("module not available"), std::string::npos) << r.output;

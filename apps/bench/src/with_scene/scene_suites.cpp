@@ -163,9 +163,6 @@ Result<SuiteSpec> voxel_suite() {
 
 Result<SuiteSpec> make_scene_suite(const std::string& name) {
   if (name == "grass") return grass_suite();
-  if (name == "terrain") {
-    if (scene::find_module("terrain") == nullptr) return unavailable("terrain", "terrain");
-  }
   if (name == "trees") return trees_suite();
   if (name == "voxel") return voxel_suite();
   return make_error(ErrorCode::kUnsupported,
