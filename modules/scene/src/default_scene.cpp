@@ -31,6 +31,11 @@ std::string default_scene_text() {
   if (find_module("grass")) {
     j["grass"] = {{"area_min", {-30.0, -40.0}}, {"area_max", {30.0, 40.0}}, {"field", {{"density", 100.0}}}};
   }
+  if (find_module("vegetation")) {
+    // Broadleaf trees scattered over the meadow and up the slope ahead.
+    j["vegetation"] = {{"area_min", {-70.0, -110.0}}, {"area_max", {70.0, -2.0}}, {"trees_per_hectare", 22.0},
+                       {"min_spacing", 7.0}, {"species", "broadleaf"}};
+  }
   j["bookmarks"] = {{"overview", {{"position", {-160.0, 90.0, 160.0}}, {"yaw_deg", -45.0}, {"pitch_deg", -20.0}}}};
   j["camera_paths"] = {
       {"walk",

@@ -284,3 +284,57 @@ TEST_F(SceneGl, SavedMapsLoadBackBitExactly) {
   const std::string rel = (*loaded)->document().module("ground")->maps.at("height");
   EXPECT_TRUE(fs::exists(other / rel)) << rel;
 }
+
+// Invariant: trees stand on the ground; a density or ground edit re-places only the cells it
+// touches.
+TEST_F(SceneGl, ForestStandsOnTheGroundAndEditsStayLocal) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  auto scene = make_scene(R"({"ground": {"resolution": 65, "size": 256, "height": 20, "generator": "fbm",
+                                         "noise": {"frequency": 0.01}},
+                              "vegetation": {"area_min": [-60, -60], "area_max": [60, 60], "trees_per_hectare": 25,
+                                             "leaf_texture_size": 32}})");
+  ASSERT_TRUE(scene);
+  ModuleInstance* forest = scene->module("vegetation");
+  ASSERT_NE(forest, nullptr);
+  const std::vector<glm::dvec3> before = forest->placed_positions(10000);
+  ASSERT_GT(before.size(), 20u);
+  for (const glm::dvec3& t : before) EXPECT_NEAR(t.y, scene->ground_height(t.x, t.z), 1e-4);
+  // Erase the density around (30, 30): trees there vanish, the others stay bit-identical.
+  SceneMap* density = scene->map("vegetation.density");
+  ASSERT_NE(density, nullptr);
+  const glm::dvec2 c = density->grid.texel({30.0, 30.0});
+  const TexelRect r{static_cast<int>(c.x) - 10, static_cast<int>(c.y) - 10, static_cast<int>(c.x) + 10, static_cast<int>(c.y) + 10};
+  for (int j = r.y0; j < r.y1; ++j)
+    for (int i = r.x0; i < r.x1; ++i) density->grid.at(i, j) = 0.0f;
+  ASSERT_TRUE(scene->map_changed("vegetation.density", r).ok());
+  const std::vector<glm::dvec3> after = forest->placed_positions(10000);
+  EXPECT_LT(after.size(), before.size());
+  const WorldArea area = changed_world_area(density->grid, r);
+  std::size_t kept_outside = 0, outside_before = 0;
+  for (const glm::dvec3& t : before) {
+    const bool far = t.x < area.min.x - 20 || t.x > area.max.x + 20 || t.z < area.min.y - 20 || t.z > area.max.y + 20;
+    if (!far) continue;
+    ++outside_before;
+    kept_outside += std::count(after.begin(), after.end(), t) == 1 ? 1 : 0;
+  }
+  EXPECT_EQ(kept_outside, outside_before) << "trees far from the edit are untouched";
+  EXPECT_GT(scene->module_stats()["vegetation"]["cells_replaced"].get<int>(), 0);
+  Target t = make_target(64, 36);
+  run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 1);
+}
+
+TEST_F(SceneGl, VoxelWorldRenders) {
+  if (!find_module("voxel")) GTEST_SKIP() << "voxel is built out";
+  auto scene = make_scene(R"({"voxel": {"radius_chunks": 1, "worldgen": {"seed": 3, "variants_per_species": 2}},
+                              "camera": {"position": [-40, 60, -40], "yaw_deg": -135, "pitch_deg": -35}})");
+  ASSERT_TRUE(scene);
+  EXPECT_EQ(scene->ground(), nullptr) << "a voxel world is its own ground";
+  Target t = make_target(96, 54);
+  run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 2);
+  auto frame = t.profiler.flush();
+  ASSERT_TRUE(frame.has_value());
+  const SceneFrameStats stats = split_frame_stats(*frame);
+  ASSERT_TRUE(stats.modules.count("voxel"));
+  EXPECT_GT(stats.modules.at("voxel").at("opaque").triangles, 1000u);
+  EXPECT_GT(scene->module_stats()["voxel"]["chunks_drawn"].get<int>(), 0);
+}
