@@ -12,13 +12,17 @@ float skirt_depth(const ChunkTree& tree, const SelectedChunk& s, Edge e) {
   return own + s.neighbour_error[static_cast<std::size_t>(e)] + floor;
 }
 
-FrameMesh assemble_frame(const ChunkTree& tree, const Selection& selection, const VertexFrame& frame,
-                         CrackFix crack_fix, SeamCache& seams) {
-  SYLVA_ASSERT(tree.has_meshes(), "assemble_frame needs the chunk meshes");
+FrameMesh assemble_frame(const ChunkTree& tree, const MeshSource& meshes, const Selection& selection,
+                         const VertexFrame& frame, CrackFix crack_fix, SeamCache& seams) {
   FrameMesh out;
   std::vector<glm::vec3> pos;
   for (const SelectedChunk& s : selection.chunks) {
-    const Chunk& c = tree.chunk(s.index);
+    const ChunkMesh* mp = meshes(s.index);
+    SYLVA_ASSERT(mp != nullptr, "drawn chunk {} has no mesh loaded", s.index);
+    struct View {
+      const ChunkMesh& mesh;
+      std::uint32_t vertex_count;
+    } c{*mp, static_cast<std::uint32_t>(mp->vertices.size())};
     pos.resize(c.mesh.vertices.size());
     for (std::size_t i = 0; i < pos.size(); ++i) pos[i] = vertex_position(frame, c.mesh.vertices[i]);
     for (std::size_t i = 0; i < c.mesh.indices.size(); i += 3) {
@@ -31,7 +35,7 @@ FrameMesh assemble_frame(const ChunkTree& tree, const Selection& selection, cons
       if (crack_fix == CrackFix::kSeams) {
         const std::uint32_t coarse = s.coarser_neighbour[static_cast<std::size_t>(e)];
         if (coarse == kNoChunk) continue;
-        const Seam& seam = seams.get(tree, s.index, edge, coarse);
+        const Seam& seam = seams.get(tree, meshes, s.index, edge, coarse);
         for (std::size_t i = 0; i < seam.indices.size(); i += 3) {
           for (int k = 0; k < 3; ++k) {
             const std::uint32_t vi = seam.indices[i + static_cast<std::size_t>(k)];

@@ -10,11 +10,20 @@ namespace {
 std::uint32_t along(const ChunkVertex& v, Edge e) { return (e == kWest || e == kEast) ? v.gz : v.gx; }
 }  // namespace
 
-Seam build_seam(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse) {
-  const Chunk& a = tree.chunk(fine);
-  const Chunk& c = tree.chunk(coarse);
-  SYLVA_ASSERT(tree.has_meshes(), "seams need the chunk meshes (keep_meshes)");
-  SYLVA_ASSERT(c.key.level < a.key.level, "seam from level {} to level {}", a.key.level, c.key.level);
+MeshSource tree_meshes(const ChunkTree& tree) {
+  SYLVA_ASSERT(tree.has_meshes(), "the chunk tree was built without its meshes (keep_meshes = false)");
+  return [&tree](std::uint32_t i) -> const ChunkMesh* { return &tree.chunk(i).mesh; };
+}
+
+Seam build_seam(const ChunkTree& tree, const MeshSource& meshes, std::uint32_t fine, Edge e, std::uint32_t coarse) {
+  SYLVA_ASSERT(tree.chunk(coarse).key.level < tree.chunk(fine).key.level, "seam from level {} to level {}",
+               tree.chunk(fine).key.level, tree.chunk(coarse).key.level);
+  const ChunkMesh* am = meshes(fine);
+  const ChunkMesh* cm = meshes(coarse);
+  SYLVA_ASSERT(am != nullptr && cm != nullptr, "seam between chunks {} and {} whose meshes are not loaded", fine, coarse);
+  struct View {
+    const ChunkMesh& mesh;
+  } a{*am}, c{*cm};
   const Edge ce = static_cast<Edge>((e + 2) % 4);
   const std::vector<std::uint32_t>& fe = a.mesh.edges[e];
   const std::vector<std::uint32_t>& cev = c.mesh.edges[ce];
@@ -31,7 +40,7 @@ Seam build_seam(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t
   for (std::size_t i = 0; i < cev.size(); ++i) coarse_t[i] = along(c.mesh.vertices[cev[i]], ce);
 
   Seam seam;
-  const std::uint32_t base = a.vertex_count;
+  const std::uint32_t base = static_cast<std::uint32_t>(a.mesh.vertices.size());
   std::int64_t extra_t = -1;  // coordinate of the extra anchor, if any
   // Index (into a's vertices or the extra list) of the coarse vertex at coordinate t.
   auto anchor_index = [&](std::uint32_t t, std::size_t coarse_pos) -> std::uint32_t {
@@ -69,7 +78,8 @@ Seam build_seam(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t
   return seam;
 }
 
-const Seam& SeamCache::get(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse) {
+const Seam& SeamCache::get(const ChunkTree& tree, const MeshSource& meshes, std::uint32_t fine, Edge e,
+                           std::uint32_t coarse) {
   const std::uint64_t key = (static_cast<std::uint64_t>(fine) << 8) | (static_cast<std::uint64_t>(e) << 6) |
                             static_cast<std::uint64_t>(tree.chunk(coarse).key.level);
   auto it = map_.find(key);
@@ -85,7 +95,7 @@ const Seam& SeamCache::get(const ChunkTree& tree, std::uint32_t fine, Edge e, st
   }
   lru_.push_front(key);
   Entry& entry = map_[key];
-  entry.seam = build_seam(tree, fine, e, coarse);
+  entry.seam = build_seam(tree, meshes, fine, e, coarse);
   entry.lru = lru_.begin();
   return entry.seam;
 }

@@ -10,8 +10,9 @@ namespace sylva::terrain {
 
 LodSelector::LodSelector(const ChunkTree& tree) : tree_(&tree), state_(tree.chunk_count(), kUnseen) {}
 
-bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSettings& settings) const {
+bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSettings& settings, double* rho) const {
   const Chunk& c = tree_->chunk(index);
+  *rho = 0.0;
   if (c.key.level + 1 >= tree_->levels()) return true;  // leaves are the finest there is
   glm::dvec3 lo, hi;
   tree_->chunk_bounds(index, lo, hi);
@@ -19,6 +20,7 @@ bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSett
     // Seed 002 §2.3: chunk_error = vertex spacing of the chunk, d = distance to its centre.
     const double chunk_error = static_cast<double>(tree_->step(c.key.level)) * tree_->spacing();
     const double d = glm::length(view.position - 0.5 * (lo + hi));
+    *rho = chunk_error * static_cast<double>(settings.lod_distance) / std::max(d, 1e-9);
     return chunk_error * static_cast<double>(settings.lod_distance) <= d;
   }
   if (c.error_bound <= 0.0f) return true;
@@ -27,10 +29,11 @@ bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSett
   // vertical error segment is at least D - delta away: rho = K * delta / (D - delta) <= tau,
   // written without dividing by a distance that may be 0 or negative.
   const double d = view.distance_to_box(lo, hi) - delta;
+  *rho = d > 0.0 ? view.k * delta / d : 1e30;
   return d > 0.0 && view.k * delta <= static_cast<double>(settings.max_pixel_error) * d;
 }
 
-const Selection& LodSelector::select(const LodView& view, const LodSettings& settings) {
+const Selection& LodSelector::select(const LodView& view, const LodSettings& settings, const Residency* residency) {
   Stopwatch watch;
   for (std::uint32_t i : touched_) state_[i] = kUnseen;
   touched_.clear();
@@ -43,7 +46,13 @@ const Selection& LodSelector::select(const LodView& view, const LodSettings& set
                         (!sel.morph || settings.morph_fraction <= tree_->settings().max_morph_fraction + 1e-6f);
 
   stack_.clear();
-  if (tree_->chunk_count() > 0 && tree_->chunk(0).present) stack_.push_back(0);
+  if (tree_->chunk_count() > 0 && tree_->chunk(0).present) {
+    if (residency == nullptr || residency->resident(0)) {
+      stack_.push_back(0);
+    } else {
+      residency->request(0, 1e30);
+    }
+  }
   while (!stack_.empty()) {
     const std::uint32_t i = stack_.back();
     stack_.pop_back();
@@ -58,7 +67,23 @@ const Selection& LodSelector::select(const LodView& view, const LodSettings& set
         continue;
       }
     }
-    if (accept(i, view, settings)) {
+    double rho = 0.0;
+    bool draw = accept(i, view, settings, &rho);
+    const auto children = draw ? std::array<std::uint32_t, 4>{} : tree_->child_indices(i);
+    if (!draw && residency != nullptr) {
+      // Refine only into resident children; otherwise draw this chunk and ask for them.
+      bool all = true;
+      for (std::uint32_t ci : children) {
+        if (!tree_->chunk(ci).present || residency->resident(ci)) continue;
+        all = false;
+        residency->request(ci, rho);
+      }
+      if (!all) {
+        draw = true;
+        ++sel.stats.substituted;
+      }
+    }
+    if (draw) {
       state_[i] = kDrawn;
       SelectedChunk s;
       s.index = i;
@@ -66,7 +91,6 @@ const Selection& LodSelector::select(const LodView& view, const LodSettings& set
       continue;
     }
     state_[i] = kRefined;
-    const auto children = tree_->child_indices(i);
     for (int k = 3; k >= 0; --k) {
       const std::uint32_t ci = children[static_cast<std::size_t>(k)];
       if (tree_->chunk(ci).present) stack_.push_back(ci);

@@ -148,6 +148,7 @@ class ChunkTree {
 
  private:
   friend class ChunkTreeBuilder;
+  friend class ChunkFile;
   ChunkTreeSettings settings_;
   int levels_ = 0;
   std::uint32_t n_ = 0;

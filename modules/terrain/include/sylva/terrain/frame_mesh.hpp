@@ -28,8 +28,13 @@ struct FrameMesh {
 // neighbours across that edge (SelectedChunk::neighbour_error), so the skirt always spans the gap.
 float skirt_depth(const ChunkTree& tree, const SelectedChunk& s, Edge e);
 
-// Requires the tree's meshes. crack_fix decides between seams and skirts.
-FrameMesh assemble_frame(const ChunkTree& tree, const Selection& selection, const VertexFrame& frame,
-                         CrackFix crack_fix, SeamCache& seams);
+// crack_fix decides between seams and skirts. Every drawn chunk's mesh must be available from
+// `meshes` (the tree's own when omitted).
+FrameMesh assemble_frame(const ChunkTree& tree, const MeshSource& meshes, const Selection& selection,
+                         const VertexFrame& frame, CrackFix crack_fix, SeamCache& seams);
+inline FrameMesh assemble_frame(const ChunkTree& tree, const Selection& selection, const VertexFrame& frame,
+                                CrackFix crack_fix, SeamCache& seams) {
+  return assemble_frame(tree, tree_meshes(tree), selection, frame, crack_fix, seams);
+}
 
 }  // namespace sylva::terrain

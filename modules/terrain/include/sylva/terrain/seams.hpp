@@ -21,6 +21,7 @@
 #include <sylva/terrain/selection.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <unordered_map>
 #include <vector>
@@ -36,15 +37,27 @@ struct Seam {
   std::vector<ChunkVertex> extra_vertices;
 };
 
+// Where chunk meshes come from: the tree itself (built with keep_meshes) or a ChunkStreamer.
+// Returns nullptr when the mesh is not available.
+using MeshSource = std::function<const ChunkMesh*(std::uint32_t chunk)>;
+// The tree's own meshes (asserts they were kept).
+MeshSource tree_meshes(const ChunkTree& tree);
+
 // Builds the seam of chunk `fine` along edge `e` towards the coarser chunk `coarse` (which must be
-// the coarser chunk across that edge). Requires the tree's meshes.
-Seam build_seam(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse);
+// the coarser chunk across that edge). Both meshes must be available from `meshes`.
+Seam build_seam(const ChunkTree& tree, const MeshSource& meshes, std::uint32_t fine, Edge e, std::uint32_t coarse);
+inline Seam build_seam(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse) {
+  return build_seam(tree, tree_meshes(tree), fine, e, coarse);
+}
 
 // Seams keyed by (fine chunk, edge, coarse level), least recently used dropped first.
 class SeamCache {
  public:
   explicit SeamCache(std::size_t capacity = 4096) : capacity_(capacity) {}
-  const Seam& get(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse);
+  const Seam& get(const ChunkTree& tree, const MeshSource& meshes, std::uint32_t fine, Edge e, std::uint32_t coarse);
+  const Seam& get(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse) {
+    return get(tree, tree_meshes(tree), fine, e, coarse);
+  }
   void clear();
   std::size_t size() const { return map_.size(); }
   std::uint64_t builds() const { return builds_; }

@@ -19,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace sylva::terrain {
@@ -39,6 +40,7 @@ struct SelectionStats {
   double cpu_ms = 0.0;              // traversal + neighbour pass
   std::uint32_t chunks = 0;         // drawn chunks
   std::uint32_t culled = 0;         // chunks rejected by the frustum test
+  std::uint32_t substituted = 0;    // chunks drawn in place of children that were not resident
   std::uint32_t visited = 0;        // chunks examined
   std::uint64_t triangles = 0;      // body triangles of the drawn chunks (seams/skirts excluded)
   int max_level_difference = 0;     // largest LOD difference across a drawn edge
@@ -53,12 +55,21 @@ struct Selection {
   bool bound_certified = true;
 };
 
+// Streaming hooks (ChunkStreamer provides them). When a chunk should be refined but one of its
+// children is not resident, the chunk itself is drawn instead (a missing chunk draws its parent)
+// and the missing children are requested with the chunk's projected error as priority.
+struct Residency {
+  std::function<bool(std::uint32_t chunk)> resident;
+  std::function<void(std::uint32_t chunk, double priority)> request;
+};
+
 class LodSelector {
  public:
   explicit LodSelector(const ChunkTree& tree);
 
-  // The returned reference stays valid until the next call.
-  const Selection& select(const LodView& view, const LodSettings& settings);
+  // The returned reference stays valid until the next call. With `residency`, only resident
+  // chunks are drawn (the root must be resident for anything to be drawn).
+  const Selection& select(const LodView& view, const LodSettings& settings, const Residency* residency = nullptr);
 
   // The drawn chunk that contains root-grid cell (cx, cz) (cell = [cx, cx+1] x [cz, cz+1]) after
   // the last select(), or kNoChunk.
@@ -68,7 +79,9 @@ class LodSelector {
 
  private:
   enum State : std::uint8_t { kUnseen = 0, kDrawn = 1, kRefined = 2, kCulled = 3 };
-  bool accept(std::uint32_t index, const LodView& view, const LodSettings& settings) const;
+  // Projected error of a chunk (0 when it is detailed enough or a leaf), for acceptance and as
+  // the streaming priority.
+  bool accept(std::uint32_t index, const LodView& view, const LodSettings& settings, double* rho) const;
 
   const ChunkTree* tree_;
   std::vector<std::uint8_t> state_;

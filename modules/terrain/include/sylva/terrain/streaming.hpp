@@ -1,0 +1,108 @@
+#pragma once
+// Streams chunk meshes from a ChunkFile on a loader thread, by priority, within a memory budget.
+//
+// Per frame (main thread): update() integrates finished loads and evicts, then the selection runs
+// with residency() (a chunk whose children are not resident is drawn instead of them, and the
+// missing children are requested with their parent's projected error as priority), then the
+// frame is drawn with meshes(). Eviction only happens in update(), so nothing drawn in a frame is
+// evicted before it is drawn; the root is loaded when the streamer is created and never evicted.
+// The budget is never exceeded: a load that does not fit after evicting everything not used in
+// the current or previous frame is dropped and asked for again later. A chunk that fails to load
+// (corrupt data) is reported once and never requested again; its parent keeps being drawn.
+
+#include <sylva/core/params.hpp>
+#include <sylva/terrain/chunk_file.hpp>
+#include <sylva/terrain/seams.hpp>
+#include <sylva/terrain/selection.hpp>
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <vector>
+
+namespace sylva::terrain {
+
+struct StreamingSettings {
+  double memory_budget_mb = 256.0;  // resident chunk meshes [MiB]
+
+  template <class V>
+  void visit(V& v) {
+    v(memory_budget_mb, "memory_budget_mb", {.min = 0.01, .max = 1e6, .unit = "MiB",
+      .help = "Memory for resident chunk meshes", .log_scale = true});
+  }
+};
+
+struct StreamingStats {
+  std::size_t resident_chunks = 0;
+  std::size_t resident_bytes = 0;
+  std::size_t budget_bytes = 0;
+  std::size_t pending_requests = 0;
+  std::uint64_t loads = 0;       // meshes made resident
+  std::uint64_t evictions = 0;
+  std::uint64_t dropped = 0;     // loads that did not fit the budget
+  std::uint64_t failures = 0;    // chunks that could not be read
+  std::string last_error;
+};
+
+class ChunkStreamer {
+ public:
+  // Loads the root synchronously. Errors: the root cannot be read or does not fit the budget.
+  static Result<std::unique_ptr<ChunkStreamer>> create(std::shared_ptr<const ChunkFile> file,
+                                                       const StreamingSettings& settings);
+  ~ChunkStreamer();
+  ChunkStreamer(const ChunkStreamer&) = delete;
+  ChunkStreamer& operator=(const ChunkStreamer&) = delete;
+
+  const ChunkTree& tree() const { return file_->tree(); }
+  // Integrates finished loads and evicts; call once per frame before selecting.
+  void update();
+  Residency residency();
+  MeshSource meshes() const;
+  const ChunkMesh* mesh(std::uint32_t chunk) const;
+  bool resident(std::uint32_t chunk) const;
+
+  // Evicts every chunk except the root (for tests and memory pressure).
+  void evict_all();
+  // Blocks until no request is pending or loading, then integrates (tests, warm-up).
+  void wait_idle();
+  StreamingStats stats() const;
+
+ private:
+  ChunkStreamer(std::shared_ptr<const ChunkFile> file, const StreamingSettings& settings);
+  void loader();
+  static std::size_t bytes_of(const ChunkMesh& m);
+
+  struct Resident {
+    std::shared_ptr<const ChunkMesh> mesh;
+    std::size_t bytes = 0;
+    std::uint64_t last_used = 0;
+  };
+  struct Request {
+    double priority = 0.0;
+    std::uint64_t frame = 0;
+  };
+
+  std::shared_ptr<const ChunkFile> file_;
+  std::size_t budget_ = 0;
+  std::uint64_t frame_ = 1;
+  std::unordered_map<std::uint32_t, Resident> resident_;  // main thread only
+  std::vector<std::uint8_t> failed_;                      // main thread only
+  std::size_t resident_bytes_ = 0;
+  StreamingStats stats_;
+
+  mutable std::mutex mutex_;  // guards the fields below
+  std::condition_variable wake_;
+  std::condition_variable idle_;
+  std::unordered_map<std::uint32_t, Request> requests_;
+  std::vector<std::pair<std::uint32_t, Result<ChunkMesh>>> done_;
+  std::uint32_t loading_ = kNoChunk;
+  std::uint64_t current_frame_ = 1;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace sylva::terrain

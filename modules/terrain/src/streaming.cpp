@@ -1,0 +1,189 @@
+#include <sylva/terrain/streaming.hpp>
+
+#include <sylva/core/log.hpp>
+
+#include <algorithm>
+
+namespace sylva::terrain {
+
+std::size_t ChunkStreamer::bytes_of(const ChunkMesh& m) {
+  std::size_t b = sizeof(ChunkMesh) + m.vertices.size() * sizeof(ChunkVertex) + m.indices.size() * 4;
+  for (const auto& e : m.edges) b += e.size() * 4;
+  return b;
+}
+
+ChunkStreamer::ChunkStreamer(std::shared_ptr<const ChunkFile> file, const StreamingSettings& settings)
+    : file_(std::move(file)),
+      budget_(static_cast<std::size_t>(settings.memory_budget_mb * 1024.0 * 1024.0)),
+      failed_(file_->tree().chunk_count(), 0) {
+  stats_.budget_bytes = budget_;
+}
+
+Result<std::unique_ptr<ChunkStreamer>> ChunkStreamer::create(std::shared_ptr<const ChunkFile> file,
+                                                             const StreamingSettings& settings) {
+  SYLVA_TRY(validate_params(settings, "terrain.streaming"));
+  std::unique_ptr<ChunkStreamer> s(new ChunkStreamer(std::move(file), settings));
+  auto root = s->file_->read_chunk(0);
+  if (!root.ok()) return root.error();
+  const std::size_t bytes = bytes_of(*root);
+  if (bytes > s->budget_) {
+    return make_error(ErrorCode::kLimit, fmt::format("terrain.streaming.memory_budget_mb: {:.3f} MiB cannot hold "
+                                                     "even the root chunk ({:.3f} MiB)",
+                                                     settings.memory_budget_mb, bytes / 1048576.0));
+  }
+  s->resident_[0] = Resident{std::make_shared<const ChunkMesh>(std::move(root).value()), bytes, s->frame_};
+  s->resident_bytes_ = bytes;
+  s->stats_.loads = 1;
+  s->thread_ = std::thread([p = s.get()] { p->loader(); });
+  return s;
+}
+
+ChunkStreamer::~ChunkStreamer() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void ChunkStreamer::loader() {
+  for (;;) {
+    std::uint32_t chunk = kNoChunk;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [&] { return stop_ || !requests_.empty(); });
+      if (stop_) return;
+      // Highest priority among the requests of the last two frames; older ones are stale.
+      double best = -1.0;
+      for (auto it = requests_.begin(); it != requests_.end();) {
+        if (it->second.frame + 1 < current_frame_) {
+          it = requests_.erase(it);
+          continue;
+        }
+        if (it->second.priority > best) {
+          best = it->second.priority;
+          chunk = it->first;
+        }
+        ++it;
+      }
+      if (chunk == kNoChunk) {
+        idle_.notify_all();
+        continue;
+      }
+      requests_.erase(chunk);
+      loading_ = chunk;
+    }
+    Result<ChunkMesh> mesh = file_->read_chunk(chunk);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_.emplace_back(chunk, std::move(mesh));
+      loading_ = kNoChunk;
+      if (requests_.empty()) idle_.notify_all();
+    }
+  }
+}
+
+void ChunkStreamer::update() {
+  std::vector<std::pair<std::uint32_t, Result<ChunkMesh>>> done;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    done.swap(done_);
+    current_frame_ = ++frame_;
+  }
+  for (auto& [chunk, mesh] : done) {
+    if (!mesh.ok()) {
+      if (!failed_[chunk]) log_warn("terrain streaming: {}", mesh.error().message);
+      failed_[chunk] = 1;
+      ++stats_.failures;
+      stats_.last_error = mesh.error().message;
+      continue;
+    }
+    if (resident_.count(chunk)) continue;
+    const std::size_t bytes = bytes_of(*mesh);
+    if (resident_bytes_ + bytes > budget_) {
+      // Evict least recently used chunks not used in this or the previous frame (never the root).
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> candidates;
+      for (const auto& [id, r] : resident_)
+        if (id != 0 && r.last_used + 1 < frame_) candidates.emplace_back(r.last_used, id);
+      std::sort(candidates.begin(), candidates.end());
+      for (const auto& [used, id] : candidates) {
+        if (resident_bytes_ + bytes <= budget_) break;
+        resident_bytes_ -= resident_.at(id).bytes;
+        resident_.erase(id);
+        ++stats_.evictions;
+      }
+    }
+    if (resident_bytes_ + bytes > budget_) {
+      ++stats_.dropped;
+      continue;
+    }
+    resident_[chunk] = Resident{std::make_shared<const ChunkMesh>(std::move(mesh).value()), bytes, frame_};
+    resident_bytes_ += bytes;
+    ++stats_.loads;
+  }
+}
+
+Residency ChunkStreamer::residency() {
+  Residency r;
+  r.resident = [this](std::uint32_t chunk) {
+    auto it = resident_.find(chunk);
+    if (it == resident_.end()) return false;
+    it->second.last_used = frame_;
+    return true;
+  };
+  r.request = [this](std::uint32_t chunk, double priority) {
+    if (failed_[chunk] || resident_.count(chunk)) return;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      Request& q = requests_[chunk];
+      q.priority = std::max(q.frame == frame_ ? q.priority : 0.0, priority);
+      q.frame = frame_;
+    }
+    wake_.notify_one();
+  };
+  return r;
+}
+
+const ChunkMesh* ChunkStreamer::mesh(std::uint32_t chunk) const {
+  auto it = resident_.find(chunk);
+  return it == resident_.end() ? nullptr : it->second.mesh.get();
+}
+
+bool ChunkStreamer::resident(std::uint32_t chunk) const { return resident_.count(chunk) != 0; }
+
+MeshSource ChunkStreamer::meshes() const {
+  return [this](std::uint32_t chunk) { return mesh(chunk); };
+}
+
+void ChunkStreamer::evict_all() {
+  for (auto it = resident_.begin(); it != resident_.end();) {
+    if (it->first == 0) {
+      ++it;
+      continue;
+    }
+    resident_bytes_ -= it->second.bytes;
+    ++stats_.evictions;
+    it = resident_.erase(it);
+  }
+}
+
+void ChunkStreamer::wait_idle() {
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [&] { return requests_.empty() && loading_ == kNoChunk; });
+  }
+  // Integrate without advancing past the requests' frame more than once.
+  update();
+}
+
+StreamingStats ChunkStreamer::stats() const {
+  StreamingStats s = stats_;
+  s.resident_chunks = resident_.size();
+  s.resident_bytes = resident_bytes_;
+  std::lock_guard<std::mutex> lock(mutex_);
+  s.pending_requests = requests_.size();
+  return s;
+}
+
+}  // namespace sylva::terrain
