@@ -24,7 +24,11 @@ struct ShadowBlock {
 };
 static_assert(sizeof(ShadowBlock) == 4 * 64 + 7 * 16, "std140 layout of SylvaShadows");
 
+const ShadowCasterContext* g_active_cascade = nullptr;
+
 }  // namespace
+
+const ShadowCasterContext* active_shadow_cascade() { return g_active_cascade; }
 
 Result<ShadowMaps> ShadowMaps::create(const ShadowSettings& settings) {
   ShadowMaps maps;
@@ -118,7 +122,9 @@ Status ShadowMaps::render(const Camera& camera, const glm::vec3& toward_sun, con
     ctx.light_direction = cascades_.light_direction;
     ctx.texel_size = c.texel_size;
     ctx.stats = &out;
+    g_active_cascade = &ctx;
     for (ShadowCaster* caster : casters_) caster->draw_shadow(ctx);
+    g_active_cascade = nullptr;
   }
   glDisable(GL_DEPTH_CLAMP);
   glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);

@@ -148,6 +148,7 @@ class ShadowScene {
     EXPECT_TRUE(fb.ok());
     if (fb.ok()) target_ = std::move(*fb);
     caster_.emplace([this](const ShadowCasterContext& ctx) {
+      EXPECT_EQ(active_shadow_cascade(), &ctx);  // what Drawable::draw(kShadow) would read
       depth_.use();
       depth_.set("u_model", ctx.camera->relative_model(origin_));
       depth_.set("u_view_projection", ctx.relative_view_projection);
@@ -304,6 +305,7 @@ TEST_F(ShadowMapsGl, PlaneAndBoxMatchAnalyticShadow) {
   PassStats stats;
   ASSERT_TRUE(maps->render(cam, sun, nullptr, &stats).ok());
   EXPECT_EQ(stats.draw_calls, 3u);  // one per cascade
+  EXPECT_EQ(active_shadow_cascade(), nullptr);
   const Image img = scene.draw(*maps, cam);
   test::save_for_inspection(img, "shadow_plane_box");
   expect_matches_analytic(classify(img, cam, *maps, scene.box(), sun), "sun at 40 deg");

@@ -69,6 +69,12 @@ class CallbackShadowCaster final : public ShadowCaster {
   std::function<void(const ShadowCasterContext&)> fn_;
 };
 
+// The cascade being drawn while ShadowMaps::render() runs its casters, else null. This lets a
+// Drawable draw its shadow from draw(Pass::kShadow, ...) (the scene's shadow hook) without a
+// new parameter: `if (auto* c = render::active_shadow_cascade()) draw_depth(c->relative_view_projection)`.
+// GL is used from one thread, so this is a plain global of the rendering thread.
+const ShadowCasterContext* active_shadow_cascade();
+
 class ShadowMaps {
  public:
   // Needs a current GL 4.5 context. Errors: kLimit when the resolution exceeds
