@@ -35,6 +35,10 @@ void main() {
   p = a_position;
   n = a_normal.x * b.r_object.xyz + a_normal.y * b.s_object.xyz + a_normal.z * b.t_object.xyz;
   axis = b.t_object.xyz;
+#elif SYLVA_TREE_ANIMATION == 1
+  SylvaTreeBranch b = sylva_branches[a_branch];
+  vec3 rest_n = a_normal.x * b.r_object.xyz + a_normal.y * b.s_object.xyz + a_normal.z * b.t_object.xyz;
+  sylva_trunk_rigid(a_branch, a_xvec, inst, a_position, rest_n, b.t_object.xyz, p, n, axis);
 #else
   SylvaChain c = sylva_evaluate_chain(a_branch, a_xvec, inst);
   p = c.origin + (a_local.x * c.r + a_local.y * c.s + a_local.z * c.t);

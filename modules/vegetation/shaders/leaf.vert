@@ -41,6 +41,9 @@ void main() {
   p = a_position;
   n = a_normal;
   t = leaf0.t_object.xyz;
+#elif SYLVA_TREE_ANIMATION == 1
+  SylvaTreeLeaf leaf0 = sylva_leaves[a_leaf];
+  sylva_trunk_rigid(a_branch, a_xvec, inst, a_position, a_normal, leaf0.t_object.xyz, p, n, t);
 #else
   sylva_deform_leaf(a_branch, a_leaf, a_xvec, a_corner, inst, p, n, t);
 #endif

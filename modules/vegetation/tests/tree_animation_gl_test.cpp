@@ -107,6 +107,47 @@ TEST_F(TreeAnimationGl, VertexShadersMatchTheCpuReference) {
   }
 }
 
+// The trunk-only level (seed table 5.5: "+ trunk") moves everything above the trunk rigidly; it
+// equals the CPU chain with every other level and the leaves switched off.
+TEST_F(TreeAnimationGl, TrunkOnlyLevelMatchesTheChainWithUpperLevelsOff) {
+  Result<TreeRenderer> renderer = TreeRenderer::create();
+  ASSERT_TRUE(renderer.ok()) << renderer.error().describe();
+  testing::TreeOnGpu tree = testing::upload_tree(testing::preset_mesh(SpeciesPreset::kBroadleaf), SpeciesPreset::kBroadleaf);
+  AnimationSettings s;
+  s.level1.enabled = s.level2.enabled = s.level3.enabled = false;
+  s.leaves_enabled = false;
+  const AnimationGpu anim = make_animation_gpu(s, 21.0);
+  const InstanceGpu inst = make_instance_gpu(TreeInstance{}, glm::dvec3(0.0), glm::vec3(30.0f, 0.0f, 12.0f));
+  const WindGpuParams wind = WindField().frame(21.0).gpu;
+  testing::set_instances(tree, {inst});
+  // The GPU gets the full settings: the trunk-only program ignores the other levels itself.
+  renderer->set_frame(make_animation_gpu(AnimationSettings{}, 21.0), wind);
+  auto scene = testing::GlScene::create(32, 32);
+  scene.begin();
+  TreeDrawParams params;
+  params.view_proj = scene.camera.view_projection();
+  params.level = AnimationLevel::kTrunk;
+  Result<std::vector<glm::vec4>> bark = renderer->capture(render::Pass::kOpaque, tree.asset, tree.instances, 0, params, false);
+  Result<std::vector<glm::vec4>> leaves = renderer->capture(render::Pass::kOpaque, tree.asset, tree.instances, 0, params, true);
+  ASSERT_TRUE(bark.ok() && leaves.ok());
+  float worst = 0.0f;
+  float moved = 0.0f;
+  for (std::size_t i = 0; i < tree.mesh.branch_vertices.size(); ++i) {
+    const BranchVertex& v = tree.mesh.branch_vertices[i];
+    const glm::vec3 cpu = deform_branch_vertex(tree.mesh.data, anim, inst, v).position;
+    worst = std::max(worst, glm::length(glm::vec3((*bark)[2 * i]) - cpu));
+    moved = std::max(moved, glm::length(cpu - v.position));
+  }
+  for (std::size_t i = 0; i < tree.mesh.leaf_vertices.size(); ++i) {
+    const LeafVertex& v = tree.mesh.leaf_vertices[i];
+    worst = std::max(worst, glm::length(glm::vec3((*leaves)[2 * i]) - deform_leaf_vertex(tree.mesh.data, anim, inst, wind, v).position));
+  }
+  EXPECT_GT(moved, 0.05f);
+  EXPECT_LT(worst, 2e-5f);
+  std::printf("trunk-only level: max |GPU rigid - CPU chain| %.3g m (largest displacement %.3g m)\n",
+              static_cast<double>(worst), static_cast<double>(moved));
+}
+
 TEST_F(TreeAnimationGl, DepthPassDeformsExactlyLikeTheColourPass) {
   Result<TreeRenderer> renderer = TreeRenderer::create();
   ASSERT_TRUE(renderer.ok()) << renderer.error().describe();

@@ -133,6 +133,31 @@ SylvaChain sylva_evaluate_chain(uint branch, vec4 xvec, SylvaTreeInstance inst) 
   return c;
 }
 
+// Trunk-only animation (level 1 of the seed's table 5.5): the root branch bends and everything
+// above the attachment point x0 = xvec[0] moves rigidly with the root's bent frame there. Equal to
+// the full chain with every higher level and the leaves disabled (frame transport on), but one bend
+// step per vertex instead of one per level. Returns the object-space position and the rest
+// normal and tangent turned with it.
+void sylva_trunk_rigid(uint branch, vec4 xvec, SylvaTreeInstance inst, vec3 rest_position, vec3 rest_normal,
+                       vec3 rest_tangent, out vec3 position, out vec3 normal, out vec3 tangent) {
+  SylvaTreeBranch own = sylva_branches[branch];
+  SylvaTreeBranch root = sylva_branches[own.chain[0]];
+  SylvaChain c;
+  c.origin = root.attach_object.xyz;
+  c.t = root.t_object.xyz;
+  c.r = root.r_object.xyz;
+  c.s = root.s_object.xyz;
+  vec2 amp = sylva_branch_control(root, inst, 0, c.r, c.s);
+  sylva_bend_step(c, root, xvec[0], amp, sylva_anim.misc.x);
+  vec3 rest_axis = root.attach_object.xyz + (xvec[0] * root.r_parent.w) * root.t_object.xyz;
+  vec3 d = rest_position - rest_axis;
+  position = c.origin + dot(d, root.r_object.xyz) * c.r + dot(d, root.s_object.xyz) * c.s + dot(d, root.t_object.xyz) * c.t;
+  normal = dot(rest_normal, root.r_object.xyz) * c.r + dot(rest_normal, root.s_object.xyz) * c.s +
+           dot(rest_normal, root.t_object.xyz) * c.t;
+  tangent = dot(rest_tangent, root.r_object.xyz) * c.r + dot(rest_tangent, root.s_object.xyz) * c.s +
+            dot(rest_tangent, root.t_object.xyz) * c.t;
+}
+
 uint sylva_leaf_field_seed(uint component) { return sylva_tree_wind.seeds.y + 0x9e3779b9u * (component + 1u); }
 
 vec2 sylva_leaf_control(SylvaTreeLeaf leaf, SylvaTreeInstance inst) {
