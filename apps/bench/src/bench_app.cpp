@@ -5,6 +5,9 @@
 #include "scene_source.hpp"
 #include "stability.hpp"
 #include "suites.hpp"
+#include "svg_plot.hpp"
+
+#include <sylva/core/atomic_file.hpp>
 
 #include <sylva/render/gl_context.hpp>
 
@@ -70,6 +73,31 @@ void apply_common(const BenchOptions& o, RunSpec& spec) {
   if (o.cost) spec.cost = *o.cost;
   spec.error = o.error;
   for (const Assignment& a : o.overrides) spec.overrides.push_back(a);
+}
+
+struct SuiteOutcome {
+  std::string name;
+  std::string text;  // description, or why it is not available / failed
+  bool ran = false;
+};
+
+// --suite all: one page linking each suite's report, with the ones that did not run and why.
+std::string suites_index_html(const std::vector<SuiteOutcome>& outcomes) {
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>sylva-bench suites</title>\n"
+                  "<style>body{font-family:sans-serif;margin:24px} td,th{border:1px solid #ccc;padding:4px 8px;"
+                  "text-align:left;vertical-align:top} table{border-collapse:collapse} .na{color:#a00}</style>\n"
+                  "</head>\n<body>\n<h1>sylva-bench suites</h1>\n<table>\n<tr><th>suite</th><th>report</th><th>what it "
+                  "measures</th></tr>\n";
+  for (const SuiteOutcome& s : outcomes) {
+    if (s.ran) {
+      h += fmt::format("<tr><td>{0}</td><td><a href=\"{0}/report.html\">{0}/report.html</a></td><td>{1}</td></tr>\n",
+                       html_escape(s.name), html_escape(s.text));
+    } else {
+      h += fmt::format("<tr class=\"na\"><td>{}</td><td>none</td><td class=\"na\">{}</td></tr>\n", html_escape(s.name),
+                       html_escape(s.text));
+    }
+  }
+  return h + "</table>\n</body>\n</html>\n";
 }
 
 }  // namespace
@@ -151,11 +179,13 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
 
   if (o.suite) {
     const std::vector<std::string> names = *o.suite == "all" ? suite_names() : std::vector<std::string>{*o.suite};
+    std::vector<SuiteOutcome> outcomes;
     for (const std::string& name : names) {
       auto suite = make_suite(name);
       if (!suite.ok()) {
         err << fmt::format("sylva-bench: suite {}: {}\n", name, suite.error().message);
         merge(suite.error().code == ErrorCode::kUnsupported ? kExitUnavailable : kExitFailed);
+        outcomes.push_back({name, suite.error().message, false});
         continue;
       }
       RunSpec spec = suite->run;
@@ -165,7 +195,17 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
       spec.gl_version = context->version();
       if (!o.cost) spec.cost = default_cost_metric(spec.gl_renderer);
       out << fmt::format("suite {}: {}\n", name, spec.description);
-      merge(run_and_write(spec, o.embed_images, out, err));
+      const int code = run_and_write(spec, o.embed_images, out, err);
+      merge(code);
+      outcomes.push_back({name, code == kExitOk ? spec.description : fmt::format("failed (exit code {})", code),
+                          code == kExitOk});
+    }
+    if (names.size() > 1) {
+      Status index = write_file_atomic(out_dir / "index.html", suites_index_html(outcomes));
+      if (!index.ok()) {
+        err << "sylva-bench: " << index.error().message << "\n";
+        merge(kExitFailed);
+      }
     }
   }
 

@@ -159,6 +159,19 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
     s += fmt::format("<path class=\"pareto-line\" d=\"{}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"1.5\" "
                      "stroke-dasharray=\"5,3\"/>\n", d);
   }
+  // Labels are nudged down until they do not overlap an earlier one (settings with nearly
+  // equal cost and error would otherwise print over each other).
+  std::vector<std::pair<double, double>> placed;
+  auto label_position = [&](double x, double y) {
+    for (int tries = 0; tries < 8; ++tries) {
+      bool clash = false;
+      for (const auto& [px, py] : placed) clash = clash || (std::abs(px - x) < 30.0 && std::abs(py - y) < 11.0);
+      if (!clash) break;
+      y += 11.0;
+    }
+    placed.emplace_back(x, y);
+    return y;
+  };
   for (const PlotPoint* p : shown) {
     const double cx = sx(p->x), cy = sy(p->y);
     const std::string tip = html_escape(p->tooltip.empty() ? p->label : p->tooltip);
@@ -173,8 +186,8 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
                        "fill=\"#ffffff\" stroke=\"#1f77b4\" stroke-width=\"1.5\"/></g>\n", tip, cx, cy);
     }
     if (!p->label.empty()) {
-      s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#444\" font-size=\"10\">{}</text>\n", cx + 7, cy - 6,
-                       html_escape(p->label));
+      s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#444\" font-size=\"10\">{}</text>\n", cx + 7,
+                       label_position(cx + 7, cy - 6), html_escape(p->label));
     }
   }
   // Legend.
