@@ -1,0 +1,171 @@
+#pragma once
+// The GL 4.5 terrain renderer: a render::Drawable over a chunk tree (in memory or streamed).
+//
+// update(): builds a LodView from the frame's camera, selects chunks (streaming: only resident
+// ones, requesting the rest), and assembles the per-frame seam (or skirt) batch. draw(): the
+// opaque pass draws every selected chunk (one indexed draw each, meshes uploaded on first use
+// and kept in an LRU GPU cache), then the seam batch with the same program, then the debug
+// overlays; the shadow pass draws depth into the active cascade. Shading: normals from the
+// full-resolution height texture, height/slope materials with procedural detail, sun, ambient,
+// fog (render/lib) and, when the host binds them, cascaded shadows.
+
+#include <sylva/core/height_field.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/render/buffer.hpp>
+#include <sylva/render/drawable.hpp>
+#include <sylva/render/shader_library.hpp>
+#include <sylva/render/texture.hpp>
+#include <sylva/render/vertex_array.hpp>
+#include <sylva/terrain/chunk_tree.hpp>
+#include <sylva/terrain/seams.hpp>
+#include <sylva/terrain/selection.hpp>
+#include <sylva/terrain/settings.hpp>
+#include <sylva/terrain/streaming.hpp>
+#include <sylva/terrain/vertex_position.hpp>
+
+#include <array>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+namespace sylva::terrain {
+
+enum class DebugView : std::uint8_t { kShaded, kLodColors, kMorph, kFlat };
+constexpr std::array<EnumName<DebugView>, 4> enum_names(DebugView) {
+  return {{{DebugView::kShaded, "shaded"}, {DebugView::kLodColors, "lod_colors"}, {DebugView::kMorph, "morph"},
+           {DebugView::kFlat, "flat"}}};
+}
+
+struct MaterialSettings {
+  float sand_height = 0.08f;   // share of the height range below which sand shows
+  float snow_height = 0.78f;   // share of the height range above which snow lies on flat ground
+  float rock_slope = 0.35f;    // 1 - normal.y above which rock shows
+  float detail_frequency = 0.08f;  // procedural detail [cycles/m]
+  float detail_strength = 0.18f;   // albedo modulation by the detail noise
+  glm::vec3 sand_color{0.76f, 0.70f, 0.50f};
+  glm::vec3 grass_color{0.23f, 0.38f, 0.12f};
+  glm::vec3 rock_color{0.38f, 0.35f, 0.32f};
+  glm::vec3 snow_color{0.92f, 0.94f, 0.97f};
+
+  template <class V>
+  void visit(V& v) {
+    v(sand_height, "sand_height", {.min = 0.0, .max = 1.0, .help = "Height share below which sand shows"});
+    v(snow_height, "snow_height", {.min = 0.0, .max = 1.0, .help = "Height share above which snow lies"});
+    v(rock_slope, "rock_slope", {.min = 0.0, .max = 1.0, .help = "Slope (1 - normal.y) above which rock shows"});
+    v(detail_frequency, "detail_frequency", {.min = 0.0, .max = 100.0, .unit = "1/m", .help = "Detail noise frequency"});
+    v(detail_strength, "detail_strength", {.min = 0.0, .max = 1.0, .help = "Detail noise strength"});
+    v(sand_color, "sand_color", {.min = 0.0, .max = 1.0});
+    v(grass_color, "grass_color", {.min = 0.0, .max = 1.0});
+    v(rock_color, "rock_color", {.min = 0.0, .max = 1.0});
+    v(snow_color, "snow_color", {.min = 0.0, .max = 1.0});
+  }
+};
+
+struct TerrainRenderSettings {
+  LodSettings lod;
+  MaterialSettings material;
+  DebugView debug_view = DebugView::kShaded;
+  bool wireframe = false;       // chunk triangles as lines over the shaded terrain
+  bool chunk_bounds = false;    // bounding boxes of the drawn chunks
+  bool receive_shadows = true;  // sample the host's cascaded shadows (needs ShadowMaps::bind())
+  bool cast_shadows = true;
+  double gpu_cache_mb = 512.0;  // uploaded chunk meshes kept on the GPU
+
+  template <class V>
+  void visit(V& v) {
+    v(lod, "lod");
+    v(material, "material");
+    v(debug_view, "debug_view", {.help = "shaded, lod_colors, morph or flat"});
+    v(wireframe, "wireframe", {.help = "Draw triangle edges"});
+    v(chunk_bounds, "chunk_bounds", {.help = "Draw the drawn chunks' bounding boxes"});
+    v(receive_shadows, "receive_shadows", {.help = "Receive cascaded shadows", .rebuild = Rebuild::kGpu});
+    v(cast_shadows, "cast_shadows", {.help = "Cast into the shadow cascades"});
+    v(gpu_cache_mb, "gpu_cache_mb", {.min = 1.0, .max = 1e6, .unit = "MiB", .help = "GPU chunk mesh cache",
+      .log_scale = true});
+  }
+};
+
+struct TerrainFrameStats {
+  SelectionStats selection;
+  std::uint64_t seam_triangles = 0;
+  std::uint64_t skirt_triangles = 0;
+  std::uint64_t uploads = 0;      // chunk meshes uploaded this frame
+  double update_ms = 0.0;         // selection + batch assembly
+  std::size_t gpu_bytes = 0;      // resident GPU meshes
+};
+
+class TerrainRenderer final : public render::Drawable {
+ public:
+  // In-memory tree (built with keep_meshes). `field` (may be null) gives the height texture for
+  // normals and materials; without it normals come from the triangles. Needs a current GL 4.5
+  // context. Errors: kInvalidArgument (tree without meshes), kGl (shader build).
+  static Result<std::unique_ptr<TerrainRenderer>> create(std::shared_ptr<const ChunkTree> tree, const HeightField* field,
+                                                         const TerrainRenderSettings& settings);
+  // Streamed tree: meshes come from the streamer (owned by the renderer).
+  static Result<std::unique_ptr<TerrainRenderer>> create(std::unique_ptr<ChunkStreamer> streamer,
+                                                         const HeightField* field,
+                                                         const TerrainRenderSettings& settings);
+  ~TerrainRenderer() override;
+
+  void update(const render::FrameContext& frame) override;
+  void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+
+  TerrainRenderSettings& settings() { return settings_; }
+  const TerrainRenderSettings& settings() const { return settings_; }
+  const ChunkTree& tree() const { return *tree_; }
+  const Selection& selection() const { return *selection_; }
+  const VertexFrame& vertex_frame() const { return frame_; }
+  const TerrainFrameStats& frame_stats() const { return stats_; }
+  ChunkStreamer* streamer() { return streamer_.get(); }
+
+  // The LodView a camera and viewport give (what update() selects with).
+  static LodView view_for(const render::Camera& camera, glm::ivec2 viewport);
+
+ private:
+  TerrainRenderer() = default;
+  Status init(const HeightField* field);
+  struct GpuMesh {
+    render::VertexArray vao;
+    render::Buffer vertices, indices;
+    std::uint32_t index_count = 0;
+    std::size_t bytes = 0;
+    std::uint64_t last_used = 0;
+  };
+  GpuMesh* gpu_mesh(std::uint32_t chunk);
+  void set_frame_uniforms(const render::Program& program, const glm::mat4& view_projection) const;
+  void draw_geometry(const render::Program& program, const glm::mat4& view_projection, bool debug_levels,
+                     render::PassStats& stats);
+
+  TerrainRenderSettings settings_;
+  std::shared_ptr<const ChunkTree> tree_;
+  std::unique_ptr<ChunkStreamer> streamer_;
+  MeshSource meshes_;
+  std::unique_ptr<LodSelector> selector_;
+  const Selection* selection_ = nullptr;
+  Selection empty_selection_;
+  SeamCache seams_;
+  VertexFrame frame_;
+  TerrainFrameStats stats_;
+  std::uint64_t frame_number_ = 0;
+
+  render::Program shaded_, depth_, bounds_;
+  bool shaded_with_shadows_ = false;
+  render::Texture heights_;
+  bool has_heights_ = false;
+  glm::vec2 height_range_{0.0f, 1.0f};
+  std::unordered_map<std::uint32_t, GpuMesh> gpu_;
+  std::size_t gpu_bytes_ = 0;
+  // Per-frame batches: seams or skirts (vertex = grid, height/target/error, skirt depth).
+  struct BatchVertex {
+    std::uint32_t gx, gz;
+    float height, morph_target, morph_error, skirt;
+  };
+  std::vector<BatchVertex> batch_;
+  render::Buffer batch_buffer_;
+  render::VertexArray batch_vao_;
+  std::vector<glm::vec3> bounds_lines_;
+  render::Buffer bounds_buffer_;
+  render::VertexArray bounds_vao_;
+};
+
+}  // namespace sylva::terrain

@@ -1,0 +1,320 @@
+#include <sylva/terrain/renderer.hpp>
+
+#include <sylva/core/log.hpp>
+#include <sylva/core/timer.hpp>
+#include <sylva/render/shadow_maps.hpp>
+#include <sylva/terrain/frame_mesh.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::render::embedded {
+void register_terrain_shaders();  // generated from modules/terrain/shaders (cmake/embed_shaders.cmake)
+}  // namespace sylva::render::embedded
+
+namespace sylva::terrain {
+
+namespace {
+constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2;
+}  // namespace
+
+LodView TerrainRenderer::view_for(const render::Camera& camera, glm::ivec2 viewport) {
+  const render::PerspectiveParams& p = camera.perspective();
+  const int w = std::max(viewport.x, 1), h = std::max(viewport.y, 1);
+  const double far_m = (p.far_plane > p.near_plane && std::isfinite(p.far_plane)) ? p.far_plane
+                                                                                   : std::numeric_limits<double>::infinity();
+  return LodView::perspective(camera.position(), glm::dvec3(camera.forward()), glm::dvec3(camera.up()), p.fov_y, w, h,
+                              p.near_plane, far_m);
+}
+
+Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(std::shared_ptr<const ChunkTree> tree,
+                                                                 const HeightField* field,
+                                                                 const TerrainRenderSettings& settings) {
+  if (!tree || !tree->has_meshes()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "terrain: the renderer needs a chunk tree built with keep_meshes (or a ChunkStreamer)");
+  }
+  std::unique_ptr<TerrainRenderer> r(new TerrainRenderer());
+  r->settings_ = settings;
+  r->tree_ = std::move(tree);
+  r->meshes_ = tree_meshes(*r->tree_);
+  SYLVA_TRY(r->init(field));
+  return r;
+}
+
+Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(std::unique_ptr<ChunkStreamer> streamer,
+                                                                 const HeightField* field,
+                                                                 const TerrainRenderSettings& settings) {
+  if (!streamer) return make_error(ErrorCode::kInvalidArgument, "terrain: null chunk streamer");
+  std::unique_ptr<TerrainRenderer> r(new TerrainRenderer());
+  r->settings_ = settings;
+  // The streamer's tree lives as long as the streamer, which the renderer owns.
+  r->tree_ = std::shared_ptr<const ChunkTree>(std::shared_ptr<const ChunkTree>{}, &streamer->tree());
+  r->streamer_ = std::move(streamer);
+  r->meshes_ = r->streamer_->meshes();
+  SYLVA_TRY(r->init(field));
+  return r;
+}
+
+TerrainRenderer::~TerrainRenderer() = default;
+
+Status TerrainRenderer::init(const HeightField* field) {
+  SYLVA_TRY(validate_params(settings_, "terrain"));
+  render::embedded::register_terrain_shaders();
+  render::embedded::register_render_shaders();
+  shaded_with_shadows_ = settings_.receive_shadows;
+  auto shaded = render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
+                                        {{"SYLVA_TERRAIN_SHADOWS", shaded_with_shadows_ ? "1" : "0"}});
+  if (!shaded.ok()) return shaded.error();
+  shaded_ = std::move(shaded).value();
+  auto depth = render::Program::create({"terrain/chunk.vert", "terrain/depth.frag"});
+  if (!depth.ok()) return depth.error();
+  depth_ = std::move(depth).value();
+  auto bounds = render::Program::create({"terrain/bounds.vert", "terrain/bounds.frag"});
+  if (!bounds.ok()) return bounds.error();
+  bounds_ = std::move(bounds).value();
+
+  if (field != nullptr && field->columns() > 0 && field->rows() > 0) {
+    GLint max_size = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+    if (field->columns() <= max_size && field->rows() <= max_size) {
+      heights_ = render::Texture::create_2d(field->columns(), field->rows(), GL_R32F, 1);
+      glTextureSubImage2D(heights_.id(), 0, 0, 0, field->columns(), field->rows(), GL_RED, GL_FLOAT,
+                          field->samples().data());
+      heights_.set_filter(GL_LINEAR, GL_LINEAR);
+      heights_.set_wrap(GL_CLAMP_TO_EDGE);
+      has_heights_ = true;
+    } else {
+      log_warn("terrain: a {}x{} field exceeds GL_MAX_TEXTURE_SIZE {}; normals come from the triangles",
+               field->columns(), field->rows(), max_size);
+    }
+    height_range_ = glm::vec2(field->min_height(), field->max_height());
+  } else {
+    float lo = std::numeric_limits<float>::max(), hi = -lo;
+    for (std::uint32_t i = 0; i < tree_->chunk_count(); ++i) {
+      if (!tree_->chunk(i).present) continue;
+      lo = std::min(lo, tree_->chunk(i).min_y);
+      hi = std::max(hi, tree_->chunk(i).max_y);
+    }
+    height_range_ = glm::vec2(lo, hi);
+  }
+
+  batch_vao_ = render::VertexArray::create();
+  batch_vao_.attribute_int(kAttrGrid, 0, 2, GL_UNSIGNED_INT, offsetof(BatchVertex, gx));
+  batch_vao_.attribute(kAttrHeight, 0, 3, GL_FLOAT, offsetof(BatchVertex, height));
+  batch_vao_.attribute(kAttrSkirt, 0, 1, GL_FLOAT, offsetof(BatchVertex, skirt));
+  batch_buffer_ = render::Buffer::dynamic(64 * sizeof(BatchVertex), GL_STREAM_DRAW);
+  batch_vao_.vertex_buffer(0, batch_buffer_, sizeof(BatchVertex));
+  bounds_vao_ = render::VertexArray::create();
+  bounds_vao_.attribute(0, 0, 3, GL_FLOAT, 0);
+  bounds_buffer_ = render::Buffer::dynamic(64 * sizeof(glm::vec3), GL_STREAM_DRAW);
+  bounds_vao_.vertex_buffer(0, bounds_buffer_, sizeof(glm::vec3));
+
+  selector_ = std::make_unique<LodSelector>(*tree_);
+  selection_ = &empty_selection_;
+  return {};
+}
+
+TerrainRenderer::GpuMesh* TerrainRenderer::gpu_mesh(std::uint32_t chunk) {
+  auto it = gpu_.find(chunk);
+  if (it != gpu_.end()) {
+    it->second.last_used = frame_number_;
+    return &it->second;
+  }
+  const ChunkMesh* m = meshes_(chunk);
+  if (m == nullptr || m->indices.empty()) return nullptr;
+  GpuMesh g;
+  static_assert(sizeof(ChunkVertex) == 24, "ChunkVertex layout is uploaded as is");
+  g.vertices = render::Buffer::immutable(std::span<const ChunkVertex>(m->vertices));
+  g.indices = render::Buffer::immutable(std::span<const std::uint32_t>(m->indices));
+  g.vao = render::VertexArray::create();
+  g.vao.attribute_int(kAttrGrid, 0, 2, GL_UNSIGNED_INT, offsetof(ChunkVertex, gx));
+  g.vao.attribute(kAttrHeight, 0, 3, GL_FLOAT, offsetof(ChunkVertex, height));
+  g.vao.vertex_buffer(0, g.vertices, sizeof(ChunkVertex));
+  g.vao.index_buffer(g.indices);
+  g.index_count = static_cast<std::uint32_t>(m->indices.size());
+  g.bytes = g.vertices.size() + g.indices.size();
+  g.last_used = frame_number_;
+  gpu_bytes_ += g.bytes;
+  ++stats_.uploads;
+  // LRU eviction of meshes not drawn this frame.
+  const std::size_t budget = static_cast<std::size_t>(settings_.gpu_cache_mb * 1048576.0);
+  if (gpu_bytes_ > budget) {
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> old;
+    for (const auto& [id, mesh] : gpu_)
+      if (mesh.last_used < frame_number_) old.emplace_back(mesh.last_used, id);
+    std::sort(old.begin(), old.end());
+    for (const auto& [used, id] : old) {
+      if (gpu_bytes_ <= budget) break;
+      gpu_bytes_ -= gpu_.at(id).bytes;
+      gpu_.erase(id);
+    }
+  }
+  return &gpu_.emplace(chunk, std::move(g)).first->second;
+}
+
+void TerrainRenderer::update(const render::FrameContext& frame) {
+  Stopwatch watch;
+  ++frame_number_;
+  stats_ = TerrainFrameStats{};
+  if (streamer_) streamer_->update();
+  const LodView view = view_for(frame.camera, frame.viewport);
+  Residency residency;
+  if (streamer_) residency = streamer_->residency();
+  selection_ = &selector_->select(view, settings_.lod, streamer_ ? &residency : nullptr);
+  stats_.selection = selection_->stats;
+  frame_ = make_vertex_frame(*tree_, view, settings_.lod);
+
+  // Seam or skirt batch for this frame.
+  batch_.clear();
+  auto push = [&](const ChunkVertex& v, float skirt) {
+    batch_.push_back(BatchVertex{v.gx, v.gz, v.height, v.morph_target, v.morph_error, skirt});
+  };
+  for (const SelectedChunk& s : selection_->chunks) {
+    const ChunkMesh* m = meshes_(s.index);
+    if (m == nullptr) continue;
+    for (int e = 0; e < 4; ++e) {
+      const Edge edge = static_cast<Edge>(e);
+      if (settings_.lod.crack_fix == CrackFix::kSeams) {
+        const std::uint32_t coarse = s.coarser_neighbour[static_cast<std::size_t>(e)];
+        if (coarse == kNoChunk || meshes_(coarse) == nullptr) continue;
+        const Seam& seam = seams_.get(*tree_, meshes_, s.index, edge, coarse);
+        const std::uint32_t n = static_cast<std::uint32_t>(m->vertices.size());
+        for (std::uint32_t i : seam.indices) push(i < n ? m->vertices[i] : seam.extra_vertices[i - n], 0.0f);
+        stats_.seam_triangles += seam.indices.size() / 3;
+      } else if (settings_.lod.crack_fix == CrackFix::kSkirts) {
+        const float depth = skirt_depth(*tree_, s, edge);
+        const auto& ev = m->edges[static_cast<std::size_t>(e)];
+        const bool increasing = (edge == kWest || edge == kNorth);
+        for (std::size_t i = 0; i + 1 < ev.size(); ++i) {
+          const ChunkVertex& a = m->vertices[increasing ? ev[i] : ev[ev.size() - 1 - i]];
+          const ChunkVertex& b = m->vertices[increasing ? ev[i + 1] : ev[ev.size() - 2 - i]];
+          push(b, 0.0f), push(a, 0.0f), push(a, depth);
+          push(b, 0.0f), push(a, depth), push(b, depth);
+          stats_.skirt_triangles += 2;
+        }
+      }
+    }
+  }
+  bounds_lines_.clear();
+  if (settings_.chunk_bounds) {
+    for (const SelectedChunk& s : selection_->chunks) {
+      glm::dvec3 lo, hi;
+      tree_->chunk_bounds(s.index, lo, hi);
+      const glm::vec3 a(lo - view.position), b(hi - view.position);
+      const glm::vec3 c[8] = {{a.x, a.y, a.z}, {b.x, a.y, a.z}, {b.x, a.y, b.z}, {a.x, a.y, b.z},
+                              {a.x, b.y, a.z}, {b.x, b.y, a.z}, {b.x, b.y, b.z}, {a.x, b.y, b.z}};
+      const int edges[12][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {4, 5}, {5, 6}, {6, 7}, {7, 4}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+      for (const auto& e : edges) {
+        bounds_lines_.push_back(c[e[0]]);
+        bounds_lines_.push_back(c[e[1]]);
+      }
+    }
+  }
+  stats_.update_ms = watch.elapsed_ms();
+  stats_.gpu_bytes = gpu_bytes_;
+}
+
+void TerrainRenderer::set_frame_uniforms(const render::Program& program, const glm::mat4& view_projection) const {
+  program.set("u_origin", frame_.origin);
+  program.set("u_camera", frame_.camera);
+  program.set("u_spacing", frame_.spacing);
+  program.set("u_k_over_tau", frame_.k_over_tau);
+  program.set("u_morph_start", frame_.morph_start);
+  program.set("u_morph", frame_.morph ? 1 : 0);
+  program.set("u_view_projection", view_projection);
+  program.set("u_field_size", glm::ivec2(tree_->field_columns(), tree_->field_rows()));
+}
+
+void TerrainRenderer::draw_geometry(const render::Program& program, const glm::mat4& view_projection,
+                                    bool debug_levels, render::PassStats& stats) {
+  program.use();
+  set_frame_uniforms(program, view_projection);
+  glVertexAttrib1f(kAttrSkirt, 0.0f);  // bodies have no skirt attribute array
+  for (const SelectedChunk& s : selection_->chunks) {
+    GpuMesh* g = gpu_mesh(s.index);
+    if (g == nullptr) continue;
+    if (debug_levels) program.set("u_level", tree_->chunk(s.index).key.level);
+    g->vao.bind();
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(g->index_count), GL_UNSIGNED_INT, nullptr);
+    stats.triangles += g->index_count / 3;
+    ++stats.draw_calls;
+  }
+  if (!batch_.empty()) {
+    batch_buffer_.upload(std::span<const BatchVertex>(batch_));
+    batch_vao_.vertex_buffer(0, batch_buffer_, sizeof(BatchVertex));
+    if (debug_levels) program.set("u_level", 7);
+    batch_vao_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(batch_.size()));
+    stats.triangles += batch_.size() / 3;
+    ++stats.draw_calls;
+  }
+  glBindVertexArray(0);
+}
+
+void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
+  if (pass == render::Pass::kTransparent) return;
+  const GLboolean cull = glIsEnabled(GL_CULL_FACE);
+  glDisable(GL_CULL_FACE);  // seam fans are vertical and may face either way
+  if (pass == render::Pass::kShadow) {
+    const render::ShadowCasterContext* cascade = render::active_shadow_cascade();
+    if (settings_.cast_shadows && cascade != nullptr) draw_geometry(depth_, cascade->relative_view_projection, false, stats);
+  } else {
+    if (settings_.receive_shadows != shaded_with_shadows_) {
+      auto p = render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
+                                       {{"SYLVA_TERRAIN_SHADOWS", settings_.receive_shadows ? "1" : "0"}});
+      if (p.ok()) {
+        shaded_ = std::move(p).value();
+        shaded_with_shadows_ = settings_.receive_shadows;
+      } else {
+        log_warn("terrain: {}", p.error().message);
+      }
+    }
+    const glm::mat4 vp = frame.camera.view_projection();
+    shaded_.use();
+    shaded_.set("u_has_heights", has_heights_ ? 1 : 0);
+    shaded_.set("u_height_range", height_range_);
+    shaded_.set("u_debug_view", static_cast<int>(settings_.debug_view));
+    shaded_.set("u_level", 0);
+    shaded_.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
+    const MaterialSettings& m = settings_.material;
+    shaded_.set("u_material", glm::vec4(m.sand_height, m.snow_height, m.rock_slope, m.detail_frequency));
+    shaded_.set("u_detail_strength", m.detail_strength);
+    shaded_.set("u_sand_color", m.sand_color);
+    shaded_.set("u_grass_color", m.grass_color);
+    shaded_.set("u_rock_color", m.rock_color);
+    shaded_.set("u_snow_color", m.snow_color);
+    if (has_heights_) heights_.bind(0);
+    const bool levels = settings_.debug_view == DebugView::kLodColors;
+    draw_geometry(shaded_, vp, levels, stats);
+    if (settings_.wireframe) {
+      render::PassStats lines;
+      shaded_.use();
+      shaded_.set("u_debug_view", 3);
+      shaded_.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.05f, 1.0f));
+      glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+      GLint depth_func = GL_GREATER;
+      glGetIntegerv(GL_DEPTH_FUNC, &depth_func);
+      glDepthFunc(depth_func == GL_GREATER ? GL_GEQUAL : GL_LEQUAL);
+      draw_geometry(shaded_, vp, false, lines);
+      glDepthFunc(static_cast<GLenum>(depth_func));
+      glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+      stats.draw_calls += lines.draw_calls;
+    }
+    if (settings_.chunk_bounds && !bounds_lines_.empty()) {
+      bounds_.use();
+      bounds_.set("u_view_projection", vp);
+      bounds_.set("u_flat_color", glm::vec4(1.0f, 0.85f, 0.1f, 1.0f));
+      bounds_buffer_.upload(std::span<const glm::vec3>(bounds_lines_));
+      bounds_vao_.vertex_buffer(0, bounds_buffer_, sizeof(glm::vec3));
+      bounds_vao_.bind();
+      glDrawArrays(GL_LINES, 0, static_cast<GLsizei>(bounds_lines_.size()));
+      glBindVertexArray(0);
+      ++stats.draw_calls;
+    }
+  }
+  if (cull) glEnable(GL_CULL_FACE);
+  stats_.gpu_bytes = gpu_bytes_;
+}
+
+}  // namespace sylva::terrain

@@ -1,0 +1,265 @@
+// The GL renderer on headless EGL/llvmpipe: pictures of every view, the render crack test
+// (>= 100 scripted poses per field, zero background pixels inside the terrain silhouette) and
+// the projected-error test from the depth buffer for tau in {0.5, 1, 2, 4}.
+#include <sylva/render/testing.hpp>
+#include <sylva/terrain/height_source.hpp>
+#include <sylva/terrain/renderer.hpp>
+
+#include "support/gl_support.hpp"
+#include "support/terrain_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+namespace sylva::terrain {
+namespace {
+
+using namespace testing;
+using TerrainGl = render::GlTest;
+
+struct Scene {
+  HeightField field;
+  std::shared_ptr<const ChunkTree> tree;
+};
+
+Scene make_scene(HeightField field, int leaf_dimension, float flat_tolerance = 0.02f) {
+  Scene s;
+  s.field = std::move(field);
+  ChunkTreeSettings ts;
+  ts.leaf_dimension = leaf_dimension;
+  ts.flat_tolerance = flat_tolerance;
+  s.tree = std::make_shared<const ChunkTree>(std::move(ChunkTree::build(s.field, ts)).value());
+  return s;
+}
+
+render::Camera camera_at(const glm::dvec3& eye, float yaw, float pitch, float fov_deg = 60.0f, int w = 256, int h = 144) {
+  render::Camera c;
+  c.set_position(eye);
+  c.set_yaw_pitch(yaw, pitch);
+  c.perspective().fov_y = glm::radians(fov_deg);
+  c.perspective().near_plane = 0.05f;
+  c.perspective().far_plane = 0.0f;
+  c.set_aspect(w, h);
+  return c;
+}
+
+double variance(const Image& im) {
+  double s = 0, s2 = 0;
+  const std::size_t n = im.pixel_count();
+  for (int y = 0; y < im.height(); ++y)
+    for (int x = 0; x < im.width(); ++x) {
+      const double v = im.at(x, y, 0) + im.at(x, y, 1) + im.at(x, y, 2);
+      s += v;
+      s2 += v * v;
+    }
+  return s2 / n - (s / n) * (s / n);
+}
+
+TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
+  GeneratedFieldSettings g;
+  g.size = 513;
+  g.spacing = 8.0;
+  g.height_scale = 900.0f;
+  g.feature_size = 2500.0f;
+  g.noise = FieldNoise::kRidged;
+  Scene s = make_scene(generate_height_field(g).value(), 33);
+  TerrainRenderSettings rs;
+  rs.receive_shadows = false;
+  auto r = TerrainRenderer::create(s.tree, &s.field, rs);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  TerrainRenderer& t = **r;
+  GlTarget target = GlTarget::create(512, 288);
+  target.lighting.sun_intensity = 1.1f;  // no tone mapping here: keep the picture in [0, 1]
+  target.lighting.ambient *= 0.6f;
+  target.lighting.fog_density = 8e-5f;
+  const double ground = s.field.height(600.0, 700.0);
+  const render::Camera cam = camera_at({600.0, ground + 260.0, 700.0}, glm::radians(-135.0f), glm::radians(-14.0f), 60.0f, 512, 288);
+  const glm::vec4 sky(0.55f, 0.7f, 0.9f, 1.0f);
+  const Image shaded = target.render(t, cam, sky);
+  save_png(shaded, "shaded");
+  EXPECT_GT(variance(shaded), 1e-3) << "the shaded terrain is not flat colour";
+  // The lower half is terrain, the upper rows sky.
+  std::size_t terrain_px = 0;
+  for (int y = 144; y < 288; ++y)
+    for (int x = 0; x < 512; ++x) terrain_px += !is_color(shaded, x, y, sky);
+  EXPECT_GT(terrain_px, 512u * 144u * 9 / 10);
+  EXPECT_GT(t.frame_stats().selection.chunks, 4u);
+  int levels = 0;
+  for (std::uint32_t n : t.frame_stats().selection.chunks_per_level) levels += n > 0;
+  EXPECT_GE(levels, 2) << "the view must mix LOD levels";
+  EXPECT_GT(t.frame_stats().seam_triangles, 0u);
+
+  t.settings().debug_view = DebugView::kLodColors;
+  const Image lod = target.render(t, cam, sky);
+  save_png(lod, "lod_colors");
+  EXPECT_GT(variance(lod), variance(shaded) * 0.2);
+  t.settings().debug_view = DebugView::kMorph;
+  save_png(target.render(t, cam, sky), "morph");
+  t.settings().debug_view = DebugView::kShaded;
+  t.settings().wireframe = true;
+  t.settings().chunk_bounds = true;
+  const Image wire = target.render(t, cam, sky);
+  save_png(wire, "wireframe_bounds");
+  std::size_t differ = 0;
+  for (int y = 0; y < 288; ++y)
+    for (int x = 0; x < 512; ++x) differ += std::fabs(wire.at(x, y, 0) - shaded.at(x, y, 0)) > 0.05f;
+  EXPECT_GT(differ, 2000u) << "wireframe and bounds change the picture";
+  t.settings().wireframe = false;
+  t.settings().chunk_bounds = false;
+  t.settings().lod.crack_fix = CrackFix::kSkirts;
+  save_png(target.render(t, cam, sky), "skirts");
+  EXPECT_GT(t.frame_stats().skirt_triangles, 0u);
+}
+
+// The scripted poses of the crack test: grazing, high altitude, fast turns and random views.
+std::vector<render::Camera> crack_poses(const HeightField& f, int count, std::uint32_t seed) {
+  std::vector<render::Camera> out;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const glm::dvec2 ext = f.extent();
+  auto ground = [&](double x, double z) { return static_cast<double>(f.height(x, z)); };
+  for (int i = 0; i < count; ++i) {
+    const int kind = i % 4;
+    double x = f.origin().x + ext.x * (0.1 + 0.8 * u(rng)), z = f.origin().y + ext.y * (0.1 + 0.8 * u(rng));
+    float yaw = static_cast<float>(u(rng) * 6.283), pitch = 0.0f, fov = 60.0f;
+    double y = 0.0;
+    if (kind == 0) {  // grazing: just above the ground, looking along it
+      y = ground(x, z) + 0.5 + 3.0 * u(rng);
+      pitch = glm::radians(static_cast<float>(-6.0 + 10.0 * u(rng)));
+    } else if (kind == 1) {  // high altitude, looking down
+      y = ground(x, z) + 300.0 + 2500.0 * u(rng);
+      pitch = glm::radians(static_cast<float>(-25.0 - 60.0 * u(rng)));
+    } else if (kind == 2) {  // fast turns: a fixed spot, the view swung by large steps
+      x = f.origin().x + ext.x * 0.5;
+      z = f.origin().y + ext.y * 0.5;
+      y = ground(x, z) + 40.0;
+      yaw = glm::radians(static_cast<float>(i * 53 % 360));
+      pitch = glm::radians(static_cast<float>(-10.0 - 25.0 * u(rng)));
+    } else {  // anything, including wide and narrow lenses
+      y = ground(x, z) + 2.0 + 600.0 * u(rng);
+      pitch = glm::radians(static_cast<float>(-80.0 + 85.0 * u(rng)));
+      fov = static_cast<float>(15.0 + 100.0 * u(rng));
+    }
+    out.push_back(camera_at({x, y, z}, yaw, pitch, fov));
+  }
+  return out;
+}
+
+struct CrackResult {
+  std::size_t holes = 0;        // background pixels inside the eroded reference silhouette
+  std::size_t inside = 0;       // pixels inside the eroded silhouette, all poses
+  int poses = 0;
+};
+
+CrackResult crack_test(const Scene& s, CrackFix fix, int poses, std::uint32_t seed, const char* name) {
+  TerrainRenderSettings rs;
+  rs.receive_shadows = false;
+  rs.debug_view = DebugView::kFlat;
+  rs.lod.crack_fix = fix;
+  rs.lod.max_pixel_error = 1.0f;
+  auto r = TerrainRenderer::create(s.tree, &s.field, rs);
+  EXPECT_TRUE(r.ok()) << (r.ok() ? "" : r.error().describe());
+  GlTarget target = GlTarget::create(256, 144);
+  BruteForceField brute = BruteForceField::create(s.field);
+  CrackResult out;
+  const int radius = 2;  // ceil(tau) + 1: the LOD silhouette may differ from the reference by tau
+  bool saved = false;
+  for (const render::Camera& cam : crack_poses(s.field, poses, seed)) {
+    const Image ref = brute.render(target, cam, kMagenta);
+    std::vector<std::uint8_t> mask(256 * 144);
+    for (int y = 0; y < 144; ++y)
+      for (int x = 0; x < 256; ++x) mask[static_cast<std::size_t>(y) * 256 + x] = !is_color(ref, x, y, kMagenta);
+    const std::vector<std::uint8_t> core = erode(mask, 256, 144, radius);
+    const Image lod = target.render(**r, cam, kMagenta);
+    std::size_t holes = 0;
+    for (int y = 0; y < 144; ++y)
+      for (int x = 0; x < 256; ++x) {
+        if (!core[static_cast<std::size_t>(y) * 256 + x]) continue;
+        ++out.inside;
+        holes += is_color(lod, x, y, kMagenta);
+      }
+    if (holes > 0 && !saved) {
+      save_png(lod, std::string(name) + "_crack_pose");
+      saved = true;
+    }
+    out.holes += holes;
+    ++out.poses;
+  }
+  return out;
+}
+
+TEST_F(TerrainGl, CrackTestFbmFieldAtLeast100Poses) {
+  const Scene s = make_scene(fbm_field(193, 193, 3.0, 160.0f, 71), 9);
+  const CrackResult c = crack_test(s, CrackFix::kSeams, 104, 1, "fbm");
+  EXPECT_EQ(c.poses, 104);
+  EXPECT_GT(c.inside, 104u * 256u * 144u / 5) << "the poses must see terrain";
+  EXPECT_EQ(c.holes, 0u) << "background pixels inside the terrain silhouette";
+}
+
+TEST_F(TerrainGl, CrackTestCliffFieldAtLeast100Poses) {
+  const Scene s = make_scene(cliff_field(161, 161, 2.0, 60.0f, 72), 5);
+  const CrackResult c = crack_test(s, CrackFix::kSeams, 104, 2, "cliff");
+  EXPECT_EQ(c.poses, 104);
+  EXPECT_GT(c.inside, 104u * 256u * 144u / 5);
+  EXPECT_EQ(c.holes, 0u) << "background pixels inside the terrain silhouette";
+}
+
+TEST_F(TerrainGl, WithoutSeamsTheCrackTestSeesCracks) {
+  const Scene s = make_scene(cliff_field(161, 161, 2.0, 60.0f, 72), 5);
+  const CrackResult c = crack_test(s, CrackFix::kNone, 40, 3, "no_seams");
+  EXPECT_GT(c.holes, 0u) << "the test must be able to fail";
+}
+
+// Projected vertical error of every terrain pixel, from the depth buffer, against the
+// full-resolution surface: K * |y_drawn - h(x, z)| / distance <= tau.
+TEST_F(TerrainGl, ProjectedErrorFromTheDepthBufferStaysWithinTau) {
+  const Scene s = make_scene(fbm_field(161, 161, 3.0, 150.0f, 73), 17, 0.0f);
+  TerrainRenderSettings rs;
+  rs.receive_shadows = false;
+  rs.debug_view = DebugView::kFlat;
+  auto r = TerrainRenderer::create(s.tree, &s.field, rs);
+  ASSERT_TRUE(r.ok());
+  GlTarget target = GlTarget::create(256, 144);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (float tau : {0.5f, 1.0f, 2.0f, 4.0f}) {
+    (*r)->settings().lod.max_pixel_error = tau;
+    double worst = 0.0;
+    std::size_t pixels = 0;
+    for (int pose = 0; pose < 8; ++pose) {
+      const double x = 100.0 + 280.0 * u(rng), z = 100.0 + 280.0 * u(rng);
+      const render::Camera cam = camera_at({x, s.field.height(x, z) + 15.0 + 200.0 * u(rng), z},
+                                           static_cast<float>(u(rng) * 6.283), glm::radians(-15.0f - 40.0f * static_cast<float>(u(rng))));
+      (void)target.render(**r, cam, kMagenta);
+      const Image depth = target.depth().value();
+      const glm::mat4 inv = glm::inverse(cam.view_projection());
+      const double k = TerrainRenderer::view_for(cam, target.size()).k;
+      for (int py = 0; py < 144; ++py) {
+        for (int px = 0; px < 256; ++px) {
+          const float d = depth.at(px, py);
+          if (d <= 0.0f) continue;  // cleared: no terrain
+          const glm::vec4 ndc(2.0f * (px + 0.5f) / 256.0f - 1.0f, 1.0f - 2.0f * (py + 0.5f) / 144.0f, d, 1.0f);
+          const glm::vec4 h = inv * ndc;
+          const glm::dvec3 rel = glm::dvec3(h) / static_cast<double>(h.w);
+          const glm::dvec3 world = rel + cam.position();
+          const double gx = (world.x - s.field.origin().x) / s.field.spacing();
+          const double gz = (world.z - s.field.origin().y) / s.field.spacing();
+          if (gx < 0 || gz < 0 || gx > s.field.columns() - 1 || gz > s.field.rows() - 1) continue;
+          const double err = std::fabs(world.y - full_resolution_height(s.field, gx, gz));
+          worst = std::max(worst, k * err / glm::length(rel));
+          ++pixels;
+        }
+      }
+    }
+    EXPECT_GT(pixels, 8u * 256u * 144u / 4);
+    // 0.5 % for depth-buffer and reconstruction rounding.
+    EXPECT_LE(worst, tau * 1.005) << "tau " << tau;
+    EXPECT_GT(worst, 0.1 * tau) << "tau " << tau << ": the bound must be exercised";
+    std::printf("tau %.1f: max projected error %.3f px over %zu pixels\n", tau, worst, pixels);
+  }
+}
+
+}  // namespace
+}  // namespace sylva::terrain
