@@ -49,12 +49,28 @@ Result<SuiteSpec> grass_suite() {
   r.scene = "grass suite meadow (100 m x 100 m, 40 blades/m^2, gentle fBm ground)";
   r.suite = "grass";
   r.description =
-      "Grass LOD: where the tessellated blades end (cull.near_distance; clumps and the ground layer take over), and "
-      "the tessellation scale (cull.pixels_per_segment: projected pixels per blade segment), each against a "
-      "reference with blades over the whole meadow, no distance thinning and the finest tessellation.";
+      "Grass LOD: where the tessellated blades end (cull.near_distance; billboard clumps and the ground layer take "
+      "over), the tessellation scale (cull.pixels_per_segment: projected pixels per blade segment), distance "
+      "thinning, and the clumps of the far field, each against a reference with blades over the whole meadow, no "
+      "thinning and the finest tessellation. The first two groups keep everything else at reference quality, so "
+      "they converge to the reference; the last two show what thinning and clumps cost and buy.";
+  const std::vector<SweepAxis> fine = {{"grass.render.cull.distance_thinning", {"false"}},
+                                       {"grass.render.cull.max_tess_level", {"16"}}};
+  auto group = [&](std::vector<SweepAxis> extra, bool fine_tessellation) {
+    std::vector<SweepAxis> g = {fine[0]};
+    if (fine_tessellation) g.push_back(fine[1]);
+    for (SweepAxis& a : extra) g.push_back(std::move(a));
+    return g;
+  };
   r.sweep_groups = {
-      {{"grass.render.cull.near_distance", {"8", "15", "25", "40", "60"}}},
-      {{"grass.render.cull.pixels_per_segment", {"2", "6", "12", "24", "48"}}},
+      group({{"grass.render.cull.pixels_per_segment", {"0.5"}},
+             {"grass.render.cull.near_distance", {"8", "15", "25", "40", "70"}}},
+            true),
+      group({{"grass.render.cull.near_distance", {"150"}},
+             {"grass.render.cull.pixels_per_segment", {"2", "6", "12", "24"}}},
+            true),
+      {{"grass.render.cull.distance_thinning", {"true"}}, {"grass.render.cull.near_distance", {"25", "50"}}},
+      {{"grass.far.clumps", {"false"}}, {"grass.render.cull.near_distance", {"25"}}},
   };
   r.reference = {{"grass.render.cull.near_distance", "150"},
                  {"grass.render.cull.distance_thinning", "false"},

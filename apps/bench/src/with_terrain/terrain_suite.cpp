@@ -17,7 +17,8 @@ Result<SuiteSpec> make_terrain_suite() {
   r.description =
       "Terrain chunked LOD: the screen-space error bound tau (Ulrich 2002, terrain.lod.max_pixel_error) against the "
       "seed's distance criterion (terrain.lod.lod_distance), and seams against skirts and no crack fix, each against "
-      "the tree refined to tau = 0.05 px. The table's max geometric error is the largest projected error of the "
+      "the tree refined to tau = 0.05 px, and tau without morphing (the seed's criterion never morphs). The table's max "
+      "geometric error is the largest projected error of the "
       "drawn chunks (K delta / (D - delta) with the measured delta), the number tau certifies and the seed's "
       "criterion does not.";
   r.sweep_groups = {
@@ -25,6 +26,9 @@ Result<SuiteSpec> make_terrain_suite() {
        {"terrain.lod.max_pixel_error", {"0.5", "1", "2", "4", "8"}}},
       {{"terrain.lod.criterion", {"seed_distance"}}, {"terrain.lod.lod_distance", {"10", "20", "40", "80", "160"}}},
       {{"terrain.lod.max_pixel_error", {"2"}}, {"terrain.lod.crack_fix", {"skirts", "none"}}},
+      // The seed's criterion never morphs; these separate what morphing costs in per-frame
+      // image error (it buys the absence of pops, which a per-frame metric cannot see).
+      {{"terrain.lod.morph_fraction", {"0"}}, {"terrain.lod.max_pixel_error", {"1", "2", "4"}}},
   };
   r.reference = {{"terrain.lod.criterion", "screen_space_error"}, {"terrain.lod.max_pixel_error", "0.05"}};
   r.reference_note = "screen-space criterion with tau = 0.05 px (practically the full-resolution field where it is "
