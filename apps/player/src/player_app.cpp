@@ -44,11 +44,11 @@ render::FlyInput read_fly_input(GLFWwindow* window, std::optional<glm::dvec2>& l
 }
 
 void list_modules(std::ostream& out) {
-  out << "core    no-GL foundation (params, images, noise, wind, height fields)\n";
-  out << "render  OpenGL 4.5 core (contexts, shaders, camera, queries, sky)\n";
-  out << "scene   scene files, module assembly, frame loop\n";
+  out << "core        no-GL foundation (params, images, noise, wind, height fields)\n";
+  out << "render      OpenGL 4.5 core (contexts, shaders, camera, queries, sky)\n";
+  out << "scene       scene files, module assembly, frame loop\n";
   for (const scene::ModuleDescriptor* d : scene::compiled_modules()) {
-    out << fmt::format("{:<7} {}\n", d->name, d->description);
+    out << fmt::format("{:<11} {}\n", d->name, d->description);
   }
 }
 

@@ -24,6 +24,7 @@ std::string default_scene_text() {
                                  {"noise", {{"octaves", 6}, {"frequency", 0.0016}, {"seed", 11}}}};
   if (find_module("terrain")) {
     j["terrain"] = source;
+    j["terrain"]["render"] = {{"material", {{"snow_height", 1.0}, {"sand_height", 0.0}}}};  // a green meadow
   } else {
     j["ground"] = source;
     j["ground"]["snow_fraction"] = 1.0;  // no snow on meadow hills

@@ -138,7 +138,11 @@ Result<std::unique_ptr<ModuleInstance>> Scene::create_module(const ModuleSection
     Status s = require_module(section.name, section.name);
     return s.error();
   }
-  return d->create(context_for(section));
+  Stopwatch watch;
+  auto created = d->create(context_for(section));
+  build_ms_[section.name] = watch.elapsed_ms();
+  if (created.ok()) log_info("scene: built {} in {:.0f} ms", section.name, build_ms_[section.name]);
+  return created;
 }
 
 Status Scene::build_modules() {
@@ -466,7 +470,11 @@ Status Scene::save(const std::filesystem::path& file) {
 
 nlohmann::json Scene::module_stats() const {
   nlohmann::json j = nlohmann::json::object();
-  for (const auto& m : modules_) j[m->module()] = m->stats();
+  for (const auto& m : modules_) {
+    nlohmann::json info = m->stats();
+    if (auto it = build_ms_.find(m->module()); it != build_ms_.end()) info["build_ms"] = it->second;
+    j[m->module()] = std::move(info);
+  }
   return j;
 }
 

@@ -338,3 +338,31 @@ TEST_F(SceneGl, VoxelWorldRenders) {
   EXPECT_GT(stats.modules.at("voxel").at("opaque").triangles, 1000u);
   EXPECT_GT(scene->module_stats()["voxel"]["chunks_drawn"].get<int>(), 0);
 }
+
+// Invariant: a painted terrain height is what the terrain draws and what the grass stands on.
+TEST_F(SceneGl, TerrainIsTheGroundAndFollowsEdits) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  auto scene = make_scene(R"({"terrain": {"resolution": 129, "size": 256, "height": 30, "generator": "fbm",
+                                          "noise": {"frequency": 0.01}, "tree": {"leaf_dimension": 17}},
+                              "camera": {"position": [0, 80, 160], "pitch_deg": -25}})");
+  ASSERT_TRUE(scene);
+  ASSERT_NE(scene->ground(), nullptr);
+  EXPECT_EQ(live_module_instances("ground"), 0) << "terrain replaces the built-in ground";
+  Target t = make_target(96, 54);
+  run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 2);
+  auto frame = t.profiler.flush();
+  ASSERT_TRUE(frame.has_value());
+  const SceneFrameStats stats = split_frame_stats(*frame);
+  EXPECT_GT(stats.modules.at("terrain").at("opaque").samples, 1000u);
+  EXPECT_GT(scene->module_stats()["terrain"]["chunks_drawn"].get<int>(), 0);
+  const auto rebuilds = scene->module_stats()["terrain"]["tree_rebuilds"].get<int>();
+  SceneMap* map = scene->map("terrain.height");
+  ASSERT_NE(map, nullptr);
+  for (int j = 60; j < 70; ++j)
+    for (int i = 60; i < 70; ++i) map->grid.at(i, j) += 12.0f;
+  ASSERT_TRUE(scene->map_changed("terrain.height", {60, 60, 70, 70}).ok());
+  const glm::dvec2 p = map->grid.world(64, 64);
+  EXPECT_FLOAT_EQ(static_cast<float>(scene->ground_height(p.x, p.y)), map->grid.at(64, 64));
+  run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 1);
+  EXPECT_EQ(scene->module_stats()["terrain"]["tree_rebuilds"].get<int>(), rebuilds + 1);
+}

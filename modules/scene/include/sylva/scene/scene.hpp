@@ -141,7 +141,7 @@ class Scene {
   Status save(const std::filesystem::path& file);
 
   // --- statistics ---
-  // Per-module facts: {"<module>": module stats()} (triangles, chunks, blades, instances...).
+  // Per-module facts: {"<module>": module stats() + "build_ms" (CPU time of its last (re)build)}.
   nlohmann::json module_stats() const;
   // CPU time of each module's update() in the last update() [ms], by module name.
   const std::map<std::string, double>& update_ms() const { return update_ms_; }
@@ -175,6 +175,7 @@ class Scene {
   glm::ivec2 viewport_{1, 1};
   std::uint64_t frame_ = 0;
   std::map<std::string, double> update_ms_;
+  std::map<std::string, double> build_ms_;
 };
 
 }  // namespace sylva::scene
