@@ -102,6 +102,13 @@ class BitmaskMesher final : public Mesher {
     // +-X faces and along x otherwise.
     const int bit_stride = kAxis == 0 ? p * p : 1;
     const auto alpha_class = static_cast<std::uint8_t>(RenderClass::kAlphaCut);
+    // Raw pointers: stores into the output vectors would otherwise force reloads of every
+    // member vector's data pointer inside the loops.
+    const std::uint64_t* ax = ax_.data();
+    const std::uint64_t* ox = ox_.data();
+    const std::uint64_t* ay = ay_.data();
+    const std::uint64_t* oy = oy_.data();
+    const std::uint8_t* sides_only = palette.sides_only_table().data();
     for (int s = 0; s < n; ++s) {
       slot_count_ = 0;
       int last_slot = -1;
@@ -109,11 +116,11 @@ class BitmaskMesher final : public Mesher {
       for (int r = 0; r < n; ++r) {
         std::uint64_t faces;
         if constexpr (kAxis == 0) {
-          faces = ay_[idx2(s, r)] & ~oy_[idx2(layer, r)];
+          faces = ay[idx2(s, r)] & ~oy[idx2(layer, r)];
         } else if constexpr (kAxis == 1) {
-          faces = ax_[idx2(s, r)] & ~ox_[idx2(layer, r)];
+          faces = ax[idx2(s, r)] & ~ox[idx2(layer, r)];
         } else {
-          faces = ax_[idx2(r, s)] & ~ox_[idx2(r, layer)];
+          faces = ax[idx2(r, s)] & ~ox[idx2(r, layer)];
         }
         if (!faces) continue;
         std::uint64_t ring[8];
@@ -131,7 +138,7 @@ class BitmaskMesher final : public Mesher {
           const BlockId self = ids[idx];
           const bool alpha = render[self] == alpha_class;
           if (alpha && ids[idx + front] == self && palette.culls_same(self)) continue;
-          if (kAxis == 1 && palette.sides_only(self)) continue;
+          if (kAxis == 1 && sides_only[self]) continue;
           std::uint32_t aob = 0xffu;  // all four corners open
           if (occluded) {
             // The eight neighbours of 8 faces at once: an 8x8 bit transpose turns "mask k, face
