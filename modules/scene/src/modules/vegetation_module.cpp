@@ -1,23 +1,21 @@
-// The "vegetation" section: a forest of one procedural species (vegetation::generate_tree, LOD0
-// with hierarchical wind bending and leaf shading by vegetation::TreeRenderer) placed by the
-// scene's world-anchored forest placement (forest_placement.hpp) over a rectangle, standing on
-// the scene's ground, swaying in the scene's wind, coloured by the scene's season.
-// Map: density (tree placement probability in [0, 1]).
+// The "vegetation" section: a vegetation::Forest of one procedural species (generate_tree; LOD0
+// with hierarchical wind bending and leaf shading; the forest culls, animates, draws instanced
+// and casts shadows) whose trees are placed by the scene's world-anchored forest placement
+// (forest_placement.hpp) over a rectangle, standing on the scene's ground, swaying in the scene's
+// wind, coloured by the scene's season. Map: density (tree placement probability in [0, 1]).
 //
 // Edits: a changed density or ground area re-places only the trees of the grid cells it touches
-// (their instance records are rebuilt on the CPU; the tree asset is untouched).
-// Per frame: trees outside the view frustum or beyond max_distance are culled on the CPU, the
-// survivors' instance records (camera-relative, with the wind at each tree) are uploaded and
-// drawn in one instanced call per pass.
+// on the CPU; the species (model, mesh, textures on the GPU) is untouched, and the instance list
+// is handed to the forest once at the next frame.
 
 #include "modules/module_factories.hpp"
 
 #include <sylva/core/log.hpp>
 #include <sylva/core/params_json.hpp>
-#include <sylva/render/buffer.hpp>
 #include <sylva/scene/forest_placement.hpp>
 #include <sylva/scene/module_instance.hpp>
 #include <sylva/vegetation/animation.hpp>
+#include <sylva/vegetation/forest.hpp>
 #include <sylva/vegetation/generator.hpp>
 #include <sylva/vegetation/tree_mesh.hpp>
 #include <sylva/vegetation/tree_renderer.hpp>
@@ -45,11 +43,8 @@ struct ForestSectionSettings {
   std::uint32_t species_seed = 1;
   int leaf_texture_size = 128;
   vegetation::MeshSettings mesh;
-  vegetation::AnimationLevel animation = vegetation::AnimationLevel::kLeaves;
-  vegetation::AnimationSettings motion;
-  vegetation::ShadingSettings shading;
+  vegetation::ForestSettings forest;  // animation, shading, culling of vegetation::Forest
   bool season_from_environment = true;
-  float max_distance = 800.0f;
 
   template <class V>
   void visit(V& v) {
@@ -63,13 +58,10 @@ struct ForestSectionSettings {
     v(map_resolution, "map_resolution", {.min = 1, .max = 8192, .help = "Texels of a new density map along the longer side", .rebuild = Rebuild::kOffline});
     v(species, "species", {.help = "broadleaf, conifer, birch or shrub", .rebuild = Rebuild::kOffline});
     v(species_seed, "species_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the generated tree", .rebuild = Rebuild::kOffline});
-    v(leaf_texture_size, "leaf_texture_size", {.min = 16, .max = 2048, .unit = "px", .help = "Procedural leaf texture size (power of two)", .rebuild = Rebuild::kGpu});
+    v(leaf_texture_size, "leaf_texture_size", {.min = 16, .max = 2048, .unit = "px", .help = "Procedural leaf and bark texture size (power of two)", .rebuild = Rebuild::kGpu});
     v(mesh, "mesh");
-    v(animation, "animation", {.help = "static, trunk, branches or leaves"});
-    v(motion, "motion");
-    v(shading, "shading");
+    v(forest, "forest");
     v(season_from_environment, "season_from_environment", {.help = "Leaf colours follow environment.season"});
-    v(max_distance, "max_distance", {.min = 1.0, .max = 1.0e6, .unit = "m", .help = "Trees farther than this are not drawn", .log_scale = true});
   }
 };
 
@@ -99,96 +91,50 @@ const MapSlot kDensitySlot{"density", MapKind::kUnit, "Tree placement density, 1
 // The scene's season counts from the spring equinox; the vegetation's from 1 January.
 constexpr float kEquinoxYearFraction = 79.0f / 365.0f;
 
-class ForestDrawable final : public render::Drawable {
- public:
-  ForestDrawable(vegetation::TreeRenderer& renderer, vegetation::TreeAsset& asset, const ForestSectionSettings& settings,
-                 const EnvironmentSettings& environment, const DebugView& debug)
-      : renderer_(renderer), asset_(asset), settings_(settings), environment_(environment), debug_(debug) {
-    instances_ = render::Buffer::dynamic(sizeof(vegetation::InstanceGpu) * 64, GL_STREAM_DRAW);
-  }
-
-  std::map<std::pair<int, int>, std::vector<PlacedTree>>& cells() { return cells_; }
-
-  void update(const render::FrameContext& frame) override {
-    gpu_.clear();
-    if (!(debug_.freeze_culling && !frozen_.empty())) {
-      visible_.clear();
-      const render::Frustum frustum = frame.camera.frustum();
-      const glm::vec3 lo = asset_.bounds_min(), hi = asset_.bounds_max();
-      const double max_d2 = static_cast<double>(settings_.max_distance) * settings_.max_distance;
-      for (const auto& [cell, trees] : cells_) {
-        for (const PlacedTree& t : trees) {
-          const glm::dvec3 d = t.position - frame.camera.position();
-          if (glm::dot(d, d) > max_d2) continue;
-          // Rotation about y can move the box by its horizontal radius: test the enclosing box.
-          const double r = std::max({std::abs(lo.x), std::abs(hi.x), std::abs(lo.z), std::abs(hi.z)}) * t.scale;
-          const render::Aabb box{t.position + glm::dvec3(-r, lo.y * t.scale, -r), t.position + glm::dvec3(r, hi.y * t.scale, r)};
-          if (!frustum.intersects(box)) continue;
-          visible_.push_back(t);
-        }
-      }
-      frozen_ = visible_;
-    }
-    const vegetation::AnimationSettings& motion = settings_.motion;
-    for (const PlacedTree& t : visible_) {
-      vegetation::TreeInstance ti;
-      ti.position = t.position;
-      ti.yaw = t.yaw;
-      ti.scale = t.scale;
-      ti.time_offset = t.phase * 100.0f;
-      ti.season_offset = (t.random - 0.5f) * 0.04f;
-      ti.color_variation = glm::vec3(t.random - 0.5f, t.phase - 0.5f, 0.0f) * 0.06f;
-      ti.number = t.random;
-      gpu_.push_back(vegetation::make_instance_gpu(ti, frame.camera.position(), frame.wind, frame.time, motion));
-    }
-    if (!gpu_.empty()) instances_.upload(std::span<const vegetation::InstanceGpu>(gpu_));
-    renderer_.set_frame(vegetation::make_animation_gpu(motion, frame.time), frame.wind.frame(frame.time, frame.camera.position()).gpu);
-  }
-
-  void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override {
-    if (gpu_.empty() || pass == render::Pass::kTransparent) return;
-    vegetation::TreeDrawParams params;
-    params.view_proj = frame.camera.view_projection();
-    params.shading = settings_.shading;
-    if (settings_.season_from_environment) params.shading.season = environment_.season + kEquinoxYearFraction;
-    params.level = settings_.animation;
-    Status s = renderer_.draw(pass, asset_, instances_, 0, static_cast<std::uint32_t>(gpu_.size()), params, stats);
-    if (!s.ok() && !warned_) {
-      log_warn("vegetation: {}", s.error().message);
-      warned_ = true;
-    }
-  }
-
-  std::size_t visible() const { return visible_.size(); }
-
- private:
-  vegetation::TreeRenderer& renderer_;
-  vegetation::TreeAsset& asset_;
-  const ForestSectionSettings& settings_;
-  const EnvironmentSettings& environment_;
-  const DebugView& debug_;
-  std::map<std::pair<int, int>, std::vector<PlacedTree>> cells_;
-  std::vector<PlacedTree> visible_, frozen_;
-  std::vector<vegetation::InstanceGpu> gpu_;
-  render::Buffer instances_;
-  bool warned_ = false;
-};
+vegetation::TreeInstance to_instance(const PlacedTree& t) {
+  vegetation::TreeInstance ti;
+  ti.position = t.position;
+  ti.yaw = t.yaw;
+  ti.scale = t.scale;
+  ti.time_offset = t.phase * 100.0f;
+  ti.season_offset = -0.04f * t.random;
+  ti.color_variation = glm::vec3(t.random - 0.5f, t.phase - 0.5f, 0.0f) * 0.06f;
+  ti.number = t.random;
+  return ti;
+}
 
 class ForestInstance final : public ModuleInstance {
  public:
   static Result<std::unique_ptr<ModuleInstance>> create(const ModuleBuildContext& ctx) {
     auto inst = std::unique_ptr<ForestInstance>(new ForestInstance(ctx));
-    SYLVA_TRY(inst->build_asset());
+    SYLVA_TRY(inst->build_forest());
     SYLVA_TRY(inst->place_all());
     return std::unique_ptr<ModuleInstance>(std::move(inst));
   }
 
-  std::vector<render::Drawable*> drawables() override { return {drawable_.get()}; }
+  std::vector<render::Drawable*> drawables() override { return {&*forest_}; }
+
+  void sync_settings() override {
+    if (instances_dirty_) {
+      instances_dirty_ = false;
+      std::vector<vegetation::TreeInstance> all;
+      for (const auto& [cell, list] : cells_) {
+        for (const PlacedTree& t : list) all.push_back(to_instance(t));
+      }
+      Status s = forest_->set_instances(0, std::move(all));
+      if (!s.ok()) log_warn("vegetation: {}", s.error().message);
+    }
+    const ForestSectionSettings& s = settings();
+    vegetation::ForestSettings& live = forest_->settings();
+    live = s.forest;
+    if (s.season_from_environment) live.shading.season = ctx_.environment->season + kEquinoxYearFraction;
+    if (ctx_.debug->freeze_culling) live.frustum_culling = false;
+  }
 
   Status rebuild(Rebuild what) override {
     if (what == Rebuild::kNone) return {};
-    // Placement changes (area, density, seed) keep the tree asset; species or mesh changes rebuild it.
-    if (asset_key() != built_key_) SYLVA_TRY(build_asset());
+    // Placement changes (area, density, seed) keep the species; species or mesh changes rebuild it.
+    if (asset_key() != built_key_) SYLVA_TRY(build_forest());
     return place_all();
   }
 
@@ -198,31 +144,34 @@ class ForestInstance final : public ModuleInstance {
     const ForestPlacement p = placement();
     glm::ivec2 cmin, cmax;
     forest_cells(p, area.min, area.max, cmin, cmax);
-    auto& cells = drawable_->cells();
+    if (cmax.x < cmin.x || cmax.y < cmin.y) return {};
     for (int k = cmin.y; k <= cmax.y; ++k)
-      for (int i = cmin.x; i <= cmax.x; ++i) cells.erase({i, k});
+      for (int i = cmin.x; i <= cmax.x; ++i) cells_.erase({i, k});
     const double c = forest_cell_size(p);
     // Re-place exactly the cells the area touches (region = their union).
     for (const PlacedTree& t : place_trees(p, &map_->grid, ctx_.ground, glm::dvec2(cmin) * c, (glm::dvec2(cmax) + 0.999) * c)) {
-      cells[{t.cell.x, t.cell.y}].push_back(t);
+      cells_[{t.cell.x, t.cell.y}].push_back(t);
     }
-    cells_replaced_ += static_cast<std::uint64_t>((cmax.x - cmin.x + 1) * std::max(cmax.y - cmin.y + 1, 0));
+    cells_replaced_ += static_cast<std::uint64_t>(cmax.x - cmin.x + 1) * static_cast<std::uint64_t>(cmax.y - cmin.y + 1);
+    instances_dirty_ = true;
     return {};
   }
 
   nlohmann::json stats() const override {
     std::size_t trees = 0;
-    for (const auto& [cell, list] : drawable_->cells()) trees += list.size();
+    for (const auto& [cell, list] : cells_) trees += list.size();
+    const vegetation::ForestStats& fs = forest_->stats();
     return {{"trees", trees},
-            {"trees_drawn", drawable_->visible()},
-            {"triangles_per_tree", asset_.triangles()},
+            {"trees_drawn", fs.visible},
+            {"triangles_per_tree", forest_->asset(0).triangles()},
             {"cells_replaced", cells_replaced_},
-            {"instances_per_lod", {{"lod0", drawable_->visible()}}}};
+            {"cull_ms", fs.update_cpu_ms},
+            {"instances_per_lod", {{"lod0", fs.visible}}}};
   }
 
   std::vector<glm::dvec3> placed_positions(std::size_t max_count) const override {
     std::vector<glm::dvec3> out;
-    for (const auto& [cell, list] : drawable_->cells()) {
+    for (const auto& [cell, list] : cells_) {
       for (const PlacedTree& t : list) {
         if (out.size() >= max_count) return out;
         out.push_back(t.position);
@@ -233,8 +182,9 @@ class ForestInstance final : public ModuleInstance {
 
   std::vector<render::Aabb> debug_bounds() const override {
     std::vector<render::Aabb> out;
-    const glm::vec3 lo = asset_.bounds_min(), hi = asset_.bounds_max();
-    for (const auto& [cell, list] : drawable_->cells()) {
+    const vegetation::TreeAsset& asset = forest_->asset(0);
+    const glm::vec3 lo = asset.bounds_min(), hi = asset.bounds_max();
+    for (const auto& [cell, list] : cells_) {
       for (const PlacedTree& t : list) {
         out.push_back({t.position + glm::dvec3(lo) * static_cast<double>(t.scale), t.position + glm::dvec3(hi) * static_cast<double>(t.scale)});
       }
@@ -266,42 +216,38 @@ class ForestInstance final : public ModuleInstance {
                        params_to_json(s.mesh).dump());
   }
 
-  Status build_asset() {
+  Status build_forest() {
     const ForestSectionSettings& s = settings();
     auto model = vegetation::generate_tree(vegetation::species_preset(s.species, s.species_seed));
     if (!model.ok()) return make_error(model.error().code, "vegetation: " + model.error().message);
-    const vegetation::TreeMesh mesh = vegetation::build_tree_mesh(*model, s.mesh);
     auto textures = vegetation::make_texture_set(s.species, s.species_seed, s.leaf_texture_size, s.leaf_texture_size);
     if (!textures.ok()) return make_error(textures.error().code, "vegetation: " + textures.error().message);
-    auto asset = vegetation::TreeAsset::create(mesh, *textures);
-    if (!asset.ok()) return make_error(asset.error().code, "vegetation: " + asset.error().message);
-    if (!renderer_) {
-      auto renderer = vegetation::TreeRenderer::create();
-      if (!renderer.ok()) return make_error(renderer.error().code, "vegetation: " + renderer.error().message);
-      renderer_ = std::move(*renderer);
-    }
-    asset_ = std::move(*asset);
-    drawable_ = std::make_unique<ForestDrawable>(*renderer_, asset_, settings(), *ctx_.environment, *ctx_.debug);
+    auto forest = vegetation::Forest::create(s.forest);
+    if (!forest.ok()) return make_error(forest.error().code, "vegetation: " + forest.error().message);
+    auto species = forest->add_species(*model, *textures, s.mesh);
+    if (!species.ok()) return make_error(species.error().code, "vegetation: " + species.error().message);
+    forest_ = std::move(*forest);
     built_key_ = asset_key();
+    instances_dirty_ = true;
     return {};
   }
 
   Status place_all() {
     SYLVA_TRY(density_map());
-    auto& cells = drawable_->cells();
-    cells.clear();
+    cells_.clear();
     const ForestSectionSettings& s = settings();
     for (const PlacedTree& t : place_trees(placement(), &map_->grid, ctx_.ground, s.area_min, s.area_max)) {
-      cells[{t.cell.x, t.cell.y}].push_back(t);
+      cells_[{t.cell.x, t.cell.y}].push_back(t);
     }
+    instances_dirty_ = true;
     return {};
   }
 
   ModuleBuildContext ctx_;
-  std::optional<vegetation::TreeRenderer> renderer_;
-  vegetation::TreeAsset asset_;
-  std::unique_ptr<ForestDrawable> drawable_;
+  std::optional<vegetation::Forest> forest_;
+  std::map<std::pair<int, int>, std::vector<PlacedTree>> cells_;
   SceneMap* map_ = nullptr;
+  bool instances_dirty_ = true;
   std::uint64_t cells_replaced_ = 0;
   std::string built_key_;
 };
