@@ -47,6 +47,7 @@ std::unique_ptr<Bench> make_bench(int n, int width, int height) {
   Result<Forest> f = Forest::create();
   if (!f.ok()) return nullptr;
   b->forest = std::move(f).value();
+  b->forest.settings().receive_shadows = false;  // no shadow maps in this benchmark
   if (!b->forest.add_preset(SpeciesPreset::kBroadleaf, 1, 128).ok()) return nullptr;
   const int side = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   std::vector<TreeInstance> trees;

@@ -1,7 +1,8 @@
 #version 450 core
 // Bark: procedural albedo and normal map (tangent space x around the branch, y along it), sun
-// diffuse + a weak specular lobe, hemisphere ambient, fog.
+// diffuse + a weak specular lobe (shadowed by the render core's cascades), hemisphere ambient, fog.
 #include "render/lib/fog.glsl"
+#include "render/lib/shadows.glsl"
 
 in vec3 v_rel;
 in vec3 v_normal;
@@ -25,6 +26,8 @@ void main() {
   vec3 albedo = texture(u_bark_albedo, v_uv).rgb;
   vec3 V = normalize(-v_rel);
   vec3 L = sun_direction();
-  vec3 color = shade_diffuse(albedo, N, 1.0) + sun_radiance() * (u_bark_specular * blinn_phong(N, V, L, 24.0) * lambert(N, L));
+  vec3 geometric = gl_FrontFacing ? n : -n;
+  float shadow = sylva_shadow(v_rel, geometric);  // 1 when the host bound no shadow maps
+  vec3 color = shade_diffuse(albedo, N, shadow) + sun_radiance() * (shadow * u_bark_specular * blinn_phong(N, V, L, 24.0) * lambert(N, L));
   o_color = vec4(apply_fog(color, v_rel), 1.0);
 }

@@ -4,6 +4,7 @@
 // colour c_s from the season texture at seasonCoord, budding and leaf fall by discard; edges by
 // alpha-to-coverage or the (hashed) alpha test, see lib/leaf_alpha.glsl.
 #include "render/lib/fog.glsl"
+#include "render/lib/shadows.glsl"
 #include "vegetation/lib/leaf_alpha.glsl"
 #include "vegetation/lib/leaf_shading.glsl"
 
@@ -34,19 +35,18 @@ uniform float u_ambient;
 out vec4 o_color;
 
 void main() {
-  // Season (seed §4.6): seasonCoord = season + 0.2 leafSpecificNumber + instance offset.
-  vec4 season = texture(u_season, vec2(0.5, u_season_time + v_season_offset));
-  if (season.a < 0.5) discard;
-
+  // Everything that takes derivatives comes before the first discard (uniform control flow).
   float layer = gl_FrontFacing ? 0.0 : 1.0;
   vec4 col = texture(u_leaf_color, vec3(v_uv, layer));
   float alpha = sylva_leaf_alpha(u_alpha_mode, col.a, u_leaf_coverage, v_uv, layer, v_hash_position);
-  if (alpha <= 0.0) discard;
-  if (u_alpha_mode == 2) {
-    int mask = sylva_coverage_mask(alpha, u_samples, v_hash_position);
-    if (mask == 0) discard;
-    gl_SampleMask[0] = mask;
-  }
+  // Season (seed §4.6): seasonCoord = season + 0.2 leafSpecificNumber + instance offset; budding
+  // and leaf fall where the season texture is transparent.
+  vec4 season = texture(u_season, vec2(0.5, u_season_time + v_season_offset));
+  vec3 nts = texture(u_leaf_normal, vec3(v_uv, layer)).xyz * 2.0 - 1.0;
+  vec4 tr = texture(u_leaf_translucency, vec3(v_uv, layer));
+  int mask = u_alpha_mode == 2 ? sylva_coverage_mask(alpha, u_samples, v_hash_position) : 1;
+  if (season.a < 0.5 || alpha <= 0.0 || mask == 0) discard;
+  if (u_alpha_mode == 2) gl_SampleMask[0] = mask;
 
   // Tangent frame of the visible side: front (b, t, n); back (-b, t, -n).
   vec3 n = normalize(v_normal);
@@ -56,7 +56,6 @@ void main() {
     n = -n;
     b = -b;
   }
-  vec3 nts = texture(u_leaf_normal, vec3(v_uv, layer)).xyz * 2.0 - 1.0;
   vec3 N = normalize(b * nts.x + t * nts.y + n * nts.z);
   vec3 V = normalize(-v_rel);
   vec3 L = sun_direction();
@@ -69,12 +68,14 @@ void main() {
   float translucency = 0.0;
   if (dot(n, L) < 0.0) {
     // Light enters through the other side: express L in that side's tangent space (-b, t, -n).
-    vec4 tr = texture(u_leaf_translucency, vec3(v_uv, layer));
     vec3 l_ts = vec3(dot(L, -b), dot(L, t), dot(L, -n));
     translucency = sylva_hl2_translucency(tr.rgb * 2.0 - 1.0, tr.a, l_ts);
   }
-  vec3 color = sun_radiance() * (diffuse * u_diffuse * base + specular * u_specular_color +
-                                 translucency * base * u_translucent_color) +
+  // The sun reaches the side facing it: shadow lookups use that side's normal (the visible side
+  // for reflection, the far side for light passing through). 1 when no shadow maps are bound.
+  float shadow = sylva_shadow(v_rel, dot(n, L) >= 0.0 ? n : -n);
+  vec3 color = shadow * sun_radiance() * (diffuse * u_diffuse * base + specular * u_specular_color +
+                                          translucency * base * u_translucent_color) +
                hemisphere_ambient(N) * u_ambient * base;
   o_color = vec4(apply_fog(color, v_rel), 1.0);
 }

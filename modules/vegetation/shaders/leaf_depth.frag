@@ -15,8 +15,9 @@ uniform float u_season_time;
 uniform int u_alpha_mode;  // 0 alpha test, 1 hashed (2 is treated as 1)
 
 void main() {
-  if (texture(u_season, vec2(0.5, u_season_time + v_season_offset)).a < 0.5) discard;
+  // Derivatives (inside sylva_leaf_alpha) before any discard, as in leaf.frag.
   float layer = gl_FrontFacing ? 0.0 : 1.0;
   float a = texture(u_leaf_color, vec3(v_uv, layer)).a;
-  if (sylva_leaf_alpha(min(u_alpha_mode, 1), a, u_leaf_coverage, v_uv, layer, v_hash_position) <= 0.0) discard;
+  float alpha = sylva_leaf_alpha(min(u_alpha_mode, 1), a, u_leaf_coverage, v_uv, layer, v_hash_position);
+  if (texture(u_season, vec2(0.5, u_season_time + v_season_offset)).a < 0.5 || alpha <= 0.0) discard;
 }

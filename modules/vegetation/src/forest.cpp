@@ -4,6 +4,7 @@
 #include <sylva/core/log.hpp>
 #include <sylva/core/wind.hpp>
 #include <sylva/render/frustum.hpp>
+#include <sylva/render/shadow_maps.hpp>
 
 #include <fmt/format.h>
 
@@ -59,6 +60,7 @@ struct Forest::Impl {
     p.shading = settings.shading;
     p.shading.season = season;
     p.level = settings.animation_level;
+    p.receive_shadows = settings.receive_shadows;
     return p;
   }
 };
@@ -176,7 +178,19 @@ void Forest::update(const render::FrameContext& frame) {
 
 void Forest::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
   Impl& m = *impl_;
-  if (pass != render::Pass::kOpaque || !m.updated) return;
+  if (!m.updated) return;
+  if (pass == render::Pass::kShadow) {
+    // Inside ShadowMaps::render (the scene's shadow hook): draw into the cascade being rendered.
+    if (const render::ShadowCasterContext* c = render::active_shadow_cascade()) {
+      const Status st = draw_depth(c->relative_view_projection, c->light_frustum, stats);
+      if (!st.ok() && !m.reported_error) {
+        log_error("forest: {}", st.error().message);
+        m.reported_error = true;
+      }
+    }
+    return;
+  }
+  if (pass != render::Pass::kOpaque) return;
   const TreeDrawParams params = m.params(frame.camera.view_projection());
   for (Impl::Species& s : m.species) {
     if (s.visible.empty()) continue;
@@ -191,9 +205,12 @@ void Forest::draw(render::Pass pass, const render::FrameContext& frame, render::
 }
 
 Status Forest::draw_depth(const glm::mat4& relative_view_proj, render::PassStats& stats) {
+  return draw_depth(relative_view_proj, render::Frustum::from_matrix(relative_view_proj, impl_->origin), stats);
+}
+
+Status Forest::draw_depth(const glm::mat4& relative_view_proj, const render::Frustum& frustum, render::PassStats& stats) {
   Impl& m = *impl_;
   if (!m.updated) return ok_status();
-  const render::Frustum frustum = render::Frustum::from_matrix(relative_view_proj, m.origin);
   const TreeDrawParams params = m.params(relative_view_proj);
   for (Impl::Species& s : m.species) {
     std::vector<InstanceGpu> upload;

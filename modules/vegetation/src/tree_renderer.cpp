@@ -1,6 +1,7 @@
 #include <sylva/vegetation/tree_renderer.hpp>
 
 #include <sylva/core/assert.hpp>
+#include <sylva/render/shadow_maps.hpp>
 
 #include <fmt/format.h>
 
@@ -170,6 +171,10 @@ Result<TreeRenderer> TreeRenderer::create() {
   TreeRenderer r;
   r.animation_ubo_ = render::Buffer::immutable(sizeof(AnimationGpu), nullptr, true);
   r.wind_ubo_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
+  // SylvaShadows (render/lib/shadows.glsl) is 4 mat4 + 6 vec4 + 1 ivec4 = 368 bytes; all zero means
+  // "disabled" (sylva_shadow returns 1).
+  const std::vector<unsigned char> zeros(368, 0);
+  r.no_shadows_ubo_ = render::Buffer::immutable(zeros.size(), zeros.data());
   const AnimationGpu rest = rest_animation();
   const WindGpuParams calm{};
   r.set_frame(rest, calm);
@@ -210,6 +215,7 @@ Status TreeRenderer::draw_impl(render::Pass pass, const TreeAsset& asset, const 
                                render::PassStats& stats, bool capture) {
   if (pass == render::Pass::kTransparent || count == 0) return ok_status();
   const bool depth = pass == render::Pass::kShadow;
+  if (!depth && !params.receive_shadows) no_shadows_ubo_.bind_base(GL_UNIFORM_BUFFER, render::kShadowUniformBinding);
   const int level = static_cast<int>(params.level);
   animation_ubo_.bind_base(GL_UNIFORM_BUFFER, kAnimationBinding);
   wind_ubo_.bind_base(GL_UNIFORM_BUFFER, kWindBinding);

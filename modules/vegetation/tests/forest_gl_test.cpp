@@ -39,6 +39,7 @@ Forest make_forest() {
   Result<Forest> f = Forest::create();
   EXPECT_TRUE(f.ok()) << f.error().describe();
   Forest forest = std::move(f).value();
+  forest.settings().receive_shadows = false;  // these tests bind no shadow maps
   Result<TreeTextureSet> tex = make_texture_set(SpeciesPreset::kBroadleaf, 1, 64, 64);
   EXPECT_TRUE(tex.ok());
   Result<int> s = forest.add_species(testing::preset_tree(SpeciesPreset::kBroadleaf), *tex);

@@ -21,6 +21,7 @@ using ForestStability = render::GlTest;
 
 Forest small_forest(const glm::dvec3& offset) {
   Forest forest = Forest::create().value();
+  forest.settings().receive_shadows = false;  // no shadow maps bound here
   const Result<TreeTextureSet> tex = make_texture_set(SpeciesPreset::kShrub, 1, 64, 64);
   EXPECT_TRUE(forest.add_species(testing::preset_tree(SpeciesPreset::kShrub), *tex).ok());
   std::vector<TreeInstance> trees;
@@ -88,6 +89,7 @@ TEST_F(ForestStability, HurricaneAndHugeTimesRenderFinitePictures) {
 // update do nothing and raise no GL error.
 TEST_F(ForestStability, EmptyForestsAreHarmless) {
   Forest forest = Forest::create().value();
+  forest.settings().receive_shadows = false;
   auto scene = testing::GlScene::create(32, 32);
   const WindField wind;
   render::FrameContext frame{scene.camera, 0.0, 0.0f, wind, scene.lighting, {32, 32}, 0};

@@ -19,30 +19,7 @@ namespace {
 
 using LeafShadingGl = render::GlTest;
 
-// One large leaf (1 m x 1.4 m) facing +z on a short stalk.
-TreeModel single_leaf() {
-  TreeModel m;
-  m.name = "leaf";
-  Branch b;
-  b.id = 0;
-  b.length = 0.5f;
-  b.frame = {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}};
-  b.radius_base = 0.01f;
-  b.radius_tip = 0.005f;
-  m.branches.push_back(b);
-  Leaf l;
-  l.parent = 0;
-  l.parent_x = 1.0f;
-  l.tangent = {0, 1, 0};
-  l.normal = {0, 0, 1};
-  l.bitangent = glm::cross(l.tangent, l.normal);
-  l.width = 1.0f;
-  l.length = 1.4f;
-  l.number = 0.5f;
-  m.leaves.push_back(l);
-  assign_bending_data(m, 0.009f);
-  return m;
-}
+using testing::single_leaf;
 
 struct Stats {
   glm::dvec3 mean{0.0};

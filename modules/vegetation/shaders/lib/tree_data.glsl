@@ -37,7 +37,7 @@ layout(std430, binding = 3) readonly buffer SylvaTreeBranches { SylvaTreeBranch 
 layout(std430, binding = 4) readonly buffer SylvaTreeLeaves { SylvaTreeLeaf sylva_leaves[]; };
 layout(std430, binding = 5) readonly buffer SylvaTreeInstances { SylvaTreeInstance sylva_instances[]; };
 
-layout(std140, binding = 2) uniform SylvaTreeAnimation {  // AnimationGpu, 176 bytes
+layout(std140, binding = 4) uniform SylvaTreeAnimation {  // AnimationGpu, 176 bytes
   vec4 level[4];             // x response, y turbulence, z frequency, w enabled
   ivec4 clock_cell;
   vec4 clock_offset;

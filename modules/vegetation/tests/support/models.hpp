@@ -18,6 +18,9 @@ TreeModel small_tree(std::uint32_t seed = 7);
 const TreeModel& preset_tree(SpeciesPreset preset, std::uint32_t seed = 1);
 const TreeMesh& preset_mesh(SpeciesPreset preset, std::uint32_t seed = 1);
 
+// One large leaf (1 m x 1.4 m, its base 0.5 m up) facing +z on a short stalk.
+TreeModel single_leaf();
+
 // The seed's example shape of an OBJT file (extraction section 3.1) with two branches and a leaf.
 std::string seed_example_objt();
 

@@ -9,10 +9,12 @@
 // the leaves. Instances are the seed's per-instance data (§4.5): transform, scale, animation phase
 // (time offset), season offset and colour variation.
 //
-// Shadows: the render core has no shadow cascades yet (the Lighting issue adds them), so
-// draw(kShadow) draws nothing; draw_depth() is the depth-only pass with the very same deformation
-// that a shadow caster calls with its light's camera-relative view-projection. It culls against
-// that matrix's frustum, not the camera's, since trees outside the view still cast into it.
+// Shadows (render/shadow_maps.hpp): draw_depth() is the depth-only pass with the very same
+// deformation, for a ShadowCaster's draw_shadow(ctx) (ctx.relative_view_projection,
+// ctx.light_frustum); draw(kShadow) does the same for the cascade render::active_shadow_cascade()
+// names while ShadowMaps::render runs (and nothing otherwise). Culling uses the caster's frustum,
+// not the camera's: trees outside the view still cast into it. The opaque pass receives shadows
+// when settings().receive_shadows is set (the host binds the maps with ShadowMaps::bind()).
 //
 // The forest keeps each species' TreeModel and TreeMesh so the image-based levels of the next
 // issue can bake from them.
@@ -20,6 +22,7 @@
 #include <sylva/core/params.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/render/drawable.hpp>
+#include <sylva/render/frustum.hpp>
 #include <sylva/vegetation/generator.hpp>
 #include <sylva/vegetation/tree_renderer.hpp>
 
@@ -34,6 +37,8 @@ struct ForestSettings {
   float season_speed = 0.0f;  // years per second added to shading.season (animated seasons)
   AnimationLevel animation_level = AnimationLevel::kLeaves;
   bool frustum_culling = true;
+  bool receive_shadows = true;    // sample the render core's shadow maps in the opaque pass; the
+                                  // host must bind them (ShadowMaps::bind(), also when disabled)
   float cull_margin = 0.3f;       // bounding sphere growth for the wind's motion (relative radius)
   float max_distance = 3000.0f;   // trees farther than this from the camera are not drawn [m]
 
@@ -44,6 +49,7 @@ struct ForestSettings {
     v(season_speed, "season_speed", {.min = -10.0, .max = 10.0, .unit = "1/s", .help = "Seasons (years) per second of scene time"});
     v(animation_level, "animation_level", {.help = "How much of the tree is animated (seed table 5.5)"});
     v(frustum_culling, "frustum_culling", {.help = "Cull instances outside the view frustum"});
+    v(receive_shadows, "receive_shadows", {.help = "Receive the sun's cascaded shadows (host binds the maps)"});
     v(cull_margin, "cull_margin", {.min = 0.0, .max = 10.0, .help = "Bounding sphere growth for wind motion"});
     v(max_distance, "max_distance", {.min = 0.0, .max = 1.0e6, .unit = "m", .help = "Farthest drawn tree"});
   }
@@ -94,7 +100,9 @@ class Forest : public render::Drawable {
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
   // Depth-only pass for shadow casters: `relative_view_proj` is camera-relative like the
   // camera's matrices (the instance records are relative to the camera of the last update()).
+  // Culls against `cull` (e.g. ShadowCasterContext::light_frustum), or the matrix's own frustum.
   Status draw_depth(const glm::mat4& relative_view_proj, render::PassStats& stats);
+  Status draw_depth(const glm::mat4& relative_view_proj, const render::Frustum& cull, render::PassStats& stats);
 
   const ForestStats& stats() const;
 

@@ -12,9 +12,15 @@
 // kBranches every branch level, kLeaves branches and leaves (default). Programs are compiled on
 // first use per level and pass.
 //
-// Binding points (shaders/lib/tree_data.glsl): uniform blocks wind 1, animation 2 (render's
-// lighting block stays at 0); storage buffers branches 3, leaves 4, instances 5, capture 7;
-// texture units 0-2 leaf arrays, 3 season, 4-5 bark, 6 leaf coverage (box-filtered alpha).
+// Binding points (shaders/lib/tree_data.glsl): uniform blocks wind 1, animation 4 (the render
+// core's lighting 0, shadows 2 and point lights 3 stay free); storage buffers branches 3, leaves 4,
+// instances 5, capture 7; texture units 0-2 leaf arrays, 3 season, 4-5 bark, 6 leaf coverage
+// (box-filtered alpha); the shadow map stays at the render core's unit 15.
+//
+// Shadows (render/shadow_maps.hpp): kShadow draws are the casters' depth pass (the caller binds
+// the cascade layer and sets the cascade's camera-relative matrix as view_proj). The colour pass
+// receives through render/lib/shadows.glsl when TreeDrawParams::receive_shadows is set: the host
+// must then have called ShadowMaps::bind(); otherwise the renderer binds a "shadows off" block.
 //
 // Failure: create() and draw() return kGl errors naming the shader file and line when a program
 // does not build; asset creation returns kInvalidArgument for textures of the wrong shape and
@@ -42,7 +48,7 @@
 namespace sylva::vegetation {
 
 inline constexpr GLuint kWindBinding = 1;
-inline constexpr GLuint kAnimationBinding = 2;
+inline constexpr GLuint kAnimationBinding = 4;
 inline constexpr GLuint kBranchBinding = 3;
 inline constexpr GLuint kLeafBinding = 4;
 inline constexpr GLuint kInstanceBinding = 5;
@@ -105,6 +111,8 @@ struct TreeDrawParams {
   AnimationLevel level = AnimationLevel::kLeaves;
   bool draw_bark = true;
   bool draw_leaves = true;
+  // Sample the render core's shadow maps (bound by the host with ShadowMaps::bind()).
+  bool receive_shadows = false;
 };
 
 class TreeRenderer {
@@ -141,6 +149,7 @@ class TreeRenderer {
                    std::uint32_t count, const TreeDrawParams& params, render::PassStats& stats, bool capture);
 
   std::map<Key, render::Program> programs_;
+  render::Buffer no_shadows_ubo_;  // a SylvaShadows block with shadows disabled
   render::Buffer animation_ubo_;
   render::Buffer wind_ubo_;
 };
