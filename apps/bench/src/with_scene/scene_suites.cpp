@@ -63,20 +63,22 @@ Result<SuiteSpec> grass_suite() {
     return g;
   };
   r.sweep_groups = {
-      group({{"grass.render.cull.pixels_per_segment", {"0.5"}},
+      group({{"grass.render.cull.pixels_per_segment", {"2"}},
              {"grass.render.cull.near_distance", {"8", "15", "25", "40", "70"}}},
             true),
       group({{"grass.render.cull.near_distance", {"150"}},
-             {"grass.render.cull.pixels_per_segment", {"2", "6", "12", "24"}}},
+             {"grass.render.cull.pixels_per_segment", {"4", "8", "16", "32"}}},
             true),
       {{"grass.render.cull.distance_thinning", {"true"}}, {"grass.render.cull.near_distance", {"25", "50"}}},
       {{"grass.far.clumps", {"false"}}, {"grass.render.cull.near_distance", {"25"}}},
   };
   r.reference = {{"grass.render.cull.near_distance", "150"},
                  {"grass.render.cull.distance_thinning", "false"},
-                 {"grass.render.cull.pixels_per_segment", "0.5"},
+                 {"grass.render.cull.pixels_per_segment", "2"},
                  {"grass.render.cull.max_tess_level", "16"}};
-  r.reference_note = "blades everywhere (near_distance 150 m covers the meadow), no thinning, 0.5 px per segment, "
+  // 2 px per segment, not the range's 0.5: below about 2 px the near blades vanish in the walk's
+  // fourth frame (grass module issue, see apps/bench/README.md "Findings").
+  r.reference_note = "blades everywhere (near_distance 150 m covers the meadow), no thinning, 2 px per segment, "
                      "up to 16 segments";
   r.camera_path = "walk";
   r.frames = 8;
