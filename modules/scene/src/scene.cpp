@@ -6,7 +6,9 @@
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/render/shader_library.hpp>
+#include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/sky.hpp>
+#include <sylva/render/tone_mapping.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/scene/height_source.hpp>
 #include <sylva/scene/module_registry.hpp>
@@ -14,6 +16,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <system_error>
 
 namespace sylva::render::embedded {
@@ -25,6 +28,10 @@ namespace sylva::scene {
 struct Scene::Gpu {
   render::SkyRenderer sky;
   render::LightingUniforms lighting;
+  render::ShadowMaps shadows;  // the sun's cascades; bound for receivers every frame
+  std::unique_ptr<render::CallbackShadowCaster> caster;  // draws every module's Pass::kShadow
+  std::optional<render::ToneMapper> tone;  // built the first time tone mapping is on
+  render::Framebuffer hdr;     // the frame before tone mapping (RGBA16F + float depth)
   render::Program lines;  // built the first time the chunk-bounds view is on
   render::Buffer line_buffer;
   render::VertexArray line_vao;
@@ -53,6 +60,7 @@ std::string map_extension(MapKind kind) { return kind == MapKind::kHeight ? ".ex
 Scene::~Scene() {
   // Modules go first: their drawables may refer to the ground and the maps.
   modules_.clear();
+  if (gpu_ && gpu_->caster) gpu_->shadows.remove_caster(gpu_->caster.get());
 }
 
 Result<std::unique_ptr<Scene>> Scene::create(SceneDocument document) {
@@ -68,6 +76,21 @@ Result<std::unique_ptr<Scene>> Scene::create(SceneDocument document) {
   scene->gpu_ = std::make_unique<Gpu>();
   scene->gpu_->sky = std::move(*sky);
   scene->gpu_->lighting = render::LightingUniforms::create();
+  auto shadows = render::ShadowMaps::create(scene->document_->render.shadows);
+  if (!shadows.ok()) return make_error(shadows.error().code, "render.shadows: " + shadows.error().message);
+  scene->gpu_->shadows = std::move(*shadows);
+  Scene* self = scene.get();
+  scene->gpu_->caster = std::make_unique<render::CallbackShadowCaster>([self](const render::ShadowCasterContext& c) {
+    // Modules draw their shadow from draw(kShadow) through render::active_shadow_cascade().
+    const render::FrameContext ctx{self->camera_, self->time_, self->dt_, self->wind_, self->lighting_, self->viewport_, self->frame_};
+    for (auto& m : self->modules_) {
+      render::PassStats counts;
+      for (render::Drawable* d : m->drawables()) d->draw(render::Pass::kShadow, ctx, counts);
+      self->shadow_counts_[m->module()] += counts;
+      if (c.stats) *c.stats += counts;
+    }
+  });
+  scene->gpu_->shadows.add_caster(scene->gpu_->caster.get());
 
   SYLVA_TRY(scene->build_ground());
   SYLVA_TRY(scene->build_modules());
@@ -312,32 +335,67 @@ void Scene::draw_pass(render::Pass pass, render::FrameProfiler& profiler) {
 
 void Scene::render(const render::Framebuffer& target, render::FrameProfiler& profiler) {
   const render::FrameContext ctx{camera_, time_, dt_, wind_, lighting_, viewport_, frame_};
+  const SceneRenderSettings& rs = document_->render;
   profiler.begin_frame();
-  gpu_->lighting.update(lighting_, camera_.position().y, time_);
-  gpu_->lighting.bind();
-  target.bind();
-  render::apply_reversed_z_state();
-  target.clear(glm::vec4(lighting_.fog_color, 1.0f), 0.0f);
 
+  // Shadow pass: a host hook when set, else the scene's cascaded shadow maps. One GPU scope for
+  // the pass (casters run once per cascade); per-module counts are recorded without GPU time.
+  const std::string shadow_pass = render::to_string(render::Pass::kShadow);
+  shadow_counts_.clear();
   if (shadow_hook_) {
-    const std::string pass_name = render::to_string(render::Pass::kShadow);
-    profiler.begin(pass_name, false);
+    profiler.begin(shadow_pass, false);
     shadow_hook_(ctx, [&](render::PassStats& total) {
       for (auto& m : modules_) {
-        const std::string scope = module_scope(pass_name, m->module());
-        profiler.begin(scope, false);
         render::PassStats counts;
         for (render::Drawable* d : m->drawables()) d->draw(render::Pass::kShadow, ctx, counts);
-        profiler.end(scope);
-        profiler.add_cpu_counts(scope, counts);
+        shadow_counts_[m->module()] += counts;
         total += counts;
       }
     });
-    profiler.end(pass_name);
-    gpu_->lighting.bind();
-    target.bind();
-    render::apply_reversed_z_state();
+    profiler.end(shadow_pass);
+  } else if (rs.shadows.enabled) {
+    gpu_->shadows.settings() = rs.shadows;
+    profiler.begin(shadow_pass, false);
+    render::PassStats total;
+    Status s = gpu_->shadows.render(camera_, lighting_.sun_direction, &ctx, &total);
+    if (!s.ok() && !shadow_warned_) {
+      log_warn("scene: shadows off: {}", s.error().message);
+      shadow_warned_ = true;
+    }
+    profiler.end(shadow_pass);
+  } else {
+    gpu_->shadows.settings().enabled = false;
+    (void)gpu_->shadows.render(camera_, lighting_.sun_direction, &ctx, nullptr);  // uploads "disabled"
   }
+  for (const auto& [module, counts] : shadow_counts_) profiler.add_cpu_counts(module_scope(shadow_pass, module), counts);
+
+  // Colour passes into the HDR target (tone-mapped at the end) or straight into the target.
+  const render::Framebuffer* colour = &target;
+  if (rs.tone_map && !gpu_->tone) {
+    auto tone = render::ToneMapper::create();
+    if (tone.ok()) {
+      gpu_->tone = std::move(*tone);
+    } else {
+      log_warn("scene: no tone mapping: {}", tone.error().message);
+    }
+  }
+  if (rs.tone_map && gpu_->tone) {
+    if (!gpu_->hdr || gpu_->hdr.size() != target.size()) {
+      auto hdr = render::Framebuffer::create({.width = target.width(), .height = target.height(), .color_formats = {GL_RGBA16F}});
+      if (hdr.ok()) {
+        gpu_->hdr = std::move(*hdr);
+      } else {
+        log_warn("scene: no HDR target ({}), rendering without tone mapping", hdr.error().message);
+      }
+    }
+    if (gpu_->hdr) colour = &gpu_->hdr;
+  }
+  gpu_->lighting.update(lighting_, camera_.position().y, time_);
+  gpu_->lighting.bind();
+  gpu_->shadows.bind();
+  colour->bind();
+  render::apply_reversed_z_state();
+  colour->clear(glm::vec4(lighting_.fog_color, 1.0f), 0.0f);
 
   draw_pass(render::Pass::kOpaque, profiler);
   profiler.begin("sky");
@@ -350,6 +408,14 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
     profiler.begin("debug");
     draw_debug_lines();
     profiler.end("debug");
+  }
+  if (colour != &target) {
+    profiler.begin("tone_map");
+    target.bind();
+    gpu_->tone->apply(colour->color_texture(), rs.tone);
+    render::apply_reversed_z_state();
+    profiler.end("tone_map");
+    profiler.add_cpu_counts("tone_map", render::PassStats{.draw_calls = 1});
   }
   profiler.end_frame();
 }

@@ -126,6 +126,7 @@ SceneDocument::SceneDocument(const SceneDocument& other)
       sun(other.sun),
       wind(other.wind),
       environment(other.environment),
+      render(other.render),
       bookmarks(other.bookmarks),
       camera_paths(other.camera_paths),
       directory_(other.directory_),
@@ -173,6 +174,8 @@ Result<SceneDocument> SceneDocument::from_json(const nlohmann::json& json, std::
       load_object(doc.wind, value, key, errors);
     } else if (key == "environment") {
       load_object(doc.environment, value, key, errors);
+    } else if (key == "render") {
+      load_object(doc.render, value, key, errors);
     } else if (key == "bookmarks") {
       if (!value.is_object()) {
         errors.push_back(fmt::format("bookmarks: expected an object of name: camera view, got {}", json_type(value)));
@@ -246,6 +249,7 @@ nlohmann::json SceneDocument::known_json() const {
   j["sun"] = params_to_json(sun);
   j["wind"] = params_to_json(wind);
   j["environment"] = params_to_json(environment);
+  j["render"] = params_to_json(render);
   if (!bookmarks.empty()) {
     nlohmann::json b = nlohmann::json::object();
     for (const auto& [n, view] : bookmarks) b[n] = params_to_json(view);
@@ -322,6 +326,7 @@ ParamRegistry SceneDocument::params() {
   r.add("sun", sun);
   r.add("wind", wind);
   r.add("environment", environment);
+  r.add("render", render);
   for (ModuleSection& s : modules_) r.add(s.name, *s.settings);
   return r;
 }
@@ -335,6 +340,7 @@ Status SceneDocument::validate() const {
   check(validate_params(sun, "sun"));
   check(validate_params(wind, "wind"));
   check(validate_params(environment, "environment"));
+  check(validate_params(render, "render"));
   for (const auto& [n, view] : bookmarks) check(validate_params(view, "bookmarks." + n));
   for (const auto& [n, path] : camera_paths) check(path.validate("camera_paths." + n));
   int grounds = 0;
@@ -368,7 +374,7 @@ void collect_unknown(const nlohmann::json& raw, const nlohmann::json& known, con
       for (const auto& item : known.items()) candidates.push_back(item.key());
       if (path.empty()) {
         // Top level: sections that are absent from this document are still valid keys.
-        for (const char* k : {"name", "camera", "sun", "wind", "environment", "bookmarks", "camera_paths"}) candidates.push_back(k);
+        for (const char* k : {"name", "camera", "sun", "wind", "environment", "render", "bookmarks", "camera_paths"}) candidates.push_back(k);
         for (std::string_view m : known_modules()) candidates.emplace_back(m);
       }
       std::string suggestion;

@@ -225,7 +225,7 @@ TEST(SceneDocument, ParametersByPath) {
   auto doc = SceneDocument::from_text(R"({"ground": {}})", "p.json", warnings);
   ASSERT_TRUE(doc.ok());
   sylva::ParamRegistry params = doc->params();
-  EXPECT_EQ(params.section_names(), (std::vector<std::string>{"camera", "sun", "wind", "environment", "ground"}));
+  EXPECT_EQ(params.section_names(), (std::vector<std::string>{"camera", "sun", "wind", "environment", "render", "ground"}));
   ASSERT_TRUE(params.set("ground.noise.octaves", "4").ok());
   ASSERT_TRUE(params.set("sun.elevation_deg", "12.5").ok());
   EXPECT_EQ(doc->sun.elevation_deg, 12.5f);

@@ -366,3 +366,40 @@ TEST_F(SceneGl, TerrainIsTheGroundAndFollowsEdits) {
   run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 1);
   EXPECT_EQ(scene->module_stats()["terrain"]["tree_rebuilds"].get<int>(), rebuilds + 1);
 }
+
+// Shadows: the scene's cascades make shaded ground darker where a caster blocks the sun, and
+// tone mapping (opt-in) changes the picture but keeps it finite and in range.
+TEST_F(SceneGl, ShadowsAndToneMapping) {
+  const std::string base = R"({"ground": {"resolution": 33, "size": 64, "height": 0, "generator": "flat"},
+    "voxel": {"radius_chunks": 0, "worldgen": {"seed": 3, "variants_per_species": 1}},
+    "sun": {"azimuth_deg": 90, "elevation_deg": 35},
+    "camera": {"position": [-40, 40, 60], "yaw_deg": -30, "pitch_deg": -30}, "render": RENDER})";
+  auto with = [&](const std::string& render) {
+    std::string t = base;
+    t.replace(t.find("RENDER"), 6, render);
+    return t;
+  };
+  if (!find_module("voxel")) GTEST_SKIP() << "the test uses a voxel world as the shadow caster";
+  Target t = make_target(96, 54);
+  auto lit = make_scene(with(R"({"shadows": {"enabled": false}})"));
+  auto shadowed = make_scene(with(R"({"shadows": {"enabled": true, "max_distance": 200}})"));
+  auto toned = make_scene(with(R"({"shadows": {"enabled": false}, "tone_map": true})"));
+  ASSERT_TRUE(lit && shadowed && toned);
+  auto picture = [&](Scene& s) {
+    run_frames(s, t, s.make_camera(s.document().camera, t.size), 2);
+    return render::read_color(t.fb).value();
+  };
+  const Image a = picture(*lit), b = picture(*shadowed), c = picture(*toned);
+  double sum_a = 0.0, sum_b = 0.0;
+  for (float v : a.data()) sum_a += v;
+  for (float v : b.data()) sum_b += v;
+  EXPECT_LT(sum_b, sum_a * 0.995) << "shadows darken part of the picture";
+  EXPECT_GT(rmse(a, c).value(), 0.01) << "tone mapping changes the picture";
+  for (float v : c.data()) {
+    ASSERT_GE(v, 0.0f);
+    ASSERT_LE(v, 1.0f);
+  }
+  auto frame = t.profiler.flush();
+  ASSERT_TRUE(frame.has_value());
+  EXPECT_TRUE(split_frame_stats(*frame).passes.count("tone_map"));
+}

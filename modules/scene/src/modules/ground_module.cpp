@@ -5,8 +5,10 @@
 
 #include "modules/module_factories.hpp"
 
+#include <sylva/core/log.hpp>
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/shader_library.hpp>
+#include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/scene/module_instance.hpp>
 
@@ -109,6 +111,10 @@ class GroundDrawable final : public render::Drawable {
   }
 
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override {
+    if (pass == render::Pass::kShadow) {
+      draw_shadow(stats);
+      return;
+    }
     if (pass != render::Pass::kOpaque) return;
     const float lo = field_->min_height(), hi = field_->max_height();
     program_.use();
@@ -132,6 +138,33 @@ class GroundDrawable final : public render::Drawable {
     }
     stats.instances += 1;
     glDisable(GL_CULL_FACE);
+  }
+
+  // Casts into the cascade ShadowMaps is rendering (if any): every chunk in the light's frustum.
+  void draw_shadow(render::PassStats& stats) {
+    const render::ShadowCasterContext* c = render::active_shadow_cascade();
+    if (!c || !c->camera) return;
+    if (!depth_) {
+      auto program = render::Program::create({"scene/ground.vert", "scene/depth.frag"});
+      if (!program.ok()) {
+        log_warn("ground: no shadow casting: {}", program.error().message);
+        return;
+      }
+      depth_ = std::move(*program);
+    }
+    depth_.use();
+    depth_.set("u_view_projection", c->relative_view_projection);
+    depth_.set("u_model", c->camera->relative_model(glm::dvec3(field_->origin().x, 0.0, field_->origin().y)));
+    depth_.set("u_origin_height", 0.0f);
+    vao_.bind();
+    for (const Chunk& ch : chunks_) {
+      if (!c->light_frustum.intersects(ch.bounds)) continue;
+      glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(ch.index_count), GL_UNSIGNED_INT,
+                               reinterpret_cast<const void*>(ch.first_index * sizeof(std::uint32_t)),
+                               static_cast<GLint>(ch.first_vertex));
+      stats.draw_calls += 1;
+      stats.triangles += ch.index_count / 3;
+    }
   }
 
   // Re-uploads every chunk whose samples (or normals) lie in the area.
@@ -185,6 +218,7 @@ class GroundDrawable final : public render::Drawable {
   }
 
   render::Program program_;
+  render::Program depth_;  // built on the first shadow pass
   render::Buffer vertices_;
   render::Buffer indices_;
   render::VertexArray vao_;

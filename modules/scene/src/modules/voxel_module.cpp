@@ -6,6 +6,7 @@
 #include "modules/module_factories.hpp"
 
 #include <sylva/core/log.hpp>
+#include <sylva/render/shadow_maps.hpp>
 #include <sylva/scene/module_instance.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
 #include <sylva/voxel/worker_pool.hpp>
@@ -41,6 +42,27 @@ struct VoxelSectionSettings {
 
 using Settings = SettingsOf<VoxelSectionSettings>;
 
+// Casts the world into the cascade being rendered (VoxelRenderer::draw(kShadow) draws nothing;
+// its caster entry point is draw_depth).
+class VoxelShadowCaster final : public render::Drawable {
+ public:
+  explicit VoxelShadowCaster(voxel::VoxelRenderer*& renderer) : renderer_(renderer) {}
+  void update(const render::FrameContext&) override {}
+  void draw(render::Pass pass, const render::FrameContext&, render::PassStats& stats) override {
+    if (pass != render::Pass::kShadow || !renderer_) return;
+    const render::ShadowCasterContext* c = render::active_shadow_cascade();
+    if (c && c->camera) renderer_->draw_depth(c->relative_view_projection, c->camera->position(), stats);
+  }
+
+ private:
+  voxel::VoxelRenderer*& renderer_;
+};
+
+// Receiving: the renderer's shadow hook samples the scene's cascades (bound by the scene).
+const char* kShadowReceiver =
+    "#include \"render/lib/shadows.glsl\"\n"
+    "float voxel_shadow(vec3 rel_pos, vec3 normal) { return sylva_shadow(rel_pos, normal); }\n";
+
 class VoxelInstance final : public ModuleInstance {
  public:
   static Result<std::unique_ptr<ModuleInstance>> create(const ModuleBuildContext& ctx) {
@@ -49,7 +71,7 @@ class VoxelInstance final : public ModuleInstance {
     return std::unique_ptr<ModuleInstance>(std::move(inst));
   }
 
-  std::vector<render::Drawable*> drawables() override { return {renderer_.get()}; }
+  std::vector<render::Drawable*> drawables() override { return {renderer_.get(), &caster_}; }
 
   void sync_settings() override {
     // Per-frame render settings; texture_size (kGpu) only changes on a rebuild.
@@ -107,7 +129,10 @@ class VoxelInstance final : public ModuleInstance {
     voxel::remesh_parallel(*world, pool, s.mesher);
     auto renderer = voxel::VoxelRenderer::create(*world, *generator, s.render);
     if (!renderer.ok()) return make_error(renderer.error().code, "voxel: " + renderer.error().message);
+    Status receiver = (*renderer)->set_shadow_receiver({kShadowReceiver, [](GLuint) {}});
+    if (!receiver.ok()) return make_error(receiver.error().code, "voxel: " + receiver.error().message);
     renderer_ = std::move(*renderer);
+    renderer_ptr_ = renderer_.get();
     world_ = std::move(world);
     generator_ = *generator;
     generation_ms_ = report.milliseconds;
@@ -118,6 +143,8 @@ class VoxelInstance final : public ModuleInstance {
   std::shared_ptr<const voxel::WorldGenerator> generator_;
   std::unique_ptr<voxel::World> world_;
   std::unique_ptr<voxel::VoxelRenderer> renderer_;
+  voxel::VoxelRenderer* renderer_ptr_ = nullptr;
+  VoxelShadowCaster caster_{renderer_ptr_};
   double generation_ms_ = 0.0;
 };
 

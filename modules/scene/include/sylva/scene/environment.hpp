@@ -9,6 +9,8 @@
 
 #include <sylva/core/params.hpp>
 #include <sylva/render/lighting.hpp>
+#include <sylva/render/shadow_cascades.hpp>
+#include <sylva/render/tone_mapping.hpp>
 
 #include <glm/glm.hpp>
 
@@ -46,6 +48,25 @@ struct EnvironmentSettings {
     v(time_of_day_h, "time_of_day_h", {.min = 0.0, .max = 24.0, .unit = "h", .help = "Local solar time, 12 = noon"});
     v(season, "season", {.min = 0.0, .max = 1.0, .help = "Year fraction from the spring equinox (0.25 summer, 0.5 autumn, 0.75 winter)"});
     v(latitude_deg, "latitude_deg", {.min = -90.0, .max = 90.0, .unit = "deg", .help = "Latitude of the scene"});
+  }
+};
+
+// How the scene is rendered as a whole (DESIGN.md §2b): the sun's cascaded shadow maps every
+// module casts into and receives from, and the HDR -> display tone mapping at the end.
+struct SceneRenderSettings {
+  render::ShadowSettings shadows;      // render/shadow_cascades.hpp
+  // Render into an HDR target and tone-map it (ACES + sRGB by default). Off by default: the
+  // modules' materials (terrain, grass, trees, voxels) are authored as display values, and through
+  // the HDR path they come out washed out (measured on scenes/forest.json); switch it on per
+  // scene once materials are linear.
+  bool tone_map = false;
+  render::ToneMapSettings tone;        // render/tone_mapping.hpp
+
+  template <class V>
+  void visit(V& v) {
+    v(shadows, "shadows");
+    v(tone_map, "tone_map", {.help = "Render in HDR and tone-map to the display (off: modules write display values directly)"});
+    v(tone, "tone");
   }
 };
 

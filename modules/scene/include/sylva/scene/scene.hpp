@@ -23,10 +23,15 @@
 // Glue: every module gets the same HeightField (through ModuleBuildContext), the same WindField
 // and, per frame, the same render::Lighting (bound once as the lighting uniform block).
 //
-// Frame loop (render): profiler frame; lighting uniforms; clear to the fog colour; the shadow
-// hook (when set) with a callback that draws every module's Pass::kShadow; Pass::kOpaque for all
-// modules (wireframe when the debug view asks); the sky; Pass::kTransparent; debug lines. Each
-// module's work is a profiler scope "<pass>/<module>" inside the pass scope (frame_stats.hpp).
+// Frame loop (render): profiler frame; the shadow pass: the scene's render::ShadowMaps (document
+// "render.shadows") draw every module's Pass::kShadow once per cascade (modules read
+// render::active_shadow_cascade()), or a host's shadow hook when one is set; then the lighting
+// and shadow uniforms are bound for receivers; into an HDR target (when "render.tone_map"):
+// clear to the fog colour, Pass::kOpaque for all modules (wireframe when the debug view asks),
+// the sky, Pass::kTransparent, debug lines; finally the tone-mapping pass into the caller's
+// target. Each module's work is a profiler scope "<pass>/<module>" inside the pass scope
+// (frame_stats.hpp); in the shadow pass only the pass is timed (casters run once per cascade)
+// and the modules' counts are recorded.
 //
 // Editing: parameters are set through set_param() (validated, then whatever the parameter's
 // Rebuild says is rebuilt: kNone takes effect next frame, kGpu/kOffline rebuild that module,
@@ -176,6 +181,8 @@ class Scene {
   std::uint64_t frame_ = 0;
   std::map<std::string, double> update_ms_;
   std::map<std::string, double> build_ms_;
+  std::map<std::string, render::PassStats> shadow_counts_;  // this frame's shadow pass, by module
+  bool shadow_warned_ = false;
 };
 
 }  // namespace sylva::scene

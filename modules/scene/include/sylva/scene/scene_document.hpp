@@ -9,6 +9,7 @@
 //     "sun":         {SunSettings},          // environment.hpp
 //     "wind":        {WindSettings},         // core/wind.hpp: the one wind of the scene
 //     "environment": {EnvironmentSettings},  // time of day, season, latitude
+//     "render":      {SceneRenderSettings},  // shadows, tone mapping
 //     "bookmarks":   {"<name>": {CameraView}, ...},
 //     "camera_paths": {"<name>": {"interpolation": "catmull_rom", "loop": false,
 //                                 "keys": [{"time_s": 0, CameraView fields...}, ...]}, ...},
@@ -98,8 +99,8 @@ class SceneDocument {
   Result<ModuleSection*> add_module(std::string_view name);
   bool remove_module(std::string_view name);
 
-  // Every parameter of the scene, sections "camera", "sun", "wind", "environment", then the
-  // modules. The registry points into this document: use it while the document lives and is
+  // Every parameter of the scene, sections "camera", "sun", "wind", "environment", "render",
+  // then the modules. The registry points into this document: use it while the document lives and is
   // not moved (Scene keeps its document at a stable address).
   ParamRegistry params();
   // Ranges of every parameter, cross-field module checks, bookmarks and camera paths, and the
@@ -114,6 +115,7 @@ class SceneDocument {
   SunSettings sun;
   WindSettings wind;
   EnvironmentSettings environment;
+  SceneRenderSettings render;
   std::map<std::string, CameraView> bookmarks;
   std::map<std::string, CameraPath> camera_paths;
 
