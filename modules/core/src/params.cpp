@@ -353,14 +353,7 @@ Status parse_component_text(const ParamRef& ref, void* dst, std::string_view tex
       *static_cast<std::string*>(dst) = std::string(text);
       return {};
     case ParamType::kEnum: {
-      const std::string_view s = trim(text);
-      for (const auto& [v, n] : ref.enum_table->entries) {
-        if (n == s) {
-          ref.enum_table->set(dst, v);
-          return {};
-        }
-      }
-      return param_error(where, fmt::format("unknown value {}; valid values: {}", quoted(s), ref.enum_table->joined_names()));
+      return store_enum_name(ref, dst, trim(text), where);
     }
     case ParamType::kInt32:
     case ParamType::kUInt32:
@@ -374,6 +367,16 @@ Status parse_component_text(const ParamRef& ref, void* dst, std::string_view tex
     }
   }
   return {};
+}
+
+Status store_enum_name(const ParamRef& ref, void* dst, std::string_view name, std::string_view where) {
+  for (const auto& [value, entry_name] : ref.enum_table->entries) {
+    if (entry_name == name) {
+      ref.enum_table->set(dst, value);
+      return {};
+    }
+  }
+  return param_error(where, fmt::format("unknown value {}; valid values: {}", quoted(name), ref.enum_table->joined_names()));
 }
 
 Status check_value(const ParamRef& ref, const ParamInfo& info, std::string_view path) {

@@ -50,6 +50,9 @@ std::string component_path(std::string_view path, const ParamRef& ref, int index
 // Range checks against ParamInfo happen later, in check_value.
 Status store_number(ParamType type, void* dst, const Number& number, std::string_view where);
 
+// Stores the enum value named `name` (exact match), or names the valid values.
+Status store_enum_name(const ParamRef& ref, void* dst, std::string_view name, std::string_view where);
+
 // Text parsing of one component of `type` into dst.
 Status parse_component_text(const ParamRef& ref, void* dst, std::string_view text, std::string_view where);
 

@@ -94,14 +94,7 @@ Status parse_component_json(const ParamRef& ref, void* dst, const json& j, std::
       if (!j.is_string()) {
         return param_error(where, fmt::format("expected one of {} (a string), got {}", ref.enum_table->joined_names(), describe_json(j)));
       }
-      const std::string& name = j.get_ref<const std::string&>();
-      for (const auto& [v, n] : ref.enum_table->entries) {
-        if (n == name) {
-          ref.enum_table->set(dst, v);
-          return {};
-        }
-      }
-      return param_error(where, fmt::format("unknown value \"{}\"; valid values: {}", name, ref.enum_table->joined_names()));
+      return store_enum_name(ref, dst, j.get_ref<const std::string&>(), where);
     }
     case ParamType::kInt32:
     case ParamType::kUInt32:
