@@ -216,6 +216,7 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
       return corrupt(fmt::format("chunk {} (level {} at {}, {}) points outside the data", i, c.key.level, c.key.x, c.key.z));
     }
   }
+  t.compute_nodes();
   return file;
 }
 

@@ -57,15 +57,25 @@ std::array<std::uint32_t, 4> ChunkTree::child_indices(std::uint32_t idx) const {
           index(k.level + 1, x + 1, z + 1)};
 }
 
-void ChunkTree::chunk_bounds(std::uint32_t idx, glm::dvec3& lo, glm::dvec3& hi) const {
-  const Chunk& c = chunks_[idx];
-  const std::uint32_t size = chunk_size(c.key.level);
-  const double x0 = static_cast<double>(c.key.x) * size, z0 = static_cast<double>(c.key.z) * size;
-  const double x1 = std::min(x0 + size, static_cast<double>(std::max(columns_ - 1, 0)));
-  const double z1 = std::min(z0 + size, static_cast<double>(std::max(rows_ - 1, 0)));
-  lo = glm::dvec3(origin_.x + x0 * spacing_, static_cast<double>(c.min_y), origin_.y + z0 * spacing_);
-  hi = glm::dvec3(origin_.x + std::max(x1, x0) * spacing_, static_cast<double>(c.max_y),
-                  origin_.y + std::max(z1, z0) * spacing_);
+void ChunkTree::compute_nodes() {
+  nodes_.assign(chunks_.size(), ChunkNode{});
+  for (std::uint32_t idx = 0; idx < chunks_.size(); ++idx) {
+    const Chunk& c = chunks_[idx];
+    ChunkNode& n = nodes_[idx];
+    const std::uint32_t size = chunk_size(c.key.level);
+    const double x0 = static_cast<double>(c.key.x) * size, z0 = static_cast<double>(c.key.z) * size;
+    const double x1 = std::min(x0 + size, static_cast<double>(std::max(columns_ - 1, 0)));
+    const double z1 = std::min(z0 + size, static_cast<double>(std::max(rows_ - 1, 0)));
+    n.lo = glm::dvec3(origin_.x + x0 * spacing_, static_cast<double>(c.min_y), origin_.y + z0 * spacing_);
+    n.hi = glm::dvec3(origin_.x + std::max(x1, x0) * spacing_, static_cast<double>(c.max_y),
+                      origin_.y + std::max(z1, z0) * spacing_);
+    n.error_bound = c.error_bound;
+    n.parent_bound = c.key.level > 0 ? chunks_[parent_index(idx)].error_bound : c.error_bound;
+    n.x = c.key.x;
+    n.z = c.key.z;
+    n.level = static_cast<std::uint8_t>(c.key.level);
+    n.present = c.present ? 1 : 0;
+  }
 }
 
 // Builds a ChunkTree; a friend so it can fill the private members.
@@ -418,6 +428,7 @@ Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkT
     r.grid_triangles += 2ull * n * n;
     r.max_error = std::max(r.max_error, c.error);
   }
+  tree.compute_nodes();
   tree.report_.total_ms = total_watch.elapsed_ms();
   if (control.progress) control.progress(1.0f);
   return tree;

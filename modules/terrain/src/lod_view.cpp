@@ -48,6 +48,18 @@ bool LodView::box_visible(const glm::dvec3& lo, const glm::dvec3& hi) const {
   return true;
 }
 
+bool LodView::box_visible(const glm::dvec3& lo, const glm::dvec3& hi, std::uint8_t& mask) const {
+  for (int i = 0; i < 6; ++i) {
+    if ((mask & (1u << i)) == 0) continue;
+    const glm::dvec4& p = planes[static_cast<std::size_t>(i)];
+    const double far_d = p.x * (p.x >= 0 ? hi.x : lo.x) + p.y * (p.y >= 0 ? hi.y : lo.y) + p.z * (p.z >= 0 ? hi.z : lo.z) + p.w;
+    if (far_d < 0.0) return false;
+    const double near_d = p.x * (p.x >= 0 ? lo.x : hi.x) + p.y * (p.y >= 0 ? lo.y : hi.y) + p.z * (p.z >= 0 ? lo.z : hi.z) + p.w;
+    if (near_d >= 0.0) mask = static_cast<std::uint8_t>(mask & ~(1u << i));  // wholly inside this plane
+  }
+  return true;
+}
+
 double LodView::distance_to_box(const glm::dvec3& lo, const glm::dvec3& hi) const {
   const glm::dvec3 nearest = glm::clamp(position, lo, hi);
   return glm::length(position - nearest);

@@ -155,6 +155,33 @@ TEST(Reduction, QemKeepsLockedVerticesAndTheOutlineWithoutBadTriangles) {
   EXPECT_EQ(count_flipped(in.mesh.positions, in.mesh.indices, out), 0u);
 }
 
+// The pass-wise QEM (the fast variant the benchmark compares with meshoptimizer) keeps the same
+// guarantees: locked vertices, the outline, no degenerate/flipped/non-manifold triangles, and an
+// error close to the queue's.
+TEST(Reduction, QemPassesKeepsTheGuaranteesAndStaysCloseToTheQueue) {
+  const ReductionInput in = reduction_input();
+  const std::size_t n = in.mesh.triangle_count();
+  SimplifyStats st;
+  const auto out = simplify_qem_passes(in.mesh.positions, in.mesh.indices, in.locked, n / 10, &st);
+  EXPECT_LE(out.size() / 3, n / 10 + n / 50) << "reaches (nearly) the target";
+  EXPECT_GE(st.passes, 2u);
+  std::set<std::uint32_t> used(out.begin(), out.end()), orig(in.mesh.indices.begin(), in.mesh.indices.end());
+  for (std::uint32_t v : orig) {
+    if (in.locked[v]) {
+      EXPECT_TRUE(used.count(v)) << "locked vertex " << v << " removed";
+    }
+  }
+  EXPECT_EQ(boundary_edges(out), boundary_edges(in.mesh.indices)) << "the outline changed (hole)";
+  const MeshCheck c = check_mesh(in.mesh.positions, out);
+  EXPECT_TRUE(c.ok()) << c.degenerate << " degenerate " << c.duplicate << " duplicate " << c.non_manifold << " non-manifold";
+  EXPECT_EQ(count_flipped(in.mesh.positions, in.mesh.indices, out), 0u);
+  const auto queue = simplify_qem(in.mesh.positions, in.mesh.indices, in.locked, n / 10);
+  const double e_passes = hausdorff_distance(in.mesh.positions, in.mesh.indices, out).max();
+  const double e_queue = hausdorff_distance(in.mesh.positions, in.mesh.indices, queue).max();
+  EXPECT_GT(e_passes, 0.0);
+  EXPECT_LE(e_passes, 2.0 * e_queue + 1e-6) << "passes " << e_passes << " m, queue " << e_queue << " m";
+}
+
 TEST(Reduction, SeedShortestEdgeReducesAndKeepsLockedVertices) {
   const ReductionInput in = reduction_input();
   const std::size_t n = in.mesh.triangle_count();

@@ -47,23 +47,12 @@ WatertightResult check_watertight(const ChunkTree& tree, const LodSelector& sele
 
 }  // namespace sylva::terrain::testing
 
+#include <sylva/terrain/error_measure.hpp>
+
 namespace sylva::terrain::testing {
-
-// Rasterises the drawn body and seam triangles in the x/z plane onto the field's samples: for
-// every sample covered by a drawn triangle, the largest projected vertical error in pixels,
-// K * |y_drawn - h| / distance. Also returns how many samples were covered.
-struct ProjectedError {
-  double max_px = 0.0;
-  double max_m = 0.0;
-  std::size_t samples = 0;
-  glm::ivec2 worst{-1, -1};
-};
-ProjectedError projected_error(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh, double k);
-
-// Drawn height at every field sample (NaN where nothing is drawn), row-major, from the body
-// triangles: for comparing two frames (pops).
-std::vector<float> drawn_heights(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh);
-
+inline ProjectedError projected_error(const HeightField& field, const VertexFrame& frame, const FrameMesh& mesh, double k) {
+  return measure_projected_error(field, frame, mesh, k);
+}
 }  // namespace sylva::terrain::testing
 
 #include <sylva/terrain/mesh.hpp>

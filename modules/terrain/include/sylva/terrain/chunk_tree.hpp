@@ -80,6 +80,17 @@ struct Chunk {
   ChunkMesh mesh;              // empty when ChunkTreeSettings::keep_meshes is false
 };
 
+// What per-frame selection reads of a chunk, packed apart from the (large) Chunk so the tree
+// walk touches one cache line per chunk: cached world bounds and the error bounds.
+struct ChunkNode {
+  glm::dvec3 lo{0.0}, hi{0.0};  // world bounds of the rendered geometry (x/z clipped to the field)
+  float error_bound = 0.0f;     // Chunk::error_bound [m]
+  float parent_bound = 0.0f;    // the parent's error_bound (own bound at the root) [m]
+  std::uint32_t x = 0, z = 0;   // ChunkKey
+  std::uint8_t level = 0;
+  std::uint8_t present = 0;
+};
+
 struct LevelReport {
   int level = 0;
   std::uint32_t chunks = 0;
@@ -135,8 +146,15 @@ class ChunkTree {
   int field_rows() const { return rows_; }
   double spacing() const { return spacing_; }
   glm::dvec2 origin() const { return origin_; }
-  // World-space bounds of a chunk's rendered geometry (x/z clipped to the field).
-  void chunk_bounds(std::uint32_t index, glm::dvec3& lo, glm::dvec3& hi) const;
+  // World-space bounds of a chunk's rendered geometry (x/z clipped to the field); cached.
+  void chunk_bounds(std::uint32_t index, glm::dvec3& lo, glm::dvec3& hi) const {
+    lo = nodes_[index].lo;
+    hi = nodes_[index].hi;
+  }
+  // Selection data of every chunk, indexed like chunk().
+  const std::vector<ChunkNode>& nodes() const { return nodes_; }
+  // First chunk index of a level (chunks of a level are stored row by row).
+  std::uint32_t level_offset(int level) const { return level_offset_[static_cast<std::size_t>(level)]; }
   // World x/z of a root-grid point.
   glm::dvec2 grid_to_world(std::uint32_t gx, std::uint32_t gz) const {
     return origin_ + glm::dvec2(gx, gz) * spacing_;
@@ -158,7 +176,9 @@ class ChunkTree {
   glm::dvec2 origin_{0.0};
   std::vector<std::uint32_t> level_offset_;
   std::vector<Chunk> chunks_;
+  std::vector<ChunkNode> nodes_;
   BuildReport report_;
+  void compute_nodes();
 };
 
 }  // namespace sylva::terrain

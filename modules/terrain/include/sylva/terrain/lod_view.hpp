@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include <array>
+#include <cstdint>
 
 namespace sylva::terrain {
 
@@ -28,6 +29,10 @@ struct LodView {
 
   // Whether an axis-aligned box may be visible (conservative: true when in doubt).
   bool box_visible(const glm::dvec3& lo, const glm::dvec3& hi) const;
+  // The same test for hierarchies: `mask` (bit i = plane i still to test) is narrowed to the
+  // planes the box straddles, so children of a box wholly inside a plane skip that plane.
+  // Returns false when the box is outside.
+  bool box_visible(const glm::dvec3& lo, const glm::dvec3& hi, std::uint8_t& mask) const;
   // Distance from the camera to the nearest point of the box (0 inside).
   double distance_to_box(const glm::dvec3& lo, const glm::dvec3& hi) const;
 };

@@ -33,6 +33,7 @@ struct SelectedChunk {
   std::array<std::uint32_t, 4> coarser_neighbour{kNoChunk, kNoChunk, kNoChunk, kNoChunk};
   // For each Edge: the largest vertical deviation from the field of the drawn chunks across it
   // (their parent's error bound, since they may be morphing towards it), for the skirt depth.
+  // Probed at the middle of the edge, and also at both ends when crack_fix is skirts.
   std::array<float, 4> neighbour_error{0.0f, 0.0f, 0.0f, 0.0f};
 };
 
@@ -86,7 +87,7 @@ class LodSelector {
   const ChunkTree* tree_;
   std::vector<std::uint8_t> state_;
   std::vector<std::uint32_t> touched_;
-  std::vector<std::uint32_t> stack_;
+  std::vector<std::pair<std::uint32_t, std::uint8_t>> stack_;  // chunk, frustum planes left to test
   Selection selection_;
 };
 

@@ -30,6 +30,15 @@ std::vector<std::uint32_t> simplify_qem(std::span<const glm::vec3> positions, st
                                         std::span<const std::uint8_t> locked, std::size_t target_triangles,
                                         SimplifyStats* stats = nullptr);
 
+// The same collapse rules evaluated in passes (seed §4.3's structure with QEM costs): every pass
+// takes the cheapest still-needed edge collapses in cost order and accepts each valid one whose
+// neighbourhood no earlier collapse of the pass touched. Much faster than the queue, close in
+// error (bench/simplify_bench.cpp). Vertices on an open boundary are treated as locked.
+std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positions,
+                                               std::span<const std::uint32_t> indices,
+                                               std::span<const std::uint8_t> locked, std::size_t target_triangles,
+                                               SimplifyStats* stats = nullptr);
+
 // The seed's reduction (§4.3), faithfully: per triangle its shortest edge (first vertex deleted,
 // second kept, in triangle order), sorted by length; a vertex may be deleted when it is not a
 // border vertex, not deleted and nothing was merged into it, and its target is not deleted; then
