@@ -1,6 +1,7 @@
 // GPU frame of the grass module on the headless context (llvmpipe here): blades considered,
 // drawn and triangles per frame, GPU ms of physics / culling / drawing, culling shares, against
 // the blade count (10k .. 2M). One iteration = one frame (update + draw + glFinish).
+#include <sylva/core/image_metrics.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/grass/generator.hpp>
 #include <sylva/grass/grass_field.hpp>
@@ -8,12 +9,14 @@
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/gl_context.hpp>
 #include <sylva/render/lighting_uniforms.hpp>
+#include <sylva/render/readback.hpp>
 
 #include <benchmark/benchmark.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -42,20 +45,23 @@ void BM_GrassFrame(benchmark::State& state) {
   context()->make_current();
   const auto blades = static_cast<double>(state.range(0));  // requested blade count
   const bool simulate = state.range(1) != 0;
-  // A 100 m x 100 m meadow; the density gives the requested blade count. One GrassField holds at
-  // most ~1.39M blades (96 B each in one storage buffer of GL_MAX_SHADER_STORAGE_BLOCK_SIZE =
-  // 128 MB on llvmpipe), so larger meadows are split into x strips; placement is world-anchored,
-  // so the strips hold exactly the blades of the whole meadow.
+  const bool overview = state.range(2) != 0;
+  // A 100 m x 100 m meadow; the density gives the requested blade count. One GrassField holds
+  // any count: it splits its blades into storage buffers of GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  // (128 MB = 1.39 M blades on llvmpipe) by itself.
   GrassFieldSettings fs;
   fs.density = static_cast<float>(blades / 1.0e4);
   HeightField ground(101, 101, 1.0);
-  const int strips = static_cast<int>(std::ceil(blades / 1.2e6));
   GrassRenderSettings rs;
   rs.simulate = simulate;
+  if (overview) rs.cull.near_distance = 150.0f;  // every tile within reach: considered = all blades
   std::vector<GrassField> fields;
-  for (int k = 0; k < strips; ++k) {
-    const Rect strip{{100.0 * k / strips, 0.0}, {100.0 * (k + 1) / strips, 100.0}};
-    auto set = generate_blades(fs, BladeSettings{}, GrassMaps::uniform(strip), ground, {50, 0, 50});
+  {
+    auto set = generate_blades(fs, BladeSettings{}, GrassMaps::uniform({{0.0, 0.0}, {100.0, 100.0}}), ground, {50, 0, 50});
+    if (!set) {
+      state.SkipWithError(set.error().message.c_str());
+      return;
+    }
     auto field = GrassField::create(std::move(*set), rs);
     if (!field) {
       state.SkipWithError(field.error().message.c_str());
@@ -72,8 +78,16 @@ void BM_GrassFrame(benchmark::State& state) {
   render::apply_reversed_z_state();
   render::Camera camera;
   camera.set_aspect(desc.width, desc.height);
-  camera.set_position({45.0, 1.7, 55.0});
-  camera.look_at({60.0, 0.3, 40.0});
+  if (overview) {
+    // Above the meadow looking down at all of it (the whole field is in the frustum).
+    camera.perspective().fov_y = 1.75f;
+    camera.set_position({50.0, 45.0, 110.0});
+    camera.look_at({50.0, 0.0, 48.0});
+  } else {
+    // A walker at eye height looking across the meadow: the typical view.
+    camera.set_position({45.0, 1.7, 55.0});
+    camera.look_at({60.0, 0.3, 40.0});
+  }
   WindField wind;
   double t = 0.0;
   double update_ms = 0.0, draw_ms = 0.0;
@@ -126,12 +140,115 @@ void BM_GrassFrame(benchmark::State& state) {
   state.counters["sh_orient"] = static_cast<double>(orient) / all;
   state.counters["update_ms"] = update_ms / iters;
   state.counters["draw_ms"] = draw_ms / iters;
-  state.counters["fields"] = static_cast<double>(strips);
+  state.counters["chunks"] = static_cast<double>(fields.front().chunk_count());
 }
+// Args: blades, physics on, view (0 walker, 1 overview where every blade is considered).
 BENCHMARK(BM_GrassFrame)
-    ->ArgsProduct({{10000, 100000, 500000, 1000000, 2000000}, {1}})
-    ->Args({1000000, 0})
+    ->ArgsProduct({{10000, 100000, 500000, 1000000, 2000000}, {1}, {0}})
+    ->Args({1000000, 0, 0})
+    ->ArgsProduct({{10000, 100000, 1000000, 2000000}, {1}, {1}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(6);
+
+// Image error against time: the walker view of a 100 m meadow at 40 blades/m^2 (physics off, so
+// every picture shows the same poses), one LOD setting changed at a time, PSNR against a
+// reference with blades to 120 m, no thinning, 1 px per segment and up to 16 segments.
+// Args: kind (0 near_distance [m] with thinning from near/4, 1 pixels_per_segment [px],
+// 2 reference), value.
+struct LodScene {
+  std::unique_ptr<GrassField> field;
+  render::Framebuffer target;
+  render::LightingUniforms lighting;
+  render::Lighting light;
+  render::Camera camera;
+  WindField wind;
+  Image reference;
+
+  static LodScene& get() {
+    static LodScene scene = [] {
+      LodScene s;
+      GrassFieldSettings fs;
+      fs.density = 40.0f;
+      HeightField ground(101, 101, 1.0);
+      auto set = generate_blades(fs, BladeSettings{}, GrassMaps::uniform({{0.0, 0.0}, {100.0, 100.0}}), ground, {50, 0, 50});
+      s.field = std::make_unique<GrassField>(GrassField::create(std::move(*set), {}).value());
+      render::FramebufferDesc desc;
+      desc.width = 512;
+      desc.height = 288;
+      s.target = render::Framebuffer::create(desc).value();
+      s.lighting = render::LightingUniforms::create();
+      s.light.fog_density = 0.0f;
+      s.camera.set_aspect(desc.width, desc.height);
+      s.camera.set_position({45.0, 1.7, 55.0});
+      s.camera.look_at({60.0, 0.3, 40.0});
+      s.reference = s.render(reference_settings(), nullptr);
+      return s;
+    }();
+    return scene;
+  }
+  static GrassRenderSettings reference_settings() {
+    GrassRenderSettings rs;
+    rs.simulate = false;
+    rs.cull.near_distance = 120.0f;
+    rs.cull.distance_thinning = false;
+    rs.cull.pixels_per_segment = 1.0f;
+    rs.cull.max_tess_level = 16.0f;
+    return rs;
+  }
+  Image render(const GrassRenderSettings& rs, double* ms) {
+    field->settings() = rs;
+    render::apply_reversed_z_state();
+    target.bind();
+    target.clear({0.3f, 0.25f, 0.2f, 1.0f});
+    lighting.update(light, camera.position().y, 0.0);
+    lighting.bind();
+    glFinish();
+    const auto t0 = std::chrono::steady_clock::now();
+    field->update(camera, target.size(), 0.0, 0.0f, wind);
+    target.bind();
+    field->draw_blades(camera);
+    glFinish();
+    if (ms) *ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return render::read_color(target).value();
+  }
+};
+
+void BM_GrassLodError(benchmark::State& state) {
+  if (!context()) {
+    state.SkipWithError("no headless GL context");
+    return;
+  }
+  context()->make_current();
+  LodScene& scene = LodScene::get();
+  GrassRenderSettings rs = LodScene::reference_settings();
+  const auto value = static_cast<float>(state.range(1));
+  if (state.range(0) == 0) {
+    rs.cull.near_distance = value;
+    rs.cull.distance_thinning = true;
+    rs.cull.thinning_start = value / 4.0f;
+    rs.cull.pixels_per_segment = 6.0f;  // the default tessellation
+    rs.cull.max_tess_level = 8.0f;
+  } else if (state.range(0) == 1) {
+    rs.cull.pixels_per_segment = value;
+  }
+  double total_ms = 0.0;
+  Image img;
+  for (auto _ : state) {
+    double ms = 0.0;
+    img = scene.render(rs, &ms);
+    total_ms += ms;
+  }
+  const GrassFrameStats st = scene.field->read_frame_stats();
+  state.counters["frame_ms"] = total_ms / static_cast<double>(state.iterations());
+  state.counters["psnr_db"] = std::min(psnr(scene.reference, img).value_or(0.0), 99.0);
+  state.counters["drawn"] = static_cast<double>(st.counts.visible);
+  state.counters["segments"] = static_cast<double>(st.counts.segments);
+}
+BENCHMARK(BM_GrassLodError)
+    ->Args({2, 0})
+    ->ArgsProduct({{0}, {15, 30, 50, 80}})
+    ->ArgsProduct({{1}, {2, 4, 8, 16}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 }  // namespace

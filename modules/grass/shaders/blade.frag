@@ -1,9 +1,12 @@
 #version 450 core
 // grass/blade.frag: two-sided blade shading: diffuse on the lit face, translucency (light
 // through the blade) on the other, hemisphere ambient, root darkening, per-blade colour and a
-// soft sheen; distance fog. Linear RGB out, like the rest of the render core.
+// soft sheen; distance fog; the sun (diffuse, translucency, sheen) is multiplied by the render
+// core's cascaded shadows, looked up with the normal of the face towards the eye (render README
+// "How each module casts and receives"). Linear RGB out, like the rest of the render core.
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
+#include "render/lib/shadows.glsl"
 
 in vec3 te_rel_pos;
 in vec3 te_normal;
@@ -14,6 +17,7 @@ flat in float te_shade;
 uniform vec3 u_base_color;
 uniform vec3 u_tip_color;
 uniform vec4 u_shading;   // x translucency, y ambient, z root_occlusion, w specular
+uniform int u_receive_shadows;
 
 out vec4 o_color;
 
@@ -30,9 +34,10 @@ void main() {
   // Light through the blade: the unlit face glows, strongest when looking towards the sun.
   float through = max(-ndl, 0.0) * (0.5 + 0.5 * max(dot(-view, l), 0.0));
   vec3 transmitted = u_shading.x * through * vec3(1.0, 1.05, 0.55);
-  vec3 direct = sun_radiance() * (diffuse + transmitted);
+  float lit = u_receive_shadows != 0 ? sylva_shadow(te_rel_pos, n) : 1.0;
+  vec3 direct = sun_radiance() * (diffuse + transmitted) * lit;
   vec3 ambient = hemisphere_ambient(n) * u_shading.y * (0.8 + 0.4 * te_shade);
   float sheen = u_shading.w * blinn_phong(n, view, l, 24.0) * v;
-  vec3 color = (albedo * (direct + ambient) + sheen * sun_radiance() * 0.04) * ao;
+  vec3 color = (albedo * (direct + ambient) + sheen * lit * sun_radiance() * 0.04) * ao;
   o_color = vec4(apply_fog(color, te_rel_pos), 1.0);
 }

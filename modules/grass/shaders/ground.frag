@@ -5,6 +5,7 @@
 #include "grass/far.glsl"
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
+#include "render/lib/shadows.glsl"
 
 layout(binding = 0) uniform sampler2D u_ground;
 layout(binding = 1) uniform sampler2D u_density;
@@ -17,6 +18,7 @@ uniform vec2 u_map_min;      // density map rectangle, blade-set local x/z
 uniform vec2 u_map_size;
 uniform vec3 u_base_color;
 uniform vec3 u_tip_color;
+uniform int u_receive_shadows;  // sun term times the render core's cascaded shadows
 uniform vec3 u_coverage;     // x tau_side, y tau_top, z gain (far_field.hpp coverage model)
 
 in vec3 g_local;
@@ -38,6 +40,7 @@ void main() {
   float cover = 1.0 - exp(-u_coverage.z * (u_coverage.y + u_coverage.x * cot_elevation));
   if (!(t.a < density * fade * cover)) discard;
   vec3 albedo = mix(u_base_color, u_tip_color, 0.55) * t.rgb * 1.4;
-  vec3 color = albedo * (sun_radiance() * (0.5 * max(dot(n, sun_direction()), 0.0) + 0.1) + hemisphere_ambient(n) * 0.35);
+  float lit = u_receive_shadows != 0 ? sylva_shadow(g_rel_pos, n) : 1.0;
+  vec3 color = albedo * (sun_radiance() * (0.5 * max(dot(n, sun_direction()), 0.0) + 0.1) * lit + hemisphere_ambient(n) * 0.35);
   o_color = vec4(apply_fog(color, g_rel_pos), 1.0);
 }

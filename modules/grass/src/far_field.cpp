@@ -442,6 +442,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_sway", s.sway * wind_response_ / std::max(mean_stiffness_, 1.0f));
     p.set("u_base_color", base_color_);
     p.set("u_tip_color", tip_color_);
+    p.set("u_receive_shadows", s.receive_shadows ? 1 : 0);
     atlas_.bind(0);
     clump_vao_.bind();
     p.use();
@@ -471,6 +472,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_map_size", glm::vec2(map_rect_.size()));
     p.set("u_base_color", base_color_);
     p.set("u_tip_color", tip_color_);
+    p.set("u_receive_shadows", s.receive_shadows ? 1 : 0);
     ground_texture_.bind(0);
     density_.bind(1);
     ground_vao_.bind();

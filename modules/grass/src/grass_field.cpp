@@ -44,26 +44,45 @@ constexpr GLuint kWindUboBinding = 1;
 
 }  // namespace
 
-Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings& settings) {
-  render::embedded::register_render_shaders();  // render/lib/*.glsl (wind, lighting, fog)
+Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings& settings,
+                                     std::size_t max_blades_per_buffer) {
+  render::embedded::register_render_shaders();  // render/lib/*.glsl (wind, lighting, fog, shadows)
   render::embedded::register_grass_shaders();
   GLint64 max_block = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-  const std::size_t bytes = std::max<std::size_t>(blades.blades.size(), 1) * sizeof(Blade);
-  if (max_block > 0 && bytes > static_cast<std::size_t>(max_block)) {
-    return make_error(ErrorCode::kLimit,
-                      fmt::format("grass: {} blades need {} MB of storage buffer, the GL limit is {} MB "
-                                  "(GL_MAX_SHADER_STORAGE_BLOCK_SIZE); lower grass.field.density or split the field",
-                                  blades.blades.size(), bytes >> 20, max_block >> 20));
+  std::size_t per_chunk = max_block > 0 ? static_cast<std::size_t>(max_block) / sizeof(Blade) : kMaxBlades;
+  if (max_blades_per_buffer > 0) per_chunk = std::min(per_chunk, max_blades_per_buffer);
+  per_chunk = std::max<std::size_t>(per_chunk, 1);
+
+  // Tiles in blade order; they must not overlap and must lie inside the blade array.
+  std::vector<std::uint32_t> order(blades.tiles.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return blades.tiles[a].first < blades.tiles[b].first; });
+  std::uint64_t end_of_previous = 0;
+  for (const std::uint32_t i : order) {
+    const GrassTile& t = blades.tiles[i];
+    const std::uint64_t end = std::uint64_t{t.first} + t.count;
+    if (t.count > 0 && (t.first < end_of_previous || end > blades.blades.size())) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("grass: tile {} holds blades [{}, {}) which overlap another tile or lie outside the "
+                                    "{} blades of the set", i, t.first, end, blades.blades.size()));
+    }
+    if (t.count > per_chunk) {
+      return make_error(ErrorCode::kLimit,
+                        fmt::format("grass: tile {} holds {} blades, more than one storage buffer takes ({} blades, "
+                                    "GL_MAX_SHADER_STORAGE_BLOCK_SIZE {} MB); lower grass.field.density or tile_size",
+                                    i, t.count, per_chunk, max_block >> 20));
+    }
+    if (t.count > 0) end_of_previous = end;
   }
 
   GrassField f;
   f.settings_ = settings;
   f.origin_ = blades.origin;
-  f.tiles_ = std::move(blades.tiles);
-  f.tile_sim_time_.assign(f.tiles_.size(), -1.0);
   f.blade_count_ = blades.blades.size();
   f.max_height_ = blades.max_height;
+  f.tile_sim_time_.assign(blades.tiles.size(), -1.0);
+  f.tile_chunk_.assign(blades.tiles.size(), 0);
 
   auto physics = render::Program::create({"grass/physics.comp"});
   if (!physics) return physics.error();
@@ -71,15 +90,48 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
   if (!cull) return cull.error();
   auto draw = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade.frag"});
   if (!draw) return draw.error();
+  auto depth = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade_depth.frag"});
+  if (!depth) return depth.error();
   f.physics_ = std::move(*physics);
   f.cull_ = std::move(*cull);
   f.draw_ = std::move(*draw);
+  f.depth_ = std::move(*depth);
 
-  if (blades.blades.empty()) blades.blades.push_back(Blade{});  // GL wants non-empty buffers
-  f.blades_ = render::Buffer::immutable(std::span<const Blade>(blades.blades), true);
-  f.visible_ = render::Buffer::immutable(std::max<std::size_t>(f.blade_count_, 1) * sizeof(std::uint32_t), nullptr);
-  f.jobs_ = render::Buffer::dynamic(std::max<std::size_t>(f.tiles_.size(), 1) * sizeof(TileJob));
-  f.command_ = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
+  // Chunks: greedy runs of whole tiles in blade order (blades between tiles ride along).
+  struct Range {
+    std::uint64_t first, end;
+  };
+  std::vector<Range> ranges;
+  for (const std::uint32_t i : order) {
+    const GrassTile& t = blades.tiles[i];
+    if (t.count == 0) continue;
+    if (ranges.empty() || std::uint64_t{t.first} + t.count - ranges.back().first > per_chunk) {
+      ranges.push_back({t.first, std::uint64_t{t.first} + t.count});
+    } else {
+      ranges.back().end = std::uint64_t{t.first} + t.count;
+    }
+    f.tile_chunk_[i] = static_cast<std::uint32_t>(ranges.size() - 1);
+  }
+  if (ranges.empty()) ranges.push_back({0, 0});
+  for (const Range& r : ranges) {
+    Chunk c;
+    c.first_blade = static_cast<std::uint32_t>(r.first);
+    c.blade_count = static_cast<std::uint32_t>(r.end - r.first);
+    const Blade dummy{};
+    const std::span<const Blade> data = c.blade_count > 0
+                                            ? std::span<const Blade>(blades.blades.data() + r.first, c.blade_count)
+                                            : std::span<const Blade>(&dummy, 1);  // GL wants non-empty buffers
+    c.blades = render::Buffer::immutable(data, true);
+    const std::size_t list_bytes = std::max<std::size_t>(c.blade_count, 1) * sizeof(std::uint32_t);
+    c.visible = render::Buffer::immutable(list_bytes, nullptr);
+    c.shadow_visible = render::Buffer::immutable(list_bytes, nullptr);
+    c.command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
+    c.shadow_command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
+    c.jobs = render::Buffer::dynamic(sizeof(TileJob));
+    c.shadow_jobs = render::Buffer::dynamic(sizeof(TileJob));
+    f.chunks_.push_back(std::move(c));
+  }
+  f.tiles_ = std::move(blades.tiles);
   f.spheres_ = render::Buffer::immutable(kMaxColliders * sizeof(glm::vec4), nullptr, true);
   f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
   f.vao_ = render::VertexArray::create();
@@ -120,6 +172,7 @@ void GrassField::set_cull_uniforms(const render::Program& p, const CullView& vie
 
 void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind) {
   ++frame_;
+  shadow_stats_ = {};
   const CullSettings& cs = settings_.cull;
   // Cull view in blade-set local coordinates: VP * translate(origin - camera).
   const glm::mat4 vp_local = camera.view_projection() * camera.relative_model(origin_);
@@ -129,9 +182,9 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   ppr_ = view_.pixels_per_radian;
 
   // Tiles: frustum + near_distance on the CPU.
-  std::vector<TileJob> jobs;
-  jobs.reserve(tiles_.size());
+  for (Chunk& c : chunks_) c.job_list.clear();
   blades_in_culled_tiles_ = 0;
+  job_count_ = 0;
   const bool sane_time = std::isfinite(time);
   for (std::size_t i = 0; i < tiles_.size(); ++i) {
     const GrassTile& t = tiles_[i];
@@ -146,21 +199,19 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
       if (tile_sim_time_[i] >= 0.0 && time >= tile_sim_time_[i]) tile_dt = static_cast<float>(time - tile_sim_time_[i]);
       tile_sim_time_[i] = time;
     }
-    jobs.push_back({t.first, t.count, tile_dt, settings_.simulate ? 1u : 0u});
+    Chunk& c = chunks_[tile_chunk_[i]];
+    c.job_list.push_back({t.first - c.first_blade, t.count, tile_dt, settings_.simulate ? 1u : 0u});
+    ++job_count_;
   }
-  job_count_ = jobs.size();
 
-  CommandBlock reset{};
-  reset.instance_count = 1;
-  reset.capacity = static_cast<std::uint32_t>(blade_count_);
-  command_.update(0, sizeof(reset), &reset);
-  if (jobs.empty()) return;
-  jobs_.upload(std::span<const TileJob>(jobs));
-
-  blades_.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-  visible_.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-  jobs_.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
-  command_.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
+  for (Chunk& c : chunks_) {
+    CommandBlock reset{};
+    reset.instance_count = 1;
+    reset.capacity = c.blade_count;
+    c.command.update(0, sizeof(reset), &reset);
+    if (!c.job_list.empty()) c.jobs.upload(std::span<const TileJob>(c.job_list));
+  }
+  if (job_count_ == 0) return;
   spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, kSpheresBinding);
 
   if (settings_.simulate) {
@@ -174,7 +225,12 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
     physics_.set("u_wind_offset", glm::vec3(0.0f));
     sim_query_.begin(frame_);
     physics_.use();
-    glDispatchCompute(static_cast<GLuint>(jobs.size()), 1, 1);
+    for (const Chunk& c : chunks_) {
+      if (c.job_list.empty()) continue;
+      c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
+      c.jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
+      glDispatchCompute(static_cast<GLuint>(c.job_list.size()), 1, 1);
+    }
     sim_query_.end();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
   }
@@ -185,44 +241,127 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   cull_.set("u_orientation", glm::vec2(cs.orientation_threshold, cs.orientation_max_px));
   cull_query_.begin(frame_);
   cull_.use();
-  glDispatchCompute(static_cast<GLuint>(jobs.size()), 1, 1);
+  for (const Chunk& c : chunks_) {
+    if (c.job_list.empty()) continue;
+    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
+    c.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
+    c.jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
+    c.command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
+    glDispatchCompute(static_cast<GLuint>(c.job_list.size()), 1, 1);
+  }
   cull_query_.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 }
 
 void GrassField::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
-  if (pass != render::Pass::kOpaque) return;
-  draw_blades(frame.camera, &stats);
+  if (pass == render::Pass::kOpaque) {
+    draw_blades(frame.camera, &stats);
+  } else if (pass == render::Pass::kShadow) {
+    if (const render::ShadowCasterContext* cascade = render::active_shadow_cascade()) draw_shadow(*cascade, &stats);
+  }
+}
+
+void GrassField::set_blade_uniforms(const render::Program& p, const glm::mat4& relative_view_projection,
+                                    const render::Camera& camera) const {
+  p.set("u_view_proj", relative_view_projection);
+  p.set("u_origin_rel", glm::vec3(origin_ - camera.position()));
+  p.set("u_shape", static_cast<int>(settings_.shape));
+  set_cull_uniforms(p, view_);
 }
 
 void GrassField::draw_blades(const render::Camera& camera, render::PassStats* stats) {
   if (job_count_ == 0) return;
-  draw_.set("u_view_proj", camera.view_projection());
-  draw_.set("u_origin_rel", glm::vec3(origin_ - camera.position()));
-  draw_.set("u_shape", static_cast<int>(settings_.shape));
+  set_blade_uniforms(draw_, camera.view_projection(), camera);
   draw_.set("u_base_color", settings_.base_color);
   draw_.set("u_tip_color", settings_.tip_color);
   const ShadingSettings& sh = settings_.shading;
   draw_.set("u_shading", glm::vec4(sh.translucency, sh.ambient, sh.root_occlusion, sh.specular));
-  set_cull_uniforms(draw_, view_);
+  draw_.set("u_receive_shadows", sh.receive_shadows ? 1 : 0);
 
-  blades_.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-  visible_.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-  command_.bind(GL_DRAW_INDIRECT_BUFFER);
   vao_.bind();
   draw_.use();
   glPatchParameteri(GL_PATCH_VERTICES, 1);
   draw_query_.begin(frame_);
-  glDrawArraysIndirect(GL_PATCHES, nullptr);
+  for (const Chunk& c : chunks_) {
+    if (c.job_list.empty()) continue;
+    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
+    c.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
+    c.command.bind(GL_DRAW_INDIRECT_BUFFER);
+    glDrawArraysIndirect(GL_PATCHES, nullptr);
+    if (stats) stats->draw_calls += 1;
+  }
   draw_query_.end();
   glBindVertexArray(0);
-  if (stats) stats->draw_calls += 1;
+}
+
+void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render::PassStats* stats) {
+  if (!settings_.cast_shadows || cascade.cascade >= settings_.shadow_cascades || cascade.camera == nullptr) return;
+  if (frame_ == 0) return;  // no update() yet: no camera to thin and tessellate for
+  const render::Camera& camera = *cascade.camera;
+  // The light frustum's side planes in blade-set local coordinates (the cascade is an
+  // orthographic box; its depth range is unbounded by GL_DEPTH_CLAMP, so only the sides cull).
+  const glm::mat4 vp_local = cascade.relative_view_projection * camera.relative_model(origin_);
+  CullView light = make_cull_view(vp_local, camera_local_, camera.forward(), 1.0f, 1.0f);
+  CullSettings cs = settings_.cull;
+  cs.frustum = true;
+  std::size_t jobs = 0;
+  std::vector<std::vector<TileJob>> per_chunk(chunks_.size());
+  for (std::size_t i = 0; i < tiles_.size(); ++i) {
+    const GrassTile& t = tiles_[i];
+    if (t.count == 0 || !tile_visible(t, light, cs)) continue;
+    const Chunk& c = chunks_[tile_chunk_[i]];
+    per_chunk[tile_chunk_[i]].push_back({t.first - c.first_blade, t.count, 0.0f, 0u});
+    shadow_stats_.considered += t.count;
+    ++jobs;
+  }
+  ++shadow_stats_.cascades;
+  if (jobs == 0) return;
+
+  // Cull against the light frustum: same density and distance thinning (camera distance, as in
+  // the colour pass), no orientation test, no behind-the-camera test (forward = 0).
+  set_cull_uniforms(cull_, view_);
+  for (int i = 0; i < 4; ++i) cull_.set(fmt::format("u_planes[{}]", i), light.planes[i]);
+  cull_.set("u_forward", glm::vec3(0.0f));
+  cull_.set("u_cull", glm::vec4(cs.density_scale, cs.width_compensation, 1.0f, 0.0f));
+  cull_.use();
+  for (std::size_t k = 0; k < chunks_.size(); ++k) {
+    Chunk& c = chunks_[k];
+    CommandBlock reset{};
+    reset.instance_count = 1;
+    reset.capacity = c.blade_count;
+    c.shadow_command.update(0, sizeof(reset), &reset);
+    if (per_chunk[k].empty()) continue;
+    c.shadow_jobs.upload(std::span<const TileJob>(per_chunk[k]));
+    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
+    c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
+    c.shadow_jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
+    c.shadow_command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
+    glDispatchCompute(static_cast<GLuint>(per_chunk[k].size()), 1, 1);
+  }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+
+  set_blade_uniforms(depth_, cascade.relative_view_projection, camera);
+  vao_.bind();
+  depth_.use();
+  glPatchParameteri(GL_PATCH_VERTICES, 1);
+  for (std::size_t k = 0; k < chunks_.size(); ++k) {
+    if (per_chunk[k].empty()) continue;
+    const Chunk& c = chunks_[k];
+    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
+    c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
+    c.shadow_command.bind(GL_DRAW_INDIRECT_BUFFER);
+    glDrawArraysIndirect(GL_PATCHES, nullptr);
+    if (stats) stats->draw_calls += 1;
+  }
+  glBindVertexArray(0);
 }
 
 std::vector<Blade> GrassField::read_blades() const {
   std::vector<Blade> out(blade_count_);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  if (!out.empty()) blades_.read(0, out.size() * sizeof(Blade), out.data());
+  for (const Chunk& c : chunks_) {
+    if (c.blade_count > 0) c.blades.read(0, std::size_t{c.blade_count} * sizeof(Blade), out.data() + c.first_blade);
+  }
   return out;
 }
 
@@ -232,17 +371,20 @@ GrassFrameStats GrassField::read_frame_stats() const {
   s.tiles_total = tiles_.size();
   s.tiles_visible = job_count_;
   s.blades_in_culled_tiles = blades_in_culled_tiles_;
-  CommandBlock c{};
+  s.chunks = chunks_.size();
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  command_.read(0, sizeof(c), &c);
-  s.counts.considered = c.considered;
-  s.counts.visible = std::min<std::uint64_t>(c.draw_count, c.capacity);
-  s.counts.density = c.culled_density;
-  s.counts.distance = c.culled_distance;
-  s.counts.frustum = c.culled_frustum;
-  s.counts.orientation = c.culled_orientation;
-  s.counts.segments = c.segments;
-  s.overflow = c.overflow;
+  for (const Chunk& ch : chunks_) {
+    CommandBlock c{};
+    ch.command.read(0, sizeof(c), &c);
+    s.counts.considered += c.considered;
+    s.counts.visible += std::min<std::uint64_t>(c.draw_count, c.capacity);
+    s.counts.density += c.culled_density;
+    s.counts.distance += c.culled_distance;
+    s.counts.frustum += c.culled_frustum;
+    s.counts.orientation += c.culled_orientation;
+    s.counts.segments += c.segments;
+    s.overflow += c.overflow;
+  }
   return s;
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace sylva::grass {
 namespace {
@@ -125,8 +126,16 @@ TEST(GrassCulling, OrientationCullsOnlyThinEdgeOnBlades) {
   View face = make_view({0, 0.2f, -20}, {0, 0.2f, 0});
   EXPECT_EQ(cull_blade(b, face.cull, s), CullResult::kVisible);
   // Edge-on but close at a high resolution: the sliver is wider than orientation_max_px -> kept.
-  View near = make_view({-0.3f, 0.2f, 0.02f}, {0, 0.2f, 0}, 60.0f, 16.0f / 9.0f, 2160.0f);
+  View near = make_view({-0.3f, 0.02f, 0.02f}, {0, 0.02f, 0}, 60.0f, 16.0f / 9.0f, 2160.0f);
+  EXPECT_GT(std::abs(glm::normalize(glm::vec3(0.3f, -0.02f, -0.02f)).x), s.orientation_threshold);
   EXPECT_EQ(cull_blade(b, near.cull, s), CullResult::kVisible);
+  // 18 degrees off edge-on (|cos| = 0.95) keeps 31 % of its width: kept by default (threshold
+  // 0.97 = 14 degrees), culled by the paper's 0.9.
+  View oblique = make_view({-20.0f * std::cos(0.314f), 0.0f, 20.0f * std::sin(0.314f)}, {0, 0.0f, 0});
+  EXPECT_EQ(cull_blade(b, oblique.cull, s), CullResult::kVisible);
+  CullSettings paper = s;
+  paper.orientation_threshold = 0.9f;
+  EXPECT_EQ(cull_blade(b, oblique.cull, paper), CullResult::kOrientation);
 }
 
 TEST(GrassCulling, TileTestNeverHidesAVisibleBlade) {
@@ -152,6 +161,58 @@ TEST(GrassCulling, TileTestNeverHidesAVisibleBlade) {
   EXPECT_EQ(counts.visible + counts.density + counts.distance + counts.frustum + counts.orientation, counts.considered);
   EXPECT_GT(counts.visible, 0u);
   EXPECT_GE(counts.segments, counts.visible);
+}
+
+TEST(GrassCulling, VisibleSetOfATileIsWorldAnchoredUnderCameraMotion) {
+  // Issue: "the visible blade set of a tile does not change with the camera inside the near
+  // range". A camera walking around and over a tile (every blade closer than thinning_start,
+  // the tile in view) sees exactly the same blades of it: distance thinning and density read
+  // only per-blade constants (rank), so nothing appears, vanishes or swims. Orientation culling
+  // is the one view-dependent test; it may only drop blades that are edge-on and sub-pixel.
+  const BladeSet set = make_field(40.0f);
+  const GrassTile* tile = nullptr;
+  for (const GrassTile& t : set.tiles) {
+    const glm::vec3 c = 0.5f * (t.bounds_min + t.bounds_max);
+    if (t.count > 300 && std::abs(c.x - 30.0f) < 4.0f && std::abs(c.z - 30.0f) < 4.0f) tile = &t;
+  }
+  ASSERT_NE(tile, nullptr);
+  const glm::vec3 centre = 0.5f * (tile->bounds_min + tile->bounds_max);
+  CullSettings s;
+  s.thinning_start = 15.0f;
+  s.near_distance = 40.0f;
+  s.density_scale = 0.8f;  // a quality setting below 1 must not make the set view-dependent either
+  std::vector<std::uint32_t> first;
+  int views = 0, orientation_only = 0;
+  for (int k = 0; k < 12; ++k) {
+    const float a = 0.52f * static_cast<float>(k);
+    const float r = 6.0f + 0.7f * static_cast<float>(k % 4);
+    const glm::vec3 eye = centre + glm::vec3(r * std::cos(a), 2.0f + 0.5f * static_cast<float>(k % 3), r * std::sin(a));
+    const View v = make_view(eye, centre, 90.0f);
+    for (const float corner_x : {tile->bounds_min.x, tile->bounds_max.x})
+      for (const float corner_z : {tile->bounds_min.z, tile->bounds_max.z})
+        ASSERT_LT(glm::length(glm::vec3(corner_x, centre.y, corner_z) - eye), s.thinning_start);
+    std::vector<std::uint32_t> seen;
+    CullSettings no_orientation = s;
+    no_orientation.orientation = false;
+    for (std::uint32_t i = tile->first; i < tile->first + tile->count; ++i) {
+      const CullResult r0 = cull_blade(set.blades[i], v.cull, no_orientation);
+      ASSERT_NE(r0, CullResult::kFrustum) << "the whole tile is in view";
+      if (r0 == CullResult::kVisible) seen.push_back(i);
+      const CullResult r1 = cull_blade(set.blades[i], v.cull, s);
+      if (r1 != r0) {
+        ASSERT_EQ(r1, CullResult::kOrientation);
+        ++orientation_only;
+      }
+    }
+    if (views++ == 0) {
+      first = seen;
+      EXPECT_GT(first.size(), tile->count / 2);
+      EXPECT_LT(first.size(), tile->count);  // density_scale removes some, always the same ones
+    } else {
+      EXPECT_EQ(seen, first) << "view " << k;
+    }
+  }
+  RecordProperty("orientation_culled_blade_views", orientation_only);
 }
 
 TEST(GrassCulling, TessellationFollowsProjectedSize) {

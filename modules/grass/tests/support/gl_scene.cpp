@@ -1,6 +1,7 @@
 #include "support/gl_scene.hpp"
 
 #include <sylva/core/log.hpp>
+#include <sylva/render/frame_context.hpp>
 #include <sylva/render/readback.hpp>
 
 #include <epoxy/gl.h>
@@ -17,6 +18,11 @@ GlScene GlScene::create(int width, int height) {
   s.lighting.fog_density = 0.0f;
   s.camera.set_aspect(width, height);
   s.camera.perspective().near_plane = 0.05f;
+  render::ShadowSettings off;
+  off.enabled = false;
+  off.cascade_count = 1;
+  off.resolution = 64;
+  s.shadows = render::ShadowMaps::create(off).value();
   return s;
 }
 
@@ -25,6 +31,20 @@ void GlScene::begin(double time) {
   target.clear(clear_color, 0.0f);
   lighting_ubo.update(lighting, camera.position().y, time);
   lighting_ubo.bind();
+  shadows.bind();
+}
+
+void GlScene::render_shadows(GrassField& field, std::span<render::ShadowCaster* const> extra) {
+  const render::FrameContext frame{camera, 0.0, 0.0f, wind, lighting, size(), 0};
+  render::CallbackShadowCaster grass([&](const render::ShadowCasterContext& c) {
+    field.draw(render::Pass::kShadow, frame, *c.stats);
+  });
+  shadows.add_caster(&grass);
+  for (render::ShadowCaster* c : extra) shadows.add_caster(c);
+  const Status s = shadows.render(camera, lighting.sun_direction, &frame, nullptr);
+  if (!s.ok()) log_warn("shadows: {}", s.error().message);
+  shadows.remove_caster(&grass);
+  for (render::ShadowCaster* c : extra) shadows.remove_caster(c);
 }
 
 Image GlScene::read() const { return render::read_color(target).value(); }

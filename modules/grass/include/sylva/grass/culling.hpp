@@ -13,10 +13,16 @@
 //  3. frustum   the blade's bounding sphere (hull of v0, v1, v2 plus half its drawn width) is
 //               outside one of the four side planes or behind the camera. Conservative: it
 //               never removes a visible pixel.
-//  4. orientation  |dot(view dir, width dir)| > orientation_threshold (Jahrmann & Wimmer 2017
-//               §5.1 use 0.9) AND the edge-on width w * sqrt(1 - dot^2) projects to fewer than
-//               orientation_max_px pixels; the second clause (ours) keeps near blades whose
-//               sliver is still visible, so the image changes by less than a pixel per blade.
+//  4. orientation  |dot(view dir, width dir)| > orientation_threshold AND the edge-on width
+//               w * sqrt(1 - dot^2) projects to fewer than orientation_max_px pixels; the second
+//               clause (ours) keeps near blades whose sliver is still visible. Default threshold
+//               0.97 (14 degrees from edge-on), not Jahrmann & Wimmer 2017's 0.9 (26 degrees):
+//               with uniformly random orientations a threshold c removes a share
+//               acos(c) / (pi/2) of the blades but only 1 - c of their projected area (the
+//               integral of sin), so 0.97 culls 16 % of the in-view blades for 3 % of their
+//               coverage, 0.9 culls 29 % for 10 %. Measured at 256x144 (grass_field_gl_test
+//               CullingKeepsTheImage, 2026-11-22): 0.9 -> 35.3 dB PSNR against the unculled
+//               picture, 0.95 -> 41.1, 0.97 -> 44.2, 0.98 -> 47.5, 0.99 -> 57.1 dB.
 // A survivor whose rank is within 0.1 of keep is narrowed linearly to zero width (blade.tesc),
 // so a blade fades out over a distance band instead of popping.
 // Survivors are widened by 1 / keep (blend width_compensation, at most 4x) so that thinning

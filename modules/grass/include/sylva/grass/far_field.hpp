@@ -67,6 +67,7 @@ struct FarFieldSettings {
   float texture_scale = 3.0f;     // world metres per repeat of the ground texture [m]
   float sway = 0.5f;              // clump sway relative to the blades' wind response
   float coverage_gain = 0.6f;     // calibration of the ground layer's coverage model (see below)
+  bool receive_shadows = true;    // clumps and ground layer receive the render core's sun shadows
 
   template <class V>
   void visit(V& v) {
@@ -88,6 +89,7 @@ struct FarFieldSettings {
     v(sway, "sway", {.min = 0.0f, .max = 4.0f, .help = "Clump sway relative to blades"});
     v(coverage_gain, "coverage_gain", {.min = 0.0f, .max = 10.0f,
                                        .help = "Scales the ground layer's coverage to match the blades"});
+    v(receive_shadows, "receive_shadows", {.help = "Clumps and the ground layer receive the sun's cascaded shadows"});
   }
 };
 

@@ -15,8 +15,24 @@
 // call, including destruction. The lighting uniform block (render::LightingUniforms) must be
 // bound by the caller before draw(), as for every module.
 //
-// Failure: create() returns kGl when a shader does not compile (message names file:line) and
-// kLimit when the blades exceed GL_MAX_SHADER_STORAGE_BLOCK_SIZE.
+// Shadows (render core, modules/render/README.md "Lighting and shadows"): draw(kShadow) inside
+// render::ShadowMaps::render() (render::active_shadow_cascade() non-null) casts the blades into
+// the first `shadow_cascades` cascades: per cascade the CPU picks the tiles inside the light
+// frustum (and near_distance of the camera), cull.comp culls their blades against the light
+// frustum with the camera's distance thinning and no orientation test (edge-on to the camera is
+// not edge-on to the sun), and the blade tessellation shaders draw them with the cascade matrix
+// and the same uniforms as the colour pass, so the shadow is the simulated, tessellated blade the
+// camera sees. Tiles outside the camera's view keep the pose of their last simulated frame.
+// The colour pass receives through render/lib/shadows.glsl (the caller binds ShadowMaps).
+//
+// Storage: blades are split at tile boundaries into chunks of at most
+// GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 96 blades (1.39 M on llvmpipe's 128 MB), one storage
+// buffer, visible list and indirect draw per chunk, so one field holds any count up to
+// kMaxBlades (2 M blades = 2 chunks). Callers see one field; blade indices stay global.
+//
+// Failure: create() returns kGl when a shader does not compile (message names file:line),
+// kInvalidArgument when tiles overlap or point outside the blade array, and kLimit when one tile
+// alone exceeds the storage limit.
 
 #include <sylva/core/params.hpp>
 #include <sylva/core/result.hpp>
@@ -30,6 +46,7 @@
 #include <sylva/render/drawable.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/shader_library.hpp>
+#include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/vertex_array.hpp>
 
 #include <array>
@@ -58,6 +75,8 @@ struct GrassRenderSettings {
   glm::vec3 base_color{0.045f, 0.16f, 0.035f};  // linear RGB at the root
   glm::vec3 tip_color{0.28f, 0.55f, 0.12f};     // linear RGB at the tip
   bool simulate = true;                         // physics on/off (off: blades keep their pose)
+  bool cast_shadows = true;                     // draw into the sun's shadow cascades
+  int shadow_cascades = 2;                      // cast into cascades 0 .. shadow_cascades - 1 only
 
   template <class V>
   void visit(V& v) {
@@ -68,6 +87,9 @@ struct GrassRenderSettings {
     v(base_color, "base_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the root"});
     v(tip_color, "tip_color", {.min = 0.0f, .max = 1.0f, .unit = "linear RGB", .help = "Colour at the tip"});
     v(simulate, "simulate", {.help = "Run the blade physics"});
+    v(cast_shadows, "cast_shadows", {.help = "Blades cast into the sun's shadow cascades"});
+    v(shadow_cascades, "shadow_cascades", {.min = 0.0f, .max = 4.0f,
+                                           .help = "Blades cast only into the nearest this many cascades (cost bound)"});
   }
 };
 
@@ -79,13 +101,22 @@ struct GrassFrameStats {
   CullCounts counts;               // per-blade results of cull.comp (considered = blades in visible tiles)
   std::uint64_t blades_in_culled_tiles = 0;
   std::uint64_t overflow = 0;      // survivors that did not fit the visible list (always 0)
+  std::size_t chunks = 0;          // storage buffers the blades are split into
+};
+
+// Counters of the last shadow pass (all cascades drawn since the previous update()).
+struct GrassShadowStats {
+  std::uint64_t cascades = 0;      // cascades the blades were drawn into
+  std::uint64_t considered = 0;    // blades in tiles inside a light frustum (summed over cascades)
 };
 
 class GrassField : public render::Drawable {
  public:
   GrassField() = default;
   // Uploads `blades` and builds the programs. The blades are moved to the GPU.
-  static Result<GrassField> create(BladeSet blades, const GrassRenderSettings& settings = {});
+  // `max_blades_per_buffer` (0 = the GL limit) lowers the chunk size (tests split small fields).
+  static Result<GrassField> create(BladeSet blades, const GrassRenderSettings& settings = {},
+                                   std::size_t max_blades_per_buffer = 0);
 
   GrassField(GrassField&&) noexcept = default;
   GrassField& operator=(GrassField&&) noexcept = default;
@@ -99,8 +130,11 @@ class GrassField : public render::Drawable {
 
   // CPU tile culling, physics and blade culling on the GPU (see the header comment).
   void update(const render::FrameContext& frame) override;
-  // kOpaque: the blades; kShadow and kTransparent draw nothing yet (no shadow caster API).
+  // kOpaque: the blades. kShadow: inside ShadowMaps::render() casts into the active cascade
+  // (see the header comment), else nothing. kTransparent: nothing.
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+  // The caster entry point for one cascade (what draw(kShadow) calls); needs update() first.
+  void draw_shadow(const render::ShadowCasterContext& cascade, render::PassStats* stats = nullptr);
 
   // Same as update() with explicit inputs (tools and tests without a scene).
   void update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind);
@@ -109,6 +143,8 @@ class GrassField : public render::Drawable {
   const glm::dvec3& origin() const { return origin_; }
   const std::vector<GrassTile>& tiles() const { return tiles_; }
   std::size_t blade_count() const { return blade_count_; }
+  std::size_t chunk_count() const { return chunks_.size(); }
+  const GrassShadowStats& shadow_stats() const { return shadow_stats_; }
   float max_height() const { return max_height_; }
 
   // Stalling read-backs for tests and benchmarks.
@@ -130,25 +166,41 @@ class GrassField : public render::Drawable {
     float dt;
     std::uint32_t flags;
   };
+  // One storage buffer's worth of blades: a contiguous blade range [first_blade, + blade_count)
+  // holding whole tiles. Visible lists and draw commands are per chunk and per pass.
+  struct Chunk {
+    std::uint32_t first_blade = 0;
+    std::uint32_t blade_count = 0;
+    render::Buffer blades;
+    render::Buffer visible;        // colour pass
+    render::Buffer command;
+    render::Buffer jobs;
+    std::vector<TileJob> job_list;
+    render::Buffer shadow_visible;  // shadow pass (its own, so the colour list survives)
+    render::Buffer shadow_command;
+    render::Buffer shadow_jobs;
+  };
   void set_cull_uniforms(const render::Program& program, const CullView& view) const;
+  void set_blade_uniforms(const render::Program& program, const glm::mat4& relative_view_projection,
+                          const render::Camera& camera) const;
 
   GrassRenderSettings settings_;
   glm::dvec3 origin_{0.0};
   std::vector<GrassTile> tiles_;
+  std::vector<std::uint32_t> tile_chunk_;  // chunk of each tile
   std::vector<double> tile_sim_time_;  // last time each tile was simulated; < 0: never
   std::size_t blade_count_ = 0;
   float max_height_ = 0.0f;
 
-  render::Buffer blades_;
-  render::Buffer visible_;
-  render::Buffer jobs_;
-  render::Buffer command_;
+  std::vector<Chunk> chunks_;
   render::Buffer spheres_;
   render::Buffer wind_;
   render::VertexArray vao_;
   render::Program physics_;
   render::Program cull_;
   render::Program draw_;
+  render::Program depth_;
+  GrassShadowStats shadow_stats_;
   render::PassQuery sim_query_;
   render::PassQuery cull_query_;
   render::PassQuery draw_query_;

@@ -94,7 +94,7 @@ struct PhysicsSettings {
 struct CullSettings {
   bool frustum = true;
   bool orientation = true;
-  float orientation_threshold = 0.9f;  // |dot(view, width dir)| above this is "edge-on" (paper: 0.9)
+  float orientation_threshold = 0.97f; // |dot(view, width dir)| above this is "edge-on" (paper: 0.9, see culling.hpp)
   float orientation_max_px = 0.75f;    // ... and only culled when its edge-on width is below this [px]
   bool distance_thinning = true;
   float near_distance = 50.0f;         // blades end here (d_max of seed 001) [m]
@@ -132,6 +132,7 @@ struct ShadingSettings {
   float ambient = 0.35f;       // ambient light level
   float root_occlusion = 0.7f; // how much darker the root is than the tip (0 = none)
   float specular = 0.15f;      // strength of a soft sheen
+  bool receive_shadows = true; // sun light is multiplied by the render core's cascaded shadows
 
   template <class V>
   void visit(V& v) {
@@ -139,6 +140,7 @@ struct ShadingSettings {
     v(ambient, "ambient", {.min = 0.0f, .max = 2.0f, .help = "Ambient light"});
     v(root_occlusion, "root_occlusion", {.min = 0.0f, .max = 1.0f, .help = "Darkening towards the root"});
     v(specular, "specular", {.min = 0.0f, .max = 1.0f, .help = "Sheen strength"});
+    v(receive_shadows, "receive_shadows", {.help = "Blades receive the sun's cascaded shadows"});
   }
 };
 
