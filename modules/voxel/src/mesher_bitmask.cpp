@@ -9,9 +9,10 @@
 // 2. Visible faces of a whole row in one expression, e.g. +Y at height s, row z:
 //        faces = nonair_x[s][z] & ~opaque_x[s + 1][z]
 // 3. Ambient occlusion without per-face neighbour lookups: the eight opaque neighbours in front of
-//    a row of faces are the three neighbouring rows shifted by -1, 0, +1 bit (eight masks); an
-//    8x8 bit-matrix transpose turns them into one byte per face, and a 256-entry table gives the
-//    face's four AO values. A row with nothing in front skips all of it (open ground).
+//    a row of faces are the three neighbouring rows shifted by -1, 0, +1 bit; the AO of every
+//    face's four corners is then computed for the whole row at once as 2-bit values in bit planes
+//    (a full adder: ao = 3 - (s1 + s2 + c), 0 when both sides are set), and so is the mask of
+//    faces with uniform AO. A row with nothing in front skips all of it (open ground).
 // 4. Faces are bucketed by key (block, face, uniform AO) into per-slice bit planes and merged into
 //    rectangles with count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs
 //    between corners stay unit quads, so every mesher shades identically.
@@ -26,6 +27,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <utility>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -51,20 +53,21 @@ void transpose_bits(std::uint64_t* a, int width) {
 }
 
 
-// Packed AO (pack_ao order) of a face from its eight ring neighbours (bit k = ring position k,
-// see ring_masks), by the same vertex rule as AoSampler.
-constexpr std::array<std::uint8_t, 256> make_ao_table() {
-  std::array<std::uint8_t, 256> t{};
-  for (int m = 0; m < 256; ++m) {
-    auto bit = [m](int k) { return (m >> k) & 1; };
-    auto vertex = [](int s1, int s2, int c) { return (s1 && s2) ? 0 : 3 - (s1 + s2 + c); };
-    const int mm = bit(0), zm = bit(1), pm = bit(2), mz = bit(3), pz = bit(4), mp = bit(5), zp = bit(6), pp = bit(7);
-    const int a0 = vertex(mz, zm, mm), a1 = vertex(pz, zm, pm), a2 = vertex(pz, zp, pp), a3 = vertex(mz, zp, mp);
-    t[static_cast<std::size_t>(m)] = static_cast<std::uint8_t>(a0 | a1 << 2 | a2 << 4 | a3 << 6);
-  }
-  return t;
+// Per-vertex AO of a whole row of faces as bit planes (Lysenko's rule, see mesher.hpp):
+// ao = (s1 && s2) ? 0 : 3 - (s1 + s2 + c), i.e. the two bits of ao are the complement of the
+// two bits of the count s1 + s2 + c (a full adder), with both sides set forcing 0.
+struct AoPlanes {
+  std::uint64_t lo[4];    // bit 0 of each corner's AO (pack_ao corner order)
+  std::uint64_t hi[4];    // bit 1
+  std::uint64_t uniform;  // faces whose four corners have the same AO (the only ones that merge)
+};
+
+inline void ao_corner(std::uint64_t s1, std::uint64_t s2, std::uint64_t c, std::uint64_t& lo, std::uint64_t& hi) {
+  const std::uint64_t both = s1 & s2;
+  const std::uint64_t x = s1 ^ s2;
+  lo = ~(x ^ c) & ~both;
+  hi = ~(both | (c & x));
 }
-constexpr std::array<std::uint8_t, 256> kAoFromRing = make_ao_table();
 
 class BitmaskMesher final : public Mesher {
  public:
@@ -123,10 +126,10 @@ class BitmaskMesher final : public Mesher {
           faces = ax[idx2(r, s)] & ~ox[idx2(r, layer)];
         }
         if (!faces) continue;
-        std::uint64_t ring[8];
-        const bool occluded = ring_masks(F, layer, r, ring);
-        int group = -1;
-        std::uint64_t group_bytes = 0;
+        // AO of the whole row as bit planes; rows with nothing opaque in front (open ground)
+        // skip it: every corner is open there.
+        AoPlanes ao;
+        const bool occluded = options_.ambient_occlusion && ao_planes<F>(layer, r, ao);
         int x0, y0, z0;
         origin(F, s, r, 0, x0, y0, z0);
         const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
@@ -141,13 +144,14 @@ class BitmaskMesher final : public Mesher {
           if (kAxis == 1 && sides_only[self]) continue;
           std::uint32_t aob = 0xffu;  // all four corners open
           if (occluded) {
-            // The eight neighbours of 8 faces at once: an 8x8 bit transpose turns "mask k, face
-            // j" into "face j, neighbour k"; one table lookup then gives the face's AO.
-            if ((b >> 3) != group) {
-              group = b >> 3;
-              group_bytes = gather_ring_bytes(ring, group);
+            if ((ao.uniform >> b) & 1u) {
+              aob = static_cast<std::uint32_t>(((ao.lo[0] >> b) & 1u) | (((ao.hi[0] >> b) & 1u) << 1)) * 0x55u;
+            } else {
+              aob = static_cast<std::uint32_t>(((ao.lo[0] >> b) & 1u) | ((ao.hi[0] >> b) & 1u) << 1 |
+                                               ((ao.lo[1] >> b) & 1u) << 2 | ((ao.hi[1] >> b) & 1u) << 3 |
+                                               ((ao.lo[2] >> b) & 1u) << 4 | ((ao.hi[2] >> b) & 1u) << 5 |
+                                               ((ao.lo[3] >> b) & 1u) << 6 | ((ao.hi[3] >> b) & 1u) << 7);
             }
-            aob = kAoFromRing[(group_bytes >> (8 * (b & 7))) & 0xffu];
           }
           if (ao_uniform(aob)) {
             const std::uint32_t key = pack_word1(self, F, aob);
@@ -158,6 +162,7 @@ class BitmaskMesher final : public Mesher {
               slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
             }
             *slot_row |= std::uint64_t{1} << b;
+            used_[static_cast<std::size_t>(last_slot)] |= std::uint64_t{1} << r;
           } else {
             int x, y, z;
             origin(F, s, r, b, x, y, z);
@@ -289,64 +294,45 @@ class BitmaskMesher final : public Mesher {
     }
   }
 
-  // Opaque mask of padded row r of `layer` for face f, with its two end bits.
-  void layer_row(int f, int layer, int r, std::uint64_t& m, std::uint64_t& lo, std::uint64_t& hi) const {
-    std::size_t k;
-    switch (f >> 1) {
-      case 0:  // layer is x; rows z; bits y
-        k = static_cast<std::size_t>(idx2(layer, r));
-        m = oy_[k];
-        lo = ylo_[k];
-        hi = yhi_[k];
-        return;
-      case 1:  // layer is y; rows z; bits x
-        k = static_cast<std::size_t>(idx2(layer, r));
-        break;
-      default:  // layer is z; rows y; bits x
-        k = static_cast<std::size_t>(idx2(r, layer));
-        break;
-    }
-    m = ox_[k];
-    lo = xlo_[k];
-    hi = xhi_[k];
-  }
-
-  // The opaque neighbours in front of the faces of row r, one mask per ring position k (order of
-  // kAoFromRing: (du, dv) = (-1,-1) (0,-1) (1,-1) (-1,0) (1,0) (-1,1) (0,1) (1,1) in face axes).
-  // Returns false when none is set (or AO is off): every corner of the row is open.
-  bool ring_masks(int f, int layer, int r, std::uint64_t ring[8]) const {
-    if (!options_.ambient_occlusion) return false;
-    std::uint64_t rows[3], los[3], his[3];
-    for (int dr = -1; dr <= 1; ++dr) layer_row(f, layer, r + dr, rows[dr + 1], los[dr + 1], his[dr + 1]);
-    if ((rows[0] | rows[1] | rows[2] | los[0] | los[1] | los[2] | his[0] | his[1] | his[2]) == 0) return false;
+  // AO bit planes of the faces of row r from the opaque neighbours in front of them: rows r-1,
+  // r, r+1 of the layer, each shifted by -1, 0, +1 bit. Returns false when none is opaque (every
+  // corner open). Specialised per face so the row addressing and axis mapping fold to constants.
+  template <int F>
+  bool ao_planes(int layer, int r, AoPlanes& out) const {
+    constexpr int kAxis = F >> 1;
+    // Rows r-1, r, r+1 of the layer are consecutive entries of the P x P mask array, except for
+    // +-Z faces (layer = z, rows = y), where they are P apart.
+    const int step = kAxis == 2 ? p_ : 1;
+    const std::size_t k = static_cast<std::size_t>(kAxis == 2 ? idx2(r, layer) : idx2(layer, r));
+    const std::uint64_t* m = kAxis == 0 ? oy_.data() : ox_.data();
+    const std::uint8_t* lo = kAxis == 0 ? ylo_.data() : xlo_.data();
+    const std::uint8_t* hi = kAxis == 0 ? yhi_.data() : xhi_.data();
     std::uint64_t occ[3][3];  // [dr + 1][db + 1]: neighbour at row offset dr, bit offset db
+    std::uint64_t any = 0;
     for (int dr = 0; dr < 3; ++dr) {
-      occ[dr][0] = ((rows[dr] << 1) | los[dr]) & full_;       // value at b - 1
-      occ[dr][1] = rows[dr];                                   // value at b
-      occ[dr][2] = (rows[dr] >> 1) | (his[dr] << (n_ - 1));   // value at b + 1
+      const std::size_t at = k + static_cast<std::size_t>((dr - 1) * step);
+      const std::uint64_t row = m[at];
+      const std::uint64_t l = lo[at], h = hi[at];
+      occ[dr][0] = ((row << 1) | l) & full_;          // value at b - 1
+      occ[dr][1] = row;                                // value at b
+      occ[dr][2] = (row >> 1) | (h << (n_ - 1));      // value at b + 1
+      any |= occ[dr][0] | occ[dr][1] | occ[dr][2];
     }
-    // Face axes: for +-Y the u axis runs along rows and v along bits; otherwise u along bits.
-    const bool u_is_row = (f >> 1) == 1;
-    static constexpr int kRing[8][2] = {{-1, -1}, {0, -1}, {1, -1}, {-1, 0}, {1, 0}, {-1, 1}, {0, 1}, {1, 1}};
-    for (int k = 0; k < 8; ++k) {
-      const int du = kRing[k][0], dv = kRing[k][1];
-      const int db = u_is_row ? dv : du;
-      const int dr = u_is_row ? du : dv;
-      ring[k] = occ[dr + 1][db + 1];
-    }
+    // (The centre occ[1][1] is the faces' own front neighbour, clear for every visible face.)
+    if (any == 0) return false;
+    // Neighbour at face offsets (du, dv): for +-Y faces u runs along rows and v along bits,
+    // otherwise u along bits and v along rows.
+    constexpr bool kUIsRow = kAxis == 1;
+    auto at = [&occ](int du, int dv) { return kUIsRow ? occ[du + 1][dv + 1] : occ[dv + 1][du + 1]; };
+    const std::uint64_t mm = at(-1, -1), zm = at(0, -1), pm = at(1, -1), mz = at(-1, 0), pz = at(1, 0),
+                        mp = at(-1, 1), zp = at(0, 1), pp = at(1, 1);
+    ao_corner(mz, zm, mm, out.lo[0], out.hi[0]);  // (u0, v0)
+    ao_corner(pz, zm, pm, out.lo[1], out.hi[1]);  // (u1, v0)
+    ao_corner(pz, zp, pp, out.lo[2], out.hi[2]);  // (u1, v1)
+    ao_corner(mz, zp, mp, out.lo[3], out.hi[3]);  // (u0, v1)
+    out.uniform = ~((out.lo[0] ^ out.lo[1]) | (out.lo[0] ^ out.lo[2]) | (out.lo[0] ^ out.lo[3]) |
+                    (out.hi[0] ^ out.hi[1]) | (out.hi[0] ^ out.hi[2]) | (out.hi[0] ^ out.hi[3]));
     return true;
-  }
-
-  // Byte j of the result holds bit (8 * group + j) of ring[0..7] as bits 0..7.
-  static std::uint64_t gather_ring_bytes(const std::uint64_t ring[8], int group) {
-    std::uint64_t x = 0;
-    const int shift = 8 * group;
-    for (int k = 0; k < 8; ++k) x |= ((ring[k] >> shift) & 0xffu) << (8 * k);
-    // 8x8 bit-matrix transpose (Hacker's Delight, transpose8rS64).
-    x = (x & 0xAA55AA55AA55AA55ULL) | ((x & 0x00AA00AA00AA00AAULL) << 7) | ((x >> 7) & 0x00AA00AA00AA00AAULL);
-    x = (x & 0xCCCC3333CCCC3333ULL) | ((x & 0x0000CCCC0000CCCCULL) << 14) | ((x >> 14) & 0x0000CCCC0000CCCCULL);
-    x = (x & 0xF0F0F0F00F0F0F0FULL) | ((x & 0x00000000F0F0F0F0ULL) << 28) | ((x >> 28) & 0x00000000F0F0F0F0ULL);
-    return x;
   }
 
   // Block coordinates of bit b in row r of slice s for face f.
@@ -366,6 +352,7 @@ class BitmaskMesher final : public Mesher {
     if (keys_.size() < static_cast<std::size_t>(slot_count_)) {
       keys_.resize(static_cast<std::size_t>(slot_count_));
       rows_.resize(static_cast<std::size_t>(slot_count_) * 64, 0);
+      used_.resize(static_cast<std::size_t>(slot_count_), 0);
     }
     keys_[static_cast<std::size_t>(k)] = key;
     return k;
@@ -375,10 +362,13 @@ class BitmaskMesher final : public Mesher {
     const int n = n_;
     std::uint64_t* rows = rows_.data() + static_cast<std::size_t>(k) * 64;
     const std::uint32_t key = keys_[static_cast<std::size_t>(k)];
+    const std::uint64_t used_rows = std::exchange(used_[static_cast<std::size_t>(k)], 0);
     const auto block = static_cast<BlockId>(key & 0xffffu);
     auto& list = render[block] == static_cast<std::uint8_t>(RenderClass::kAlphaCut) ? out.alpha_cut : out.opaque;
     const bool rows_are_u = (f >> 1) == 1;  // +-Y: rows run along u (z), bits along v (x)
-    for (int r = 0; r < n; ++r) {
+    // Only the rows that received a face (a slot of a slice usually touches a few).
+    for (std::uint64_t used = used_rows; used; used &= used - 1) {
+      const int r = std::countr_zero(used);
       while (rows[r]) {
         const int b = std::countr_zero(rows[r]);
         const int w = std::countr_one(rows[r] >> b);
@@ -406,6 +396,7 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint8_t> xlo_, xhi_, ylo_, yhi_;
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> rows_;
+  std::vector<std::uint64_t> used_;  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;
 };
 

@@ -89,6 +89,13 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   r->generator_ = std::move(generator);
   r->settings_ = settings;
   r->vao_ = render::VertexArray::create();
+  // SylvaShadows (render/lib/shadows.glsl) is 4 mat4 + 6 vec4 + 1 ivec4 = 368 bytes; all zero
+  // means "disabled" (sylva_shadow returns 1).
+  const std::vector<unsigned char> zeros(368, 0);
+  r->no_shadows_ubo_ = render::Buffer::immutable(zeros.size(), zeros.data());
+  VoxelRenderer* self = r.get();
+  r->caster_ = std::make_unique<render::CallbackShadowCaster>(
+      [self](const render::ShadowCasterContext& c) { self->draw_shadow(c); });
   SYLVA_TRY(r->set_shadow_receiver({}));
 
   // Texture arrays: one layer per TextureId.
@@ -159,6 +166,7 @@ Status VoxelRenderer::build_programs() {
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, alpha, plant_depth_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, {}, plant_depth_opaque_program_));
   return ok_status();
 }
 
@@ -244,6 +252,7 @@ void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
 
 void VoxelRenderer::update(const render::FrameContext& frame) {
   stats_ = {};
+  cast_context_ = nullptr;
   const bool meshes_changed = world_->mesh_epoch() != mesh_epoch_;
   const bool plants_changed = world_->plant_epoch() != plant_epoch_;
   if (meshes_changed || plants_changed) {
@@ -345,15 +354,9 @@ void VoxelRenderer::bind_common(const render::Program& program, const render::Fr
   }
 }
 
-void VoxelRenderer::draw_chunks(const render::Program& quads, const render::Program& plants, bool alpha_cut,
-                                const glm::mat4& view_projection, const glm::dvec3& origin, bool culled,
-                                render::PassStats& stats) {
-  const auto& list = visible_;
-  std::vector<ChunkGpu*> all;
-  if (!culled) {
-    for (auto& [c, gpu] : chunks_) all.push_back(gpu.get());
-  }
-  const auto& chunks = culled ? list : all;
+void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads,
+                                const render::Program& plants, bool alpha_cut, const glm::mat4& view_projection,
+                                const glm::dvec3& origin, render::PassStats& stats) {
   quads.use();
   quads.set("u_view_projection", view_projection);
   for (ChunkGpu* gpu : chunks) {
@@ -384,9 +387,44 @@ void VoxelRenderer::draw_chunks(const render::Program& quads, const render::Prog
   }
 }
 
+VoxelRenderer::UboBinding VoxelRenderer::bind_shadow_block() {
+  UboBinding b;
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, render::kShadowUniformBinding, &b.buffer);
+  if (settings_.receive_shadows && b.buffer != 0) return b;
+  glGetInteger64i_v(GL_UNIFORM_BUFFER_START, render::kShadowUniformBinding, &b.start);
+  glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, render::kShadowUniformBinding, &b.size);
+  no_shadows_ubo_.bind_base(GL_UNIFORM_BUFFER, render::kShadowUniformBinding);
+  b.replaced = true;
+  return b;
+}
+
+void VoxelRenderer::restore_shadow_block(const UboBinding& b) {
+  if (!b.replaced) return;
+  const auto buffer = static_cast<GLuint>(b.buffer);
+  if (buffer != 0 && b.size > 0) {
+    glBindBufferRange(GL_UNIFORM_BUFFER, render::kShadowUniformBinding, buffer, static_cast<GLintptr>(b.start),
+                      static_cast<GLsizeiptr>(b.size));
+  } else {
+    glBindBufferBase(GL_UNIFORM_BUFFER, render::kShadowUniformBinding, buffer);
+  }
+}
+
 void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
+  if (pass == render::Pass::kShadow) {
+    // Inside ShadowMaps::render (the scene's shadow pass): cast into the cascade being drawn.
+    if (const render::ShadowCasterContext* c = render::active_shadow_cascade(); c != nullptr && c->camera != nullptr) {
+      render::ShadowCasterContext local = *c;
+      local.stats = &stats;
+      draw_shadow(local);
+      cast_context_ = c;
+      cast_cascade_ = c->cascade;
+      cast_matrix_ = c->relative_view_projection;
+    }
+    return;
+  }
   if (pass != render::Pass::kOpaque) return;
   vao_.bind();  // vertex pulling: an empty VAO (the core profile needs one bound)
+  const UboBinding shadow_block = bind_shadow_block();
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -396,22 +434,61 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   const glm::dvec3 eye = frame.camera.position();
   bind_common(opaque_program_, &frame);
   bind_common(plant_opaque_program_, &frame);
-  draw_chunks(opaque_program_, plant_opaque_program_, false, vp, eye, true, stats);
+  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, stats);
   glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
   bind_common(alpha_program_, &frame);
   bind_common(plant_alpha_program_, &frame);
-  draw_chunks(alpha_program_, plant_alpha_program_, true, vp, eye, true, stats);
+  draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, stats);
+  if (cull_was) glEnable(GL_CULL_FACE);
+  restore_shadow_block(shadow_block);
+}
+
+void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
+                                    const glm::dvec3& origin, render::PassStats& stats) {
+  if (chunks.empty()) return;
+  vao_.bind();
+  // Both sides: a closed voxel body casts the same either way, and open geometry (alpha-cut
+  // leaves, sides-only tufts, plant cubes seen edge-on) must not lose faces to culling.
+  const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
+  glDisable(GL_CULL_FACE);
+  bind_common(depth_program_, nullptr);
+  bind_common(plant_depth_opaque_program_, nullptr);
+  draw_chunks(chunks, depth_program_, plant_depth_opaque_program_, false, relative_view_projection, origin, stats);
+  bind_common(depth_alpha_program_, nullptr);
+  bind_common(plant_depth_program_, nullptr);
+  draw_chunks(chunks, depth_alpha_program_, plant_depth_program_, true, relative_view_projection, origin, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
 }
 
+void VoxelRenderer::draw_shadow(const render::ShadowCasterContext& context) {
+  if (!settings_.cast_shadows || context.camera == nullptr) return;
+  render::PassStats local;
+  render::PassStats& stats = context.stats != nullptr ? *context.stats : local;
+  // Cull with the cascade's light frustum (stretched toward the sun by caster_reach).
+  shadow_list_.clear();
+  for (auto& [c, gpu] : chunks_) {
+    const bool empty = gpu->opaque_quads + gpu->alpha_quads == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
+    if (empty || !context.light_frustum.intersects(gpu->box)) continue;
+    shadow_list_.push_back(gpu.get());
+  }
+  std::sort(shadow_list_.begin(), shadow_list_.end(),
+            [](const ChunkGpu* a, const ChunkGpu* b) { return a->coord < b->coord; });
+  draw_depth_list(shadow_list_, context.relative_view_projection, context.camera->position(), stats);
+}
+
+render::ShadowCaster& VoxelRenderer::shadow_caster() { return *caster_; }
+
 void VoxelRenderer::draw_depth(const glm::mat4& relative_view_projection, const glm::dvec3& origin,
                                render::PassStats& stats) {
-  vao_.bind();
-  bind_common(depth_program_, nullptr);
-  bind_common(plant_depth_program_, nullptr);
-  draw_chunks(depth_program_, plant_depth_program_, false, relative_view_projection, origin, false, stats);
-  bind_common(depth_alpha_program_, nullptr);
-  draw_chunks(depth_alpha_program_, plant_depth_program_, true, relative_view_projection, origin, false, stats);
+  if (const render::ShadowCasterContext* c = render::active_shadow_cascade();
+      c != nullptr && c == cast_context_ && c->cascade == cast_cascade_ && c->relative_view_projection == cast_matrix_ &&
+      relative_view_projection == cast_matrix_) {
+    return;  // this cascade was cast through draw(kShadow) already
+  }
+  all_list_.clear();
+  for (auto& [c, gpu] : chunks_) all_list_.push_back(gpu.get());
+  std::sort(all_list_.begin(), all_list_.end(), [](const ChunkGpu* a, const ChunkGpu* b) { return a->coord < b->coord; });
+  draw_depth_list(all_list_, relative_view_projection, origin, stats);
 }
 
 }  // namespace sylva::voxel

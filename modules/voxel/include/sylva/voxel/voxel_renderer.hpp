@@ -11,7 +11,13 @@
 //  * Phong lighting (seed §2.3): ambient (hemisphere, scaled by per-vertex AO), sun diffuse,
 //    specular from the specular map, and up to max_point_lights point lights from emissive
 //    blocks nearest the camera with attenuation 1 / (Kc + Kl d + Kq d^2) (Kc = 1, Kl = 0.045,
-//    Kq = 0.0075). Shadows are a plug-in (set_shadow_receiver) for the render core's cascades.
+//    Kq = 0.0075). The sun term is multiplied by the render core's cascaded shadows
+//    (render/lib/shadows.glsl, bound by the host with ShadowMaps::bind); set_shadow_receiver
+//    replaces that lookup (tests, other shadow techniques).
+//  * Shadow casting (seed §3.7.1): opaque chunk quads and opaque plant parts draw depth with an
+//    empty early-z fragment shader, alpha-cut quads and parts with the alpha test, so leaves cast
+//    cut-out shadows. Chunks are culled against the cascade's light frustum (which reaches toward
+//    the sun), not the camera frustum: off-screen pillars and trees shadow the view.
 //  * Camera-relative: every chunk is drawn with the offset (chunk origin - camera position)
 //    computed in double, so chunks 1e6 blocks from the origin render exactly like at the origin.
 //  * Chunk frustum culling on the CPU against the chunk box grown by its plants' bounds.
@@ -23,6 +29,7 @@
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/drawable.hpp>
 #include <sylva/render/shader_library.hpp>
+#include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/texture.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/voxel/mesher.hpp>
@@ -32,6 +39,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -50,6 +58,8 @@ struct VoxelRenderSettings {
   bool frustum_culling = true;
   bool draw_plants = true;
   int texture_size = 16;            // texels per block side
+  bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
+  bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
 
   template <class V>
   void visit(V& v) {
@@ -63,15 +73,19 @@ struct VoxelRenderSettings {
     v(specular_scale, "specular_scale", {.min = 0.0, .max = 8.0, .help = "Multiplier of every specular map"});
     v(frustum_culling, "frustum_culling", {.help = "Skip chunks outside the view frustum"});
     v(draw_plants, "draw_plants", {.help = "Draw the L-system plants"});
+    v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
+    v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(texture_size, "texture_size", {.min = 4, .max = 256, .unit = "texels", .help = "Block texture resolution", .rebuild = Rebuild::kGpu});
   }
 };
 
-// Where shadows come from once the render core has cascaded shadow maps: a GLSL file (registered
-// in the shader library) defining `float voxel_shadow(vec3 rel_pos, vec3 normal)` (1 = lit), and
-// a callback binding its uniforms and textures to a program before each pass.
+// Where the sun's visibility comes from: a GLSL file (registered in the shader library as
+// "voxel/shadow_hook.glsl") defining `float voxel_shadow(vec3 rel_pos, vec3 normal)` (1 = lit),
+// and a callback binding its uniforms and textures to a program before each pass. The default
+// (empty source) is the render core's cascades: `return sylva_shadow(rel_pos, normal);`, with the
+// data the host bound through render::ShadowMaps::bind() (UBO 2, texture unit 15).
 struct ShadowReceiver {
-  std::string glsl_source;  // full text of the hook; empty restores "always lit"
+  std::string glsl_source;  // full text of the hook; empty restores the render core's cascades
   std::function<void(GLuint program)> bind;
 };
 
@@ -99,12 +113,22 @@ class VoxelRenderer final : public render::Drawable {
 
   // Uploads changed chunk meshes and plants, culls, picks point lights.
   void update(const render::FrameContext& frame) override;
-  // kOpaque draws opaque then alpha-cut geometry; kShadow and kTransparent draw nothing until a
-  // shadow caster API exists (use draw_depth from a caster).
+  // kOpaque draws opaque then alpha-cut geometry (receiving shadows when receive_shadows);
+  // kShadow, inside render::ShadowMaps::render (render::active_shadow_cascade() non-null), casts
+  // into the cascade being drawn (see draw_shadow); otherwise and for kTransparent nothing.
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+  // Casts into one cascade: depth of the chunks and plants inside context.light_frustum, opaque
+  // ones early-z, alpha-cut ones alpha-tested; counts go to *context.stats. No-op when
+  // cast_shadows is off. Needs the cascade's depth target bound (ShadowMaps::render does).
+  void draw_shadow(const render::ShadowCasterContext& context);
+  // A caster to register with render::ShadowMaps::add_caster (calls draw_shadow). Owned by the
+  // renderer: remove_caster before destroying the renderer.
+  render::ShadowCaster& shadow_caster();
   // Depth-only draw of every chunk and plant (alpha-tested where needed) with an arbitrary
-  // view-projection applied to positions relative to `origin` (world, double): the caster entry
-  // point for shadow maps. Culls nothing.
+  // view-projection applied to positions relative to `origin` (world, double). Culls nothing.
+  // Called inside ShadowMaps::render for a cascade this renderer already cast into through
+  // draw(kShadow) (same cascade and matrix), it draws nothing: a host registering both paths
+  // (the scene's voxel caster and its kShadow pass) casts each cascade once.
   void draw_depth(const glm::mat4& relative_view_projection, const glm::dvec3& origin, render::PassStats& stats);
 
   // Replaces the shadow hook and recompiles the programs (kGl on compile errors).
@@ -117,14 +141,33 @@ class VoxelRenderer final : public render::Drawable {
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
   void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
   void bind_common(const render::Program& program, const render::FrameContext* frame) const;
-  void draw_chunks(const render::Program& quads, const render::Program& plants, bool alpha_cut,
-                   const glm::mat4& view_projection, const glm::dvec3& origin, bool culled, render::PassStats& stats);
+  void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
+                   bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
+  void draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
+                       const glm::dvec3& origin, render::PassStats& stats);
+  // Binds the all-zero "shadows disabled" block at UBO 2 when receiving is off or no host bound
+  // one; returns the previous binding so it can be restored for the other drawables.
+  struct UboBinding {
+    GLint buffer = 0;
+    GLint64 start = 0, size = 0;
+    bool replaced = false;
+  };
+  UboBinding bind_shadow_block();
+  static void restore_shadow_block(const UboBinding& b);
 
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
   render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_;
-  render::Program depth_program_, depth_alpha_program_, plant_depth_program_;
+  render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
+  render::Buffer no_shadows_ubo_;
+  std::unique_ptr<render::ShadowCaster> caster_;
+  // The cascade last cast into through draw(kShadow), for draw_depth's de-duplication.
+  const render::ShadowCasterContext* cast_context_ = nullptr;
+  int cast_cascade_ = -1;
+  glm::mat4 cast_matrix_{0.0f};
+  std::vector<ChunkGpu*> shadow_list_;
+  std::vector<ChunkGpu*> all_list_;
   render::Texture diffuse_, specular_;
   render::Buffer block_table_;
   render::VertexArray vao_;
