@@ -104,6 +104,7 @@ Status TerrainRenderer::init(const HeightField* field) {
   batch_vao_.attribute(kAttrHeight, 0, 3, GL_FLOAT, offsetof(BatchVertex, height));
   batch_vao_.attribute(kAttrSkirt, 0, 1, GL_FLOAT, offsetof(BatchVertex, skirt));
   batch_buffer_ = render::Buffer::dynamic(64 * sizeof(BatchVertex), GL_STREAM_DRAW);
+  shadow_batch_buffer_ = render::Buffer::dynamic(64 * sizeof(BatchVertex), GL_STREAM_DRAW);
   batch_vao_.vertex_buffer(0, batch_buffer_, sizeof(BatchVertex));
   bounds_vao_ = render::VertexArray::create();
   bounds_vao_.attribute(0, 0, 3, GL_FLOAT, 0);
@@ -111,7 +112,9 @@ Status TerrainRenderer::init(const HeightField* field) {
   bounds_vao_.vertex_buffer(0, bounds_buffer_, sizeof(glm::vec3));
 
   selector_ = std::make_unique<LodSelector>(*tree_);
+  shadow_selector_ = std::make_unique<LodSelector>(*tree_);
   selection_ = &empty_selection_;
+  shadow_selection_ = &empty_selection_;
   return {};
 }
 
@@ -153,6 +156,40 @@ TerrainRenderer::GpuMesh* TerrainRenderer::gpu_mesh(std::uint32_t chunk) {
   return &gpu_.emplace(chunk, std::move(g)).first->second;
 }
 
+void TerrainRenderer::assemble_batch(const Selection& selection, std::vector<BatchVertex>& batch) {
+  // Seam or skirt batch: vertex = grid point, height / morph target / morph error, skirt depth.
+  batch.clear();
+  auto push = [&](const ChunkVertex& v, float skirt) {
+    batch.push_back(BatchVertex{v.gx, v.gz, v.height, v.morph_target, v.morph_error, skirt});
+  };
+  for (const SelectedChunk& s : selection.chunks) {
+    const ChunkMesh* m = meshes_(s.index);
+    if (m == nullptr) continue;
+    for (int e = 0; e < 4; ++e) {
+      const Edge edge = static_cast<Edge>(e);
+      if (settings_.lod.crack_fix == CrackFix::kSeams) {
+        const std::uint32_t coarse = s.coarser_neighbour[static_cast<std::size_t>(e)];
+        if (coarse == kNoChunk || meshes_(coarse) == nullptr) continue;
+        const Seam& seam = seams_.get(*tree_, meshes_, s.index, edge, coarse);
+        const std::uint32_t n = static_cast<std::uint32_t>(m->vertices.size());
+        for (std::uint32_t i : seam.indices) push(i < n ? m->vertices[i] : seam.extra_vertices[i - n], 0.0f);
+        if (&selection == selection_) stats_.seam_triangles += seam.indices.size() / 3;
+      } else if (settings_.lod.crack_fix == CrackFix::kSkirts) {
+        const float depth = skirt_depth(*tree_, s, edge);
+        const auto& ev = m->edges[static_cast<std::size_t>(e)];
+        const bool increasing = (edge == kWest || edge == kNorth);
+        for (std::size_t i = 0; i + 1 < ev.size(); ++i) {
+          const ChunkVertex& a = m->vertices[increasing ? ev[i] : ev[ev.size() - 1 - i]];
+          const ChunkVertex& b = m->vertices[increasing ? ev[i + 1] : ev[ev.size() - 2 - i]];
+          push(b, 0.0f), push(a, 0.0f), push(a, depth);
+          push(b, 0.0f), push(a, depth), push(b, depth);
+          if (&selection == selection_) stats_.skirt_triangles += 2;
+        }
+      }
+    }
+  }
+}
+
 void TerrainRenderer::update(const render::FrameContext& frame) {
   Stopwatch watch;
   ++frame_number_;
@@ -165,36 +202,20 @@ void TerrainRenderer::update(const render::FrameContext& frame) {
   stats_.selection = selection_->stats;
   frame_ = make_vertex_frame(*tree_, view, settings_.lod);
 
-  // Seam or skirt batch for this frame.
-  batch_.clear();
-  auto push = [&](const ChunkVertex& v, float skirt) {
-    batch_.push_back(BatchVertex{v.gx, v.gz, v.height, v.morph_target, v.morph_error, skirt});
-  };
-  for (const SelectedChunk& s : selection_->chunks) {
-    const ChunkMesh* m = meshes_(s.index);
-    if (m == nullptr) continue;
-    for (int e = 0; e < 4; ++e) {
-      const Edge edge = static_cast<Edge>(e);
-      if (settings_.lod.crack_fix == CrackFix::kSeams) {
-        const std::uint32_t coarse = s.coarser_neighbour[static_cast<std::size_t>(e)];
-        if (coarse == kNoChunk || meshes_(coarse) == nullptr) continue;
-        const Seam& seam = seams_.get(*tree_, meshes_, s.index, edge, coarse);
-        const std::uint32_t n = static_cast<std::uint32_t>(m->vertices.size());
-        for (std::uint32_t i : seam.indices) push(i < n ? m->vertices[i] : seam.extra_vertices[i - n], 0.0f);
-        stats_.seam_triangles += seam.indices.size() / 3;
-      } else if (settings_.lod.crack_fix == CrackFix::kSkirts) {
-        const float depth = skirt_depth(*tree_, s, edge);
-        const auto& ev = m->edges[static_cast<std::size_t>(e)];
-        const bool increasing = (edge == kWest || edge == kNorth);
-        for (std::size_t i = 0; i + 1 < ev.size(); ++i) {
-          const ChunkVertex& a = m->vertices[increasing ? ev[i] : ev[ev.size() - 1 - i]];
-          const ChunkVertex& b = m->vertices[increasing ? ev[i + 1] : ev[ev.size() - 2 - i]];
-          push(b, 0.0f), push(a, 0.0f), push(a, depth);
-          push(b, 0.0f), push(a, depth), push(b, depth);
-          stats_.skirt_triangles += 2;
-        }
-      }
-    }
+  assemble_batch(*selection_, batch_);
+  batch_uploaded_ = false;
+  // Shadow casters: the same LOD decisions without the camera frustum, so hills behind or beside
+  // the camera still cast into view; each cascade culls them with its own light frustum. Where
+  // both selections hold a chunk it is the same chunk, so self-shadowing matches the drawn surface.
+  if (settings_.cast_shadows) {
+    LodSettings unculled = settings_.lod;
+    unculled.frustum_cull = false;
+    shadow_selection_ = &shadow_selector_->select(view, unculled, streamer_ ? &residency : nullptr);
+    assemble_batch(*shadow_selection_, shadow_batch_);
+    shadow_batch_uploaded_ = false;
+  } else {
+    shadow_selection_ = &empty_selection_;
+    shadow_batch_.clear();
   }
   bounds_lines_.clear();
   if (settings_.chunk_bounds) {
@@ -227,11 +248,21 @@ void TerrainRenderer::set_frame_uniforms(const render::Program& program, const g
 }
 
 void TerrainRenderer::draw_geometry(const render::Program& program, const glm::mat4& view_projection,
-                                    bool debug_levels, render::PassStats& stats) {
+                                    bool debug_levels, render::PassStats& stats, bool shadow,
+                                    const render::Frustum* cull) {
+  const Selection& selection = shadow ? *shadow_selection_ : *selection_;
+  const std::vector<BatchVertex>& batch = shadow ? shadow_batch_ : batch_;
+  render::Buffer& buffer = shadow ? shadow_batch_buffer_ : batch_buffer_;
+  bool& uploaded = shadow ? shadow_batch_uploaded_ : batch_uploaded_;
   program.use();
   set_frame_uniforms(program, view_projection);
   glVertexAttrib1f(kAttrSkirt, 0.0f);  // bodies have no skirt attribute array
-  for (const SelectedChunk& s : selection_->chunks) {
+  for (const SelectedChunk& s : selection.chunks) {
+    if (cull != nullptr) {
+      render::Aabb box;
+      tree_->chunk_bounds(s.index, box.min, box.max);
+      if (!cull->intersects(box)) continue;
+    }
     GpuMesh* g = gpu_mesh(s.index);
     if (g == nullptr) continue;
     if (debug_levels) program.set("u_level", tree_->chunk(s.index).key.level);
@@ -240,13 +271,17 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     stats.triangles += g->index_count / 3;
     ++stats.draw_calls;
   }
-  if (!batch_.empty()) {
-    batch_buffer_.upload(std::span<const BatchVertex>(batch_));
-    batch_vao_.vertex_buffer(0, batch_buffer_, sizeof(BatchVertex));
+  if (!batch.empty()) {
+    // Uploaded once per frame (the shadow batch is drawn once per cascade).
+    if (!uploaded) {
+      buffer.upload(std::span<const BatchVertex>(batch));
+      uploaded = true;
+    }
+    batch_vao_.vertex_buffer(0, buffer, sizeof(BatchVertex));
     if (debug_levels) program.set("u_level", 7);
     batch_vao_.bind();
-    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(batch_.size()));
-    stats.triangles += batch_.size() / 3;
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(batch.size()));
+    stats.triangles += batch.size() / 3;
     ++stats.draw_calls;
   }
   glBindVertexArray(0);
@@ -258,7 +293,9 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
   glDisable(GL_CULL_FACE);  // seam fans are vertical and may face either way
   if (pass == render::Pass::kShadow) {
     const render::ShadowCasterContext* cascade = render::active_shadow_cascade();
-    if (settings_.cast_shadows && cascade != nullptr) draw_geometry(depth_, cascade->relative_view_projection, false, stats);
+    if (settings_.cast_shadows && cascade != nullptr) {
+      draw_geometry(depth_, cascade->relative_view_projection, false, stats, true, &cascade->light_frustum);
+    }
   } else {
     if (settings_.receive_shadows != shaded_with_shadows_) {
       auto p = render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
@@ -286,7 +323,7 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     shaded_.set("u_snow_color", m.snow_color);
     if (has_heights_) heights_.bind(0);
     const bool levels = settings_.debug_view == DebugView::kLodColors;
-    draw_geometry(shaded_, vp, levels, stats);
+    draw_geometry(shaded_, vp, levels, stats, false, nullptr);
     if (settings_.wireframe) {
       render::PassStats lines;
       shaded_.use();
@@ -296,7 +333,7 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       GLint depth_func = GL_GREATER;
       glGetIntegerv(GL_DEPTH_FUNC, &depth_func);
       glDepthFunc(depth_func == GL_GREATER ? GL_GEQUAL : GL_LEQUAL);
-      draw_geometry(shaded_, vp, false, lines);
+      draw_geometry(shaded_, vp, false, lines, false, nullptr);
       glDepthFunc(static_cast<GLenum>(depth_func));
       glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
       stats.draw_calls += lines.draw_calls;

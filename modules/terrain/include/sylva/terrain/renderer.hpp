@@ -13,6 +13,7 @@
 #include <sylva/core/result.hpp>
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/drawable.hpp>
+#include <sylva/render/frustum.hpp>
 #include <sylva/render/shader_library.hpp>
 #include <sylva/render/texture.hpp>
 #include <sylva/render/vertex_array.hpp>
@@ -133,15 +134,19 @@ class TerrainRenderer final : public render::Drawable {
   };
   GpuMesh* gpu_mesh(std::uint32_t chunk);
   void set_frame_uniforms(const render::Program& program, const glm::mat4& view_projection) const;
+  struct BatchVertex;
+  // shadow: the unculled caster selection and its batch; cull: chunk boxes outside are skipped.
   void draw_geometry(const render::Program& program, const glm::mat4& view_projection, bool debug_levels,
-                     render::PassStats& stats);
+                     render::PassStats& stats, bool shadow, const render::Frustum* cull);
+  void assemble_batch(const Selection& selection, std::vector<BatchVertex>& batch);
 
   TerrainRenderSettings settings_;
   std::shared_ptr<const ChunkTree> tree_;
   std::unique_ptr<ChunkStreamer> streamer_;
   MeshSource meshes_;
-  std::unique_ptr<LodSelector> selector_;
+  std::unique_ptr<LodSelector> selector_, shadow_selector_;
   const Selection* selection_ = nullptr;
+  const Selection* shadow_selection_ = nullptr;  // casters: the camera's LOD, not its frustum
   Selection empty_selection_;
   SeamCache seams_;
   VertexFrame frame_;
@@ -160,8 +165,9 @@ class TerrainRenderer final : public render::Drawable {
     std::uint32_t gx, gz;
     float height, morph_target, morph_error, skirt;
   };
-  std::vector<BatchVertex> batch_;
-  render::Buffer batch_buffer_;
+  std::vector<BatchVertex> batch_, shadow_batch_;
+  render::Buffer batch_buffer_, shadow_batch_buffer_;
+  bool batch_uploaded_ = false, shadow_batch_uploaded_ = false;
   render::VertexArray batch_vao_;
   std::vector<glm::vec3> bounds_lines_;
   render::Buffer bounds_buffer_;
