@@ -3,11 +3,14 @@
 // diffuse + a weak specular lobe (shadowed by the render core's cascades), hemisphere ambient, fog.
 #include "render/lib/fog.glsl"
 #include "render/lib/shadows.glsl"
+#include "vegetation/lib/leaf_alpha.glsl"
 
 in vec3 v_rel;
 in vec3 v_normal;
 in vec3 v_axis;
 in vec2 v_uv;
+flat in float v_fade;
+in vec3 v_hash_position;
 
 layout(binding = 4) uniform sampler2D u_bark_albedo;
 layout(binding = 5) uniform sampler2D u_bark_normal;
@@ -16,6 +19,9 @@ uniform float u_bark_specular;
 out vec4 o_color;
 
 void main() {
+  // LOD transitions: dithered fade on the rest position (derivatives before the discard).
+  float fade_threshold = sylva_hashed_threshold(v_hash_position * 1.37 + 11.0);
+  if (v_fade < fade_threshold) discard;
   vec3 n = normalize(v_normal);
   vec3 b = v_axis - dot(v_axis, n) * n;
   b = length(b) > 1.0e-6 ? normalize(b) : vec3(0.0, 1.0, 0.0);

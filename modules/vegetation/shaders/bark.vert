@@ -21,6 +21,16 @@ out vec3 v_axis;     // world branch axis
 out vec2 v_uv;
 #endif
 
+// LOD transitions (lod_selection.hpp): the instance's fade, dithered on the rest position.
+flat out float v_fade;
+out vec3 v_hash_position;
+
+#ifdef SYLVA_TREE_BAKE
+flat out int v_root;    // root (trunk) branch
+flat out int v_level1;  // level-1 ancestor branch (-1: the trunk), slice_bake.hpp
+out vec2 v_x;           // x on the level-1 branch, x on the trunk
+#endif
+
 #ifdef SYLVA_TREE_CAPTURE
 layout(std430, binding = 7) writeonly buffer SylvaTreeCapture { vec4 sylva_capture[]; };
 #endif
@@ -53,6 +63,13 @@ void main() {
 #endif
   vec3 rel = sylva_instance_point(inst, p);
   gl_Position = u_view_proj * vec4(rel, 1.0);
+  v_fade = inst.lod.x;
+  v_hash_position = a_position;
+#ifdef SYLVA_TREE_BAKE
+  v_level1 = sylva_branches[a_branch].chain[1];
+  v_root = sylva_branches[a_branch].chain[0];
+  v_x = vec2(a_xvec.y, a_xvec.x);
+#endif
 #ifndef SYLVA_DEPTH_ONLY
   v_rel = rel;
   v_normal = sylva_instance_vector(inst, n);

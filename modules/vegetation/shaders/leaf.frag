@@ -15,6 +15,7 @@ in vec3 v_rel;
 in vec3 v_normal;
 in vec3 v_tangent;
 flat in vec3 v_variation;
+flat in float v_fade;  // LOD transition fade (1 opaque)
 
 layout(binding = 0) uniform sampler2DArray u_leaf_color;         // layer 0 front, 1 back
 layout(binding = 1) uniform sampler2DArray u_leaf_normal;
@@ -39,6 +40,13 @@ void main() {
   float layer = gl_FrontFacing ? 0.0 : 1.0;
   vec4 col = texture(u_leaf_color, vec3(v_uv, layer));
   float alpha = sylva_leaf_alpha(u_alpha_mode, col.a, u_leaf_coverage, v_uv, layer, v_hash_position);
+  // LOD transitions: the fade scales the coverage (alpha-to-coverage) or dithers the alpha test.
+  float fade_threshold = sylva_hashed_threshold(v_hash_position * 1.37 + 11.0);
+  if (u_alpha_mode == 2) {
+    alpha *= v_fade;
+  } else if (v_fade < fade_threshold) {
+    alpha = 0.0;
+  }
   // Season (seed §4.6): seasonCoord = season + 0.2 leafSpecificNumber + instance offset; budding
   // and leaf fall where the season texture is transparent.
   vec4 season = texture(u_season, vec2(0.5, u_season_time + v_season_offset));

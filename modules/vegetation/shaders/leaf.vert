@@ -26,6 +26,14 @@ flat out vec3 v_variation;
 #endif
 
 uniform float u_leaf_spread;
+flat out float v_fade;  // LOD transition fade of the instance (lod_selection.hpp)
+
+#ifdef SYLVA_TREE_BAKE
+flat out int v_root;    // root (trunk) branch
+flat out int v_level1;        // level-1 ancestor of the parent branch (-1: the trunk), slice_bake.hpp
+out vec2 v_x;                 // x on the level-1 branch, x on the trunk
+flat out float v_leaf_number; // leafSpecificNumber
+#endif
 
 #ifdef SYLVA_TREE_CAPTURE
 layout(std430, binding = 7) writeonly buffer SylvaTreeCapture { vec4 sylva_capture[]; };
@@ -58,6 +66,13 @@ void main() {
   v_uv = a_uv;
   v_hash_position = a_position;
   v_season_offset = u_leaf_spread * sylva_leaves[a_leaf].t_parent.w + inst.rotation.w;
+  v_fade = inst.lod.x;
+#ifdef SYLVA_TREE_BAKE
+  v_level1 = sylva_branches[a_branch].chain[1];
+  v_root = sylva_branches[a_branch].chain[0];
+  v_x = vec2(a_xvec.y, a_xvec.x);
+  v_leaf_number = sylva_leaves[a_leaf].t_parent.w;
+#endif
 #ifndef SYLVA_DEPTH_ONLY
   v_rel = rel;
   v_normal = sylva_instance_vector(inst, n);

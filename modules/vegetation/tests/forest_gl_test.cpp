@@ -35,8 +35,11 @@ std::vector<TreeInstance> grid(int n, double spacing) {
   return out;
 }
 
+// LOD0 behaviour (Trees I): the image-based levels are off here; slices_gl_test covers them.
 Forest make_forest() {
-  Result<Forest> f = Forest::create();
+  ForestSettings settings;
+  settings.lod.enabled = false;
+  Result<Forest> f = Forest::create(settings);
   EXPECT_TRUE(f.ok()) << f.error().describe();
   Forest forest = std::move(f).value();
   forest.settings().receive_shadows = false;  // these tests bind no shadow maps

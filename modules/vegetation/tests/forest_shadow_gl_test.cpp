@@ -18,6 +18,13 @@
 namespace sylva::vegetation {
 namespace {
 
+// LOD0 behaviour (Trees I); the image-based levels have their own tests.
+ForestSettings lod0_only() {
+  ForestSettings s;
+  s.lod.enabled = false;
+  return s;
+}
+
 using ForestShadowGl = render::GlTest;
 
 std::vector<float> read_depth_array(const render::ShadowMaps& maps) {
@@ -29,7 +36,7 @@ std::vector<float> read_depth_array(const render::ShadowMaps& maps) {
 }
 
 TEST_F(ForestShadowGl, TreesCastIntoTheCascades) {
-  Forest forest = Forest::create().value();
+  Forest forest = Forest::create(lod0_only()).value();
   const Result<TreeTextureSet> tex = make_texture_set(SpeciesPreset::kBroadleaf, 1, 64, 64);
   ASSERT_TRUE(forest.add_species(testing::preset_tree(SpeciesPreset::kBroadleaf), *tex).ok());
   TreeInstance a;
@@ -83,7 +90,7 @@ TEST_F(ForestShadowGl, TreesCastIntoTheCascades) {
 // Leaf A faces the sun; leaf B stands between them. With the maps bound A loses its direct sun
 // (ambient stays); without them it is lit. The camera looks at A from the side, clear of B.
 TEST_F(ForestShadowGl, LeavesReceiveTheShadowOfOtherLeaves) {
-  Forest forest = Forest::create().value();
+  Forest forest = Forest::create(lod0_only()).value();
   const Result<TreeTextureSet> tex = make_texture_set(SpeciesPreset::kBroadleaf, 1, 64, 64);
   ASSERT_TRUE(forest.add_species(testing::single_leaf(), *tex).ok());
   forest.settings().shading.specular_color = glm::vec3(0.0f);

@@ -17,10 +17,17 @@
 namespace sylva::vegetation {
 namespace {
 
+// LOD0 behaviour (Trees I); the image-based levels have their own tests.
+ForestSettings lod0_only() {
+  ForestSettings s;
+  s.lod.enabled = false;
+  return s;
+}
+
 using ForestStability = render::GlTest;
 
 Forest small_forest(const glm::dvec3& offset) {
-  Forest forest = Forest::create().value();
+  Forest forest = Forest::create(lod0_only()).value();
   forest.settings().receive_shadows = false;  // no shadow maps bound here
   const Result<TreeTextureSet> tex = make_texture_set(SpeciesPreset::kShrub, 1, 64, 64);
   EXPECT_TRUE(forest.add_species(testing::preset_tree(SpeciesPreset::kShrub), *tex).ok());
@@ -88,7 +95,7 @@ TEST_F(ForestStability, HurricaneAndHugeTimesRenderFinitePictures) {
 // Invariant: an empty forest, a species without instances and a forest drawn before its first
 // update do nothing and raise no GL error.
 TEST_F(ForestStability, EmptyForestsAreHarmless) {
-  Forest forest = Forest::create().value();
+  Forest forest = Forest::create(lod0_only()).value();
   forest.settings().receive_shadows = false;
   auto scene = testing::GlScene::create(32, 32);
   const WindField wind;

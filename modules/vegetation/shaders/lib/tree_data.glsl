@@ -26,11 +26,12 @@ struct SylvaTreeLeaf {       // LeafGpu, 80 bytes
   vec4 origin;               // xyz rest attachment point, w flutter seed bits
 };
 
-struct SylvaTreeInstance {   // InstanceGpu, 64 bytes
+struct SylvaTreeInstance {   // InstanceGpu, 80 bytes
   vec4 translation_scale;    // xyz camera-relative position, w scale
   vec4 rotation;             // x cos(yaw), y sin(yaw), z time offset, w season offset
   vec4 wind;                 // xyz object-space wind [m/s], w its length
   vec4 variation;            // rgb colour variation, w instance number
+  vec4 lod;                  // x transition fade (1 opaque), y LOD coordinate
 };
 
 layout(std430, binding = 3) readonly buffer SylvaTreeBranches { SylvaTreeBranch sylva_branches[]; };

@@ -118,14 +118,16 @@ AnimationGpu make_animation_gpu(const AnimationSettings& settings, double time);
 // The block that produces the rest pose (everything disabled).
 AnimationGpu rest_animation();
 
-// One tree instance for the shaders (std430, 64 bytes).
+// One tree instance for the shaders (std430, 80 bytes).
 struct InstanceGpu {
   glm::vec4 translation_scale;  // xyz camera-relative position of the object origin [m], w scale
   glm::vec4 rotation;           // x cos(yaw), y sin(yaw), z time offset [s], w season offset
   glm::vec4 wind;               // xyz wind at the tree in object space [m/s] (scaled), w its length
   glm::vec4 variation;          // rgb colour variation, w instance number in [0, 1)
+  glm::vec4 lod{1.0f, 0.0f, 0.0f, 0.0f};  // x LOD transition fade in [0, 1] (1 = opaque, dithered
+                                          // below, lod_selection.hpp), y LOD coordinate
 };
-static_assert(sizeof(InstanceGpu) == 64);
+static_assert(sizeof(InstanceGpu) == 80);
 
 // A placed tree (world space, double precision).
 struct TreeInstance {

@@ -16,14 +16,24 @@
 // not the camera's: trees outside the view still cast into it. The opaque pass receives shadows
 // when settings().receive_shadows is set (the host binds the maps with ShadowMaps::bind()).
 //
-// The forest keeps each species' TreeModel and TreeMesh so the image-based levels of the next
-// issue can bake from them.
+// Image-based levels (seed 000 §2.6-2.11, issue "Trees II"): when settings().lod.enabled is set at
+// add_species(), the species' LOD1/LOD2 slices are baked from its rest-pose LOD0 tree (or loaded
+// from the bake cache, slice_bake.hpp). update() then selects a LOD per instance (lod_selection.hpp:
+// distance or screen-size thresholds, hysteresis, fade-in-background transitions), fills one
+// instance queue per level ordered near to far, and draw() issues one instanced LOD0 draw (bark +
+// leaves) and one instanced draw per image-based level and species. The shadow pass uses the same
+// LOD per instance and the same fades (dithered), and every level casts (slices with their baked
+// depth offset, §2.13).
 
 #include <sylva/core/params.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/render/drawable.hpp>
 #include <sylva/render/frustum.hpp>
 #include <sylva/vegetation/generator.hpp>
+#include <sylva/vegetation/lod_selection.hpp>
+#include <sylva/vegetation/lod_settings.hpp>
+#include <sylva/vegetation/slice_bake.hpp>
+#include <sylva/vegetation/slice_renderer.hpp>
 #include <sylva/vegetation/tree_renderer.hpp>
 
 #include <memory>
@@ -41,6 +51,7 @@ struct ForestSettings {
                                   // host must bind them (ShadowMaps::bind(), also when disabled)
   float cull_margin = 0.3f;       // bounding sphere growth for the wind's motion (relative radius)
   float max_distance = 3000.0f;   // trees farther than this from the camera are not drawn [m]
+  LodSettings lod;                // image-based levels LOD1/LOD2 and their selection
 
   template <class V>
   void visit(V& v) {
@@ -52,6 +63,7 @@ struct ForestSettings {
     v(receive_shadows, "receive_shadows", {.help = "Receive the sun's cascaded shadows (host binds the maps)"});
     v(cull_margin, "cull_margin", {.min = 0.0, .max = 10.0, .help = "Bounding sphere growth for wind motion"});
     v(max_distance, "max_distance", {.min = 0.0, .max = 1.0e6, .unit = "m", .help = "Farthest drawn tree"});
+    v(lod, "lod");
   }
 };
 
@@ -59,11 +71,17 @@ struct ForestStats {
   struct Species {
     std::size_t instances = 0;
     std::size_t visible = 0;
+    std::array<std::size_t, kLodLevels> lod{};  // instances drawn at LOD0/1/2 (a transition counts twice)
+    double bake_ms = 0.0;                       // slice bake of this species (0: cache hit or no LOD)
+    bool bake_from_cache = false;
   };
   std::vector<Species> species;
   std::size_t instances = 0;
-  std::size_t visible = 0;
-  double update_cpu_ms = 0.0;  // culling + instance records of the last update()
+  std::size_t visible = 0;                       // instances drawn (each once)
+  std::array<std::size_t, kLodLevels> lod{};     // instances per LOD over all species
+  std::size_t transitions = 0;                   // instances drawn at two levels (cross-fading)
+  double update_cpu_ms = 0.0;  // LOD selection, culling, sorting + instance records of the last update()
+  double select_cpu_ms = 0.0;  // of that, LOD selection + culling + sorting (select_lods)
 };
 
 class Forest : public render::Drawable {
@@ -87,6 +105,11 @@ class Forest : public render::Drawable {
   const TreeModel& model(int species) const;
   const TreeMesh& mesh(int species) const;
   const TreeAsset& asset(int species) const;
+  // The species' baked slices (nullptr when the LOD was disabled at add_species()).
+  const SliceAsset* slices(int species) const;
+  const BakedTree* baked(int species) const;
+  // Per-instance LOD coordinates of the last update() (lod_selection.hpp), indexed like instances().
+  const std::vector<float>& lod_state(int species) const;
   const std::vector<TreeInstance>& instances(int species) const;
   // Indices (into instances(species)) of the instances the last update() kept, in draw order.
   const std::vector<std::uint32_t>& visible(int species) const;

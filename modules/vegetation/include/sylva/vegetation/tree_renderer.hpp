@@ -94,6 +94,7 @@ class TreeAsset {
 
  private:
   friend class TreeRenderer;
+  friend struct TreeAssetAccess;  // the slice bake (src/tree_asset_access.hpp) draws the rest pose
   render::Buffer branch_vbo_, branch_ibo_, leaf_vbo_, leaf_ibo_, branches_, leaves_;
   render::VertexArray branch_vao_, leaf_vao_;
   render::Texture leaf_color_, leaf_normal_, leaf_translucency_, leaf_coverage_, season_, bark_albedo_, bark_normal_;

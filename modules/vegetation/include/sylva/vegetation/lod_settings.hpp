@@ -1,0 +1,59 @@
+#pragma once
+// Settings of the image-based levels (seed 000 §2.6-2.11, §2.13, §3.3): bake resolution and cache,
+// LOD thresholds and transitions. Listed once through visit() as `forest.lod.*` (DESIGN.md §2), so
+// scenes, the editor and sylva-bench set them by path (e.g. `vegetation.forest.lod.v1=40`).
+
+#include <sylva/core/params.hpp>
+
+#include <array>
+#include <string>
+
+namespace sylva::vegetation {
+
+// How the per-instance LOD metric is measured (seed §2.8: 3D or horizontal distance; beyond the
+// seed a screen-size criterion, independent of resolution and field of view changes).
+enum class LodCriterion { kDistance = 0, kHorizontalDistance = 1, kScreenSize = 2 };
+constexpr std::array<EnumName<LodCriterion>, 3> enum_names(LodCriterion) {
+  return {{{LodCriterion::kDistance, "distance"},
+           {LodCriterion::kHorizontalDistance, "horizontal_distance"},
+           {LodCriterion::kScreenSize, "screen_size"}}};
+}
+
+struct LodSettings {
+  bool enabled = true;            // false: every tree is drawn at LOD0 (Trees I behaviour)
+  int slice_resolution = 128;     // texels per slice side (baked LOD1 and LOD2 slices)
+  std::string cache_directory = "auto";  // bake cache folder; "auto" = <temp>/sylva-lod-cache, "" = off
+  LodCriterion criterion = LodCriterion::kDistance;
+  float v1 = 45.0f;               // LOD0 -> LOD1 distance [m] (seed's v1)
+  float v2 = 110.0f;              // LOD1 -> LOD2 distance [m] (seed's v2), >= v1 (clamped up)
+  float s1 = 70.0f;               // screen_size: LOD1 below this projected tree height [px]
+  float s2 = 28.0f;               // screen_size: LOD2 below this projected height [px]
+  float band = 0.15f;             // transition width relative to the threshold distance
+  float hysteresis = 0.05f;       // backlash on the distance (relative) against threshold jitter
+  float slice_margin = 0.12f;     // quads grow by this share of the tree height for swaying content
+  float leaf_displacement = 0.002f;  // scrolling leaf displacement [m per m/s of wind] (seed eq. 3.40)
+  float leaf_displacement_scale = 0.6f;  // feature size of the leaf displacement field [m]
+  bool shadow_depth_offset = true;       // slices write their baked depth offset into shadow maps (§4.7)
+  bool sort_front_to_back = true;        // order each LOD queue near to far (early depth rejection)
+
+  template <class V>
+  void visit(V& v) {
+    v(enabled, "enabled", {.help = "Image-based LOD1/LOD2 for distant trees", .rebuild = Rebuild::kOffline});
+    v(slice_resolution, "slice_resolution", {.min = 16, .max = 1024, .unit = "px", .help = "Texels per baked slice side", .rebuild = Rebuild::kOffline});
+    v(cache_directory, "cache_directory", {.min = 0, .max = 4096, .help = "Bake cache folder (auto = temp folder, empty = no cache)"});
+    v(criterion, "criterion", {.help = "LOD metric: distance, horizontal distance or projected size"});
+    v(v1, "v1", {.min = 0.0, .max = 1.0e7, .unit = "m", .help = "Distance where LOD0 turns into LOD1"});
+    v(v2, "v2", {.min = 0.0, .max = 1.0e7, .unit = "m", .help = "Distance where LOD1 turns into LOD2"});
+    v(s1, "s1", {.min = 0.0, .max = 1.0e5, .unit = "px", .help = "screen_size: projected height below which LOD1 is used"});
+    v(s2, "s2", {.min = 0.0, .max = 1.0e5, .unit = "px", .help = "screen_size: projected height below which LOD2 is used"});
+    v(band, "band", {.min = 0.0, .max = 4.0, .help = "Transition width relative to the threshold"});
+    v(hysteresis, "hysteresis", {.min = 0.0, .max = 1.0, .help = "Relative distance change needed before the LOD follows"});
+    v(slice_margin, "slice_margin", {.min = 0.0, .max = 1.0, .help = "Slice quad growth for swaying content (share of height)"});
+    v(leaf_displacement, "leaf_displacement", {.min = 0.0, .max = 1.0, .unit = "m/(m/s)", .help = "Scrolling leaf displacement in slices"});
+    v(leaf_displacement_scale, "leaf_displacement_scale", {.min = 0.01, .max = 100.0, .unit = "m", .help = "Feature size of the leaf displacement"});
+    v(shadow_depth_offset, "shadow_depth_offset", {.help = "Slices write their baked depth into shadow maps"});
+    v(sort_front_to_back, "sort_front_to_back", {.help = "Order LOD queues near to far"});
+  }
+};
+
+}  // namespace sylva::vegetation

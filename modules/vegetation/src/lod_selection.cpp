@@ -1,0 +1,147 @@
+#include <sylva/vegetation/lod_selection.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace sylva::vegetation {
+namespace {
+
+constexpr double kMinWidth = 1.0e-3;  // [m] a zero band is a continuous step over 1 mm
+
+double finite_or_zero(double v) { return std::isfinite(v) ? std::max(v, 0.0) : 0.0; }
+
+// Counting sort of one queue by quantised distance (256 buckets over the queue's range): linear
+// time, stable, near to far.
+void sort_queue(std::vector<LodQueueEntry>& q, const std::vector<float>& dist, std::vector<LodQueueEntry>& tmp,
+                std::vector<std::uint32_t>& count) {
+  if (q.size() < 2) return;
+  float lo = std::numeric_limits<float>::max();
+  float hi = 0.0f;
+  for (float d : dist) {
+    lo = std::min(lo, d);
+    hi = std::max(hi, d);
+  }
+  constexpr std::uint32_t kBuckets = 256;
+  const float scale = hi > lo ? static_cast<float>(kBuckets - 1) / (hi - lo) : 0.0f;
+  count.assign(kBuckets + 1, 0u);
+  for (float d : dist) ++count[static_cast<std::uint32_t>((d - lo) * scale) + 1];
+  for (std::uint32_t b = 1; b <= kBuckets; ++b) count[b] += count[b - 1];
+  tmp.resize(q.size());
+  for (std::size_t i = 0; i < q.size(); ++i) tmp[count[static_cast<std::uint32_t>((dist[i] - lo) * scale)]++] = q[i];
+  q.swap(tmp);
+}
+
+}  // namespace
+
+LodRamps lod_ramps(const LodSettings& s, double tree_height, double pixels_per_radian) {
+  LodRamps r;
+  double v1 = 0.0;
+  double v2 = 0.0;
+  if (s.criterion == LodCriterion::kScreenSize) {
+    // Projected height h K / d falls below s_k at d = K h / s_k; s = 0 never switches.
+    const double k = finite_or_zero(pixels_per_radian) * finite_or_zero(tree_height);
+    const double s1 = finite_or_zero(s.s1);
+    const double s2 = std::min(finite_or_zero(s.s2), s1);
+    v1 = s1 > 0.0 ? k / s1 : std::numeric_limits<double>::infinity();
+    v2 = s2 > 0.0 ? k / s2 : std::numeric_limits<double>::infinity();
+  } else {
+    v1 = finite_or_zero(s.v1);
+    v2 = std::max(finite_or_zero(s.v2), v1);
+  }
+  const double band = finite_or_zero(s.band);
+  r.start = {v1, v2};
+  r.width = {std::max(v1 * band, kMinWidth), std::max(v2 * band, kMinWidth)};
+  return r;
+}
+
+float lod_target(const LodRamps& r, double d) {
+  if (std::isnan(d)) return 2.0f;
+  double l = 0.0;
+  for (int k = 0; k < 2; ++k) {
+    if (!std::isfinite(r.start[static_cast<std::size_t>(k)])) continue;  // never switches
+    l += std::clamp((d - r.start[static_cast<std::size_t>(k)]) / r.width[static_cast<std::size_t>(k)], 0.0, 1.0);
+  }
+  return static_cast<float>(l);
+}
+
+double lod_follow(double current, double distance, float hysteresis) {
+  const double h = std::isfinite(hysteresis) ? std::clamp(static_cast<double>(hysteresis), 0.0, 1.0) : 0.0;
+  if (std::isnan(current) || std::isnan(distance)) return distance;
+  return std::clamp(current, distance / (1.0 + h), distance * (1.0 + h));
+}
+
+LodDraws lod_draws(float l) {
+  LodDraws out;
+  if (!(l > 0.0f)) {
+    out.draw[0] = {0, 1.0f};
+    out.count = 1;
+    return out;
+  }
+  if (l >= 2.0f) {
+    out.draw[0] = {2, 1.0f};
+    out.count = 1;
+    return out;
+  }
+  const int k = static_cast<int>(std::floor(l));
+  const float f = l - static_cast<float>(k);
+  if (f == 0.0f) {
+    out.draw[0] = {k, 1.0f};
+    out.count = 1;
+    return out;
+  }
+  // Eq. 3.42: one level is opaque at every phase.
+  out.draw[0] = {k, std::min(1.0f, 2.0f * (1.0f - f))};
+  out.draw[1] = {k + 1, std::min(1.0f, 2.0f * f)};
+  out.count = 2;
+  return out;
+}
+
+void select_lods(const LodSettings& s, const LodView& view, std::span<const render::Sphere> spheres,
+                 std::span<const float> heights, LodState& state, LodQueues& out) {
+  for (int k = 0; k < kLodLevels; ++k) {
+    out.level[static_cast<std::size_t>(k)].clear();
+    out.distance[static_cast<std::size_t>(k)].clear();
+  }
+  out.considered = spheres.size();
+  out.visible = 0;
+  out.transitions = 0;
+  if (state.distance.size() != spheres.size() || state.level.size() != spheres.size()) {
+    state.distance.assign(spheres.size(), std::numeric_limits<double>::quiet_NaN());
+    state.level.assign(spheres.size(), std::numeric_limits<float>::quiet_NaN());
+  }
+  const double max_d = std::isnan(view.max_distance) ? 0.0 : view.max_distance;
+  // Thresholds are per instance only for the screen-size criterion; resolve once otherwise.
+  const bool per_instance = s.criterion == LodCriterion::kScreenSize;
+  const LodRamps shared = lod_ramps(s, 1.0, view.pixels_per_radian);
+  const bool horizontal = s.criterion == LodCriterion::kHorizontalDistance;
+  for (std::size_t i = 0; i < spheres.size(); ++i) {
+    const render::Sphere& sp = spheres[i];
+    const glm::dvec3 d = sp.center - view.camera;
+    const double dist3 = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+    if (dist3 - sp.radius > max_d) continue;
+    float l = 0.0f;
+    if (s.enabled) {
+      const double metric = horizontal ? std::sqrt(d.x * d.x + d.z * d.z) : dist3;
+      const LodRamps r = per_instance ? lod_ramps(s, static_cast<double>(heights[i]), view.pixels_per_radian) : shared;
+      const double e = lod_follow(state.distance[i], metric, s.hysteresis);
+      state.distance[i] = e;
+      l = lod_target(r, e);
+      state.level[i] = l;
+    }
+    if (view.frustum != nullptr && !view.frustum->intersects(sp)) continue;
+    const LodDraws draws = lod_draws(l);
+    for (int k = 0; k < draws.count; ++k) {
+      const auto level = static_cast<std::size_t>(draws.draw[static_cast<std::size_t>(k)].level);
+      out.level[level].push_back({static_cast<std::uint32_t>(i), draws.draw[static_cast<std::size_t>(k)].fade});
+      out.distance[level].push_back(static_cast<float>(dist3));
+    }
+    ++out.visible;
+    if (draws.count == 2) ++out.transitions;
+  }
+  if (s.sort_front_to_back)
+    for (int k = 0; k < kLodLevels; ++k)
+      sort_queue(out.level[static_cast<std::size_t>(k)], out.distance[static_cast<std::size_t>(k)], out.sort_tmp, out.sort_count);
+}
+
+}  // namespace sylva::vegetation
