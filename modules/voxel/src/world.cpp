@@ -25,6 +25,12 @@ bool World::set(const BlockPos& p, BlockId id) {
   }
   const int lx = local_of(p.x), ly = local_of(p.y), lz = local_of(p.z);
   if (!it->second.chunk.set(lx, ly, lz, id)) return false;
+  // A plant stands on its ground block: changing that block removes the plant (the same rule
+  // populate() applies when a saved chunk is loaded, so edits and reloads agree).
+  auto& plants = it->second.plants;
+  const auto before = plants.size();
+  std::erase_if(plants, [&p](const PlantInstance& plant) { return plant.ground == p; });
+  if (plants.size() != before) ++plant_epoch_;
   // The edited block lies in the padded ring of every neighbour it borders (AO reads diagonals).
   auto range = [](int l, int& lo, int& hi) {
     lo = l == 0 ? -1 : 0;

@@ -61,9 +61,18 @@ PopulateReport populate(World& world, const WorldGenerator& generator, std::span
         count,
         [&](std::size_t k, int) {
           Job& job = jobs[start + k];
-          // Plants always come from the generator (they are a pure function of the seed).
+          // Plants always come from the generator (they are a pure function of the seed); on a
+          // saved chunk, those whose ground block was edited are gone, as World::set removes them.
           job.result = generator.generate(job.coord);
-          if (job.saved) job.result.blocks = std::move(*job.saved);
+          if (job.saved) {
+            const Chunk& generated = job.result.blocks;
+            const Chunk& saved = *job.saved;
+            std::erase_if(job.result.plants, [&](const PlantInstance& p) {
+              const int x = local_of(p.ground.x), y = local_of(p.ground.y), z = local_of(p.ground.z);
+              return saved.get(x, y, z) != generated.get(x, y, z);
+            });
+            job.result.blocks = std::move(*job.saved);
+          }
         },
         cancel);
     for (std::size_t k = 0; k < ran; ++k) {

@@ -29,6 +29,7 @@ class World {
   // Air where no chunk is loaded.
   BlockId get(const BlockPos& p) const;
   // Creates the chunk when needed. Returns true when the block changed (and meshes were marked).
+  // Changing the ground block of a plant removes that plant.
   bool set(const BlockPos& p, BlockId id);
 
   Chunk* find(const ChunkCoord& c);
@@ -61,7 +62,10 @@ class World {
   std::uint64_t revision(const ChunkCoord& c) const;
 
   // L-system plants standing in a loaded chunk (instanced, not voxels). Setting them bumps
-  // plant_epoch(). Plants of chunks that are not loaded are dropped.
+  // plant_epoch(). Plants of chunks that are not loaded are dropped. Plants are not saved in
+  // region files: they are a pure function of the seed and the chunk's generated blocks, and
+  // populate() regenerates them, dropping those whose ground block an edit changed (see
+  // world_builder.hpp). Plants set here by other means are therefore not persistent.
   void set_plants(const ChunkCoord& c, std::vector<PlantInstance> plants);
   const std::vector<PlantInstance>* plants(const ChunkCoord& c) const;
   std::uint64_t plant_epoch() const { return plant_epoch_; }
