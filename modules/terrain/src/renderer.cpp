@@ -4,6 +4,7 @@
 #include <sylva/core/timer.hpp>
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/terrain/frame_mesh.hpp>
+#include <sylva/terrain/height_texture.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -75,18 +76,12 @@ Status TerrainRenderer::init(const HeightField* field) {
   bounds_ = std::move(bounds).value();
 
   if (field != nullptr && field->columns() > 0 && field->rows() > 0) {
-    GLint max_size = 0;
-    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
-    if (field->columns() <= max_size && field->rows() <= max_size) {
-      heights_ = render::Texture::create_2d(field->columns(), field->rows(), GL_R32F, 1);
-      glTextureSubImage2D(heights_.id(), 0, 0, 0, field->columns(), field->rows(), GL_RED, GL_FLOAT,
-                          field->samples().data());
-      heights_.set_filter(GL_LINEAR, GL_LINEAR);
-      heights_.set_wrap(GL_CLAMP_TO_EDGE);
+    auto heights = make_height_texture(*field);
+    if (heights.ok()) {
+      heights_ = std::move(heights).value();
       has_heights_ = true;
     } else {
-      log_warn("terrain: a {}x{} field exceeds GL_MAX_TEXTURE_SIZE {}; normals come from the triangles",
-               field->columns(), field->rows(), max_size);
+      log_warn("{}; normals come from the triangles", heights.error().message);
     }
     height_range_ = glm::vec2(field->min_height(), field->max_height());
   } else {

@@ -3,6 +3,7 @@
 // the projected-error test from the depth buffer for tau in {0.5, 1, 2, 4}.
 #include <sylva/render/testing.hpp>
 #include <sylva/terrain/height_source.hpp>
+#include <sylva/terrain/height_texture.hpp>
 #include <sylva/terrain/renderer.hpp>
 
 #include "support/gl_support.hpp"
@@ -55,6 +56,53 @@ double variance(const Image& im) {
       s2 += v * v;
     }
   return s2 / n - (s / n) * (s / n);
+}
+
+// The GPU height texture other modules may sample: exact samples in metres, the uv mapping of
+// height_texture_info, the renderer's accessor, and a clear kLimit beyond GL_MAX_TEXTURE_SIZE.
+TEST_F(TerrainGl, HeightTextureHoldsTheSamplesAndMapsWorldPositions) {
+  GeneratedFieldSettings g;
+  g.size = 37;
+  g.rows = 23;
+  g.spacing = 3.0;
+  g.height_scale = 500.0f;
+  g.height_offset = -120.0f;
+  const HeightField field = generate_height_field(g).value();
+  auto tex = make_height_texture(field);
+  ASSERT_TRUE(tex.ok()) << tex.error().describe();
+  EXPECT_EQ(tex->width(), 37);
+  EXPECT_EQ(tex->height(), 23);
+  std::vector<float> back(37 * 23);
+  glGetTextureImage(tex->id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(back.size() * sizeof(float)), back.data());
+  EXPECT_EQ(back, field.samples());
+  const HeightTextureInfo info = height_texture_info(field);
+  for (int j : {0, 11, 22})
+    for (int i : {0, 17, 36}) {
+      const glm::vec2 world(field.origin().x + i * field.spacing(), field.origin().y + j * field.spacing());
+      const glm::vec2 texel = (world * info.uv_scale + info.uv_offset) * glm::vec2(37.0f, 23.0f) - 0.5f;
+      EXPECT_NEAR(texel.x, i, 1e-4);
+      EXPECT_NEAR(texel.y, j, 1e-4);
+    }
+  EXPECT_EQ(info.height_range, glm::vec2(field.min_height(), field.max_height()));
+
+  ChunkTreeSettings ts;
+  ts.leaf_dimension = 9;
+  auto tree = std::make_shared<const ChunkTree>(std::move(ChunkTree::build(field, ts)).value());
+  auto with = TerrainRenderer::create(tree, &field, {});
+  ASSERT_TRUE(with.ok());
+  ASSERT_NE((*with)->height_texture(), nullptr);
+  EXPECT_EQ((*with)->height_texture()->width(), 37);
+  auto without = TerrainRenderer::create(tree, nullptr, {});
+  ASSERT_TRUE(without.ok());
+  EXPECT_EQ((*without)->height_texture(), nullptr);
+
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  const HeightField wide(max_size + 1, 1, 1.0);
+  auto refused = make_height_texture(wide);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, ErrorCode::kLimit);
+  EXPECT_NE(refused.error().message.find("GL_MAX_TEXTURE_SIZE"), std::string::npos) << refused.error().message;
 }
 
 TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {

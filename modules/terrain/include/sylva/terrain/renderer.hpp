@@ -118,6 +118,9 @@ class TerrainRenderer final : public render::Drawable {
   const VertexFrame& vertex_frame() const { return frame_; }
   const TerrainFrameStats& frame_stats() const { return stats_; }
   ChunkStreamer* streamer() { return streamer_.get(); }
+  // The full-resolution height texture (make_height_texture) when a field was given and fits
+  // GL_MAX_TEXTURE_SIZE, else null. Other modules may sample it (height_texture_info for uv).
+  const render::Texture* height_texture() const { return has_heights_ ? &heights_ : nullptr; }
 
   // The LodView a camera and viewport give (what update() selects with).
   static LodView view_for(const render::Camera& camera, glm::ivec2 viewport);
