@@ -184,7 +184,10 @@ void EditorUi::menu_bar() {
 
 void EditorUi::outline_panel() {
   scene::SceneDocument& doc = session_.scene().document();
+  // Wrapped: scene names are often longer than the outline is wide.
+  ImGui::PushTextWrapPos(0.0f);
   ImGui::TextDisabled("%s", doc.name.empty() ? "(unnamed scene)" : doc.name.c_str());
+  ImGui::PopTextWrapPos();
   if (ImGui::Selectable("Environment (sun, wind, time)", selected_ == "environment")) selected_ = "environment";
   if (ImGui::Selectable("Camera", selected_ == "camera")) selected_ = "camera";
   ImGui::Separator();

@@ -14,7 +14,7 @@ std::string default_scene_text() {
   // Standing in the meadow, looking along it toward the hills.
   j["camera"] = {{"position", {4.0, 1.7, 26.0}}, {"height_mode", "above_ground"}, {"yaw_deg", 8.0},
                  {"pitch_deg", -4.0}, {"fov_deg", 60.0}};
-  j["sun"] = {{"follow_clock", true}, {"intensity", 2.0}, {"fog_density", 0.0012}};
+  j["sun"] = {{"follow_clock", true}, {"intensity", 1.8}, {"fog_density", 0.0012}};
   j["environment"] = {{"time_of_day_h", 10.0}, {"season", 0.2}, {"latitude_deg", 47.0}};
   j["wind"] = {{"direction_deg", 30.0}, {"strength", 4.0}, {"gust_amplitude", 3.0}};
   const nlohmann::json source = {{"size", 1600.0},
@@ -24,7 +24,9 @@ std::string default_scene_text() {
                                  {"noise", {{"octaves", 6}, {"frequency", 0.0016}, {"seed", 11}}}};
   if (find_module("terrain")) {
     j["terrain"] = source;
-    j["terrain"]["render"] = {{"material", {{"snow_height", 1.0}, {"sand_height", 0.0}}}};  // a green meadow
+    // A green meadow: no snow or sand, and the terrain's grass tone close to the built-in ground's
+    // (the terrain's default grass is authored for tone mapping and is too bright without it).
+    j["terrain"]["render"] = {{"material", {{"snow_height", 1.0}, {"sand_height", 0.0}, {"grass_color", {0.2, 0.31, 0.11}}}}};
   } else {
     j["ground"] = source;
     j["ground"]["snow_fraction"] = 1.0;  // no snow on meadow hills

@@ -41,7 +41,7 @@ render::Lighting make_lighting(const SunSettings& sun, const EnvironmentSettings
   l.sun_color = sun.color * redden;
   l.sun_intensity = sun.intensity * day * day;
   const float sky = 0.08f + 0.92f * day;
-  l.ambient = render::Lighting{}.ambient * sky;
+  l.ambient = render::Lighting{}.ambient * (sky * sun.ambient);
   l.horizon_color = render::Lighting{}.horizon_color * sky * glm::mix(glm::vec3(1.0f), glm::vec3(1.0f, 0.8f, 0.7f), low * day);
   l.zenith_color = render::Lighting{}.zenith_color * sky;
   l.ground_color = render::Lighting{}.ground_color * sky;

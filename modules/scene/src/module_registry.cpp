@@ -2,6 +2,8 @@
 
 #include "modules/module_factories.hpp"
 
+#include <sylva/core/assert.hpp>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -45,6 +47,12 @@ Counters& counters() {
   return c;
 }
 
+// Modules a test has hidden (detail::ScopedBuiltOut).
+std::vector<std::string>& hidden_modules() {
+  static std::vector<std::string> hidden;
+  return hidden;
+}
+
 }  // namespace
 
 std::span<const std::string_view> known_modules() { return kKnown; }
@@ -54,6 +62,8 @@ bool is_known_module(std::string_view name) {
 }
 
 const ModuleDescriptor* find_module(std::string_view name) {
+  const std::vector<std::string>& hidden = hidden_modules();
+  if (std::find(hidden.begin(), hidden.end(), name) != hidden.end()) return nullptr;
   for (const ModuleDescriptor& d : table()) {
     if (d.name == name) return &d;
   }
@@ -111,4 +121,17 @@ void count_instance(std::string_view name, int delta) {
 }
 }  // namespace detail
 
+namespace detail {
+
+ScopedBuiltOut::ScopedBuiltOut(std::string name) : name_(std::move(name)) {
+  SYLVA_ASSERT(name_ != "ground", "ScopedBuiltOut: the built-in ground cannot be built out");
+  hidden_modules().push_back(name_);
+}
+
+ScopedBuiltOut::~ScopedBuiltOut() {
+  std::vector<std::string>& hidden = hidden_modules();
+  if (auto it = std::find(hidden.begin(), hidden.end(), name_); it != hidden.end()) hidden.erase(it);
+}
+
+}  // namespace detail
 }  // namespace sylva::scene

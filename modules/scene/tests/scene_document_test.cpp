@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <filesystem>
+#include <map>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -248,6 +250,9 @@ TEST(SceneDocument, DefaultSceneIsValidAndUsesWhatIsBuilt) {
   ASSERT_TRUE(doc.ok()) << doc.error().message;
   EXPECT_TRUE(warnings.empty());
   EXPECT_TRUE(doc->has_module("terrain") || doc->has_module("ground"));
+  // Terrain + forest + grass meadow wherever those modules are built in.
+  EXPECT_EQ(doc->has_module("terrain"), sylva::scene::find_module("terrain") != nullptr);
+  EXPECT_NE(doc->has_module("terrain"), doc->has_module("ground"));
   EXPECT_EQ(doc->has_module("grass"), sylva::scene::find_module("grass") != nullptr);
   EXPECT_EQ(doc->has_module("vegetation"), sylva::scene::find_module("vegetation") != nullptr);
   EXPECT_FALSE(doc->camera_paths.empty());
@@ -277,4 +282,57 @@ TEST(SceneDocument, ShippedScenesLoad) {
     ++count;
   }
   EXPECT_GE(count, 2);
+}
+
+// scenes/ holds one scene per module (that module alone) and a voxel world.
+TEST(SceneDocument, ShippedScenesCoverEveryModule) {
+  std::map<std::string, std::vector<std::string>> modules_of;  // file stem -> module sections
+  for (const auto& entry : fs::directory_iterator(SYLVA_SCENES_DIR)) {
+    if (entry.path().extension() != ".json") continue;
+    auto text = sylva::read_file(entry.path());
+    ASSERT_TRUE(text.ok());
+    auto json = sylva::parse_json_text(*text, entry.path().string());
+    ASSERT_TRUE(json.ok()) << json.error().message;
+    for (const auto& [key, value] : json->items()) {
+      (void)value;
+      if (sylva::scene::is_known_module(key)) modules_of[entry.path().stem().string()].push_back(key);
+    }
+  }
+  for (std::string_view m : sylva::scene::known_modules()) {
+    const std::string name(m);
+    ASSERT_TRUE(modules_of.count(name)) << "scenes/" << name << ".json is missing";
+    EXPECT_EQ(modules_of[name], std::vector<std::string>{name}) << "scenes/" << name << ".json shows only " << name;
+  }
+  ASSERT_TRUE(modules_of.count("voxel_world"));
+  EXPECT_EQ(modules_of["voxel_world"], std::vector<std::string>{"voxel"});
+}
+
+// A module that is built out (here simulated with ScopedBuiltOut, as the lean preset does for
+// real) is refused by name and CMake option, never silently drawn as less.
+TEST(SceneDocument, BuiltOutModuleIsAClearError) {
+  for (std::string_view m : sylva::scene::known_modules()) {
+    if (m == "ground" || !sylva::scene::find_module(m)) continue;
+    const std::string name(m);
+    sylva::scene::detail::ScopedBuiltOut out(name);
+    EXPECT_EQ(sylva::scene::find_module(name), nullptr);
+    std::vector<std::string> warnings;
+    auto doc = SceneDocument::load(fs::path(SYLVA_SCENES_DIR) / (name + ".json"), warnings);
+    ASSERT_FALSE(doc.ok()) << name;
+    std::string upper = name;
+    for (char& c : upper) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    EXPECT_NE(doc.error().message.find(name + ".json"), std::string::npos) << doc.error().message;
+    EXPECT_NE(doc.error().message.find("built without the " + name + " module"), std::string::npos) << doc.error().message;
+    EXPECT_NE(doc.error().message.find("-DSYLVA_WITH_" + upper + "=ON"), std::string::npos) << doc.error().message;
+    // The default scene is assembled from what is built, so it still loads without the module.
+    auto def = sylva::scene::default_scene(warnings);
+    ASSERT_TRUE(def.ok()) << def.error().message;
+    EXPECT_FALSE(def->has_module(name));
+  }
+  for (std::string_view m : sylva::scene::known_modules()) {
+#if defined(SYLVA_HAS_TERRAIN) && defined(SYLVA_HAS_GRASS) && defined(SYLVA_HAS_VEGETATION) && defined(SYLVA_HAS_VOXEL)
+    EXPECT_NE(sylva::scene::find_module(m), nullptr) << m << " is back after the scope";
+#else
+    (void)m;
+#endif
+  }
 }

@@ -155,7 +155,6 @@ class GroundDrawable final : public render::Drawable {
     depth_.use();
     depth_.set("u_view_projection", c->relative_view_projection);
     depth_.set("u_model", c->camera->relative_model(glm::dvec3(field_->origin().x, 0.0, field_->origin().y)));
-    depth_.set("u_origin_height", 0.0f);
     vao_.bind();
     for (const Chunk& ch : chunks_) {
       if (!c->light_frustum.intersects(ch.bounds)) continue;

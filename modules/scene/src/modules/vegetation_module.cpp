@@ -103,6 +103,29 @@ vegetation::TreeInstance to_instance(const PlacedTree& t) {
   return ti;
 }
 
+// Instances drawn per level. The forest counts LOD0 and its image-based levels separately once it
+// has them (ForestStats::lod); before that every drawn tree is LOD0.
+template <class Stats>
+nlohmann::json instances_per_lod(const Stats& fs) {
+  if constexpr (requires { fs.lod[0]; }) {
+    nlohmann::json out = nlohmann::json::object();
+    for (std::size_t i = 0; i < fs.lod.size(); ++i) out[fmt::format("lod{}", i)] = fs.lod[i];
+    return out;
+  } else {
+    return {{"lod0", fs.visible}};
+  }
+}
+
+// The forest's LOD settings as text, once vegetation::ForestSettings has them.
+template <class ForestSettingsT>
+std::string lod_key(const ForestSettingsT& f) {
+  if constexpr (requires { f.lod; }) {
+    return params_to_json(f.lod).dump();
+  } else {
+    return {};
+  }
+}
+
 class ForestInstance final : public ModuleInstance {
  public:
   static Result<std::unique_ptr<ModuleInstance>> create(const ModuleBuildContext& ctx) {
@@ -166,7 +189,7 @@ class ForestInstance final : public ModuleInstance {
             {"triangles_per_tree", forest_->asset(0).triangles()},
             {"cells_replaced", cells_replaced_},
             {"cull_ms", fs.update_cpu_ms},
-            {"instances_per_lod", {{"lod0", fs.visible}}}};
+            {"instances_per_lod", instances_per_lod(fs)}};
   }
 
   std::vector<glm::dvec3> placed_positions(std::size_t max_count) const override {
@@ -212,8 +235,10 @@ class ForestInstance final : public ModuleInstance {
 
   std::string asset_key() const {
     const ForestSectionSettings& s = settings();
-    return fmt::format("{} {} {} {}", static_cast<int>(s.species), s.species_seed, s.leaf_texture_size,
-                       params_to_json(s.mesh).dump());
+    // The image-based levels are baked when a species is added, so a change of forest.lod (e.g.
+    // enabled, bake resolution) needs a new forest; its other settings are applied live.
+    return fmt::format("{} {} {} {} {}", static_cast<int>(s.species), s.species_seed, s.leaf_texture_size,
+                       params_to_json(s.mesh).dump(), lod_key(s.forest));
   }
 
   Status build_forest() {

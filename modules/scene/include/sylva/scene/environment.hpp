@@ -21,6 +21,10 @@ struct SunSettings {
   float azimuth_deg = 35.0f;    // compass heading of the sun: 0 = toward -z (north), 90 = +x (east)
   float elevation_deg = 28.0f;  // above the horizon; 90 = straight up
   float intensity = 3.0f;       // multiplier of the sun colour at full daylight
+  // Multiplier of the render core's sky ambient. Above 1 by default because the modules write
+  // display values (tone mapping off, SceneRenderSettings): with the core's linear ambient
+  // (~0.3) a surface facing away from the sun or in shadow came out near black (scenes/ground.json).
+  float ambient = 1.6f;
   glm::vec3 color{1.0f, 0.95f, 0.85f};  // linear RGB at high elevation (reddened toward the horizon)
   float fog_density = 4.0e-4f;  // exponential distance fog [1/m]
   float fog_height_falloff = 0.0f;  // fog thinning with height [1/m], 0 = uniform
@@ -32,6 +36,7 @@ struct SunSettings {
     v(elevation_deg, "elevation_deg", {.min = -10.0, .max = 90.0, .unit = "deg", .help = "Sun height above the horizon"});
     v(intensity, "intensity", {.min = 0.0, .max = 100.0, .help = "Sun brightness in full daylight"});
     v(color, "color", {.min = 0.0, .max = 10.0, .unit = "linear RGB", .help = "Sun colour high in the sky"});
+    v(ambient, "ambient", {.min = 0.0, .max = 20.0, .help = "Sky (ambient) light multiplier: how bright shadowed sides are"});
     v(fog_density, "fog_density", {.min = 0.0, .max = 0.1, .unit = "1/m", .help = "Distance fog density", .log_scale = true});
     v(fog_height_falloff, "fog_height_falloff", {.min = 0.0, .max = 1.0, .unit = "1/m", .help = "Fog thinning with height"});
   }

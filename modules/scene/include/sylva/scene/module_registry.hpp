@@ -60,6 +60,20 @@ std::uint64_t created_module_instances(std::string_view name);
 
 namespace detail {
 void count_instance(std::string_view name, int delta);
+
+// Tests only: while it lives, the named compiled-in module behaves exactly as if it had been
+// built out (find_module returns null, scenes asking for it fail with the built-out message), so
+// the full build can test the lean build's error path. Not thread-safe; ground cannot be hidden.
+class ScopedBuiltOut {
+ public:
+  explicit ScopedBuiltOut(std::string name);
+  ~ScopedBuiltOut();
+  ScopedBuiltOut(const ScopedBuiltOut&) = delete;
+  ScopedBuiltOut& operator=(const ScopedBuiltOut&) = delete;
+
+ private:
+  std::string name_;
+};
 }  // namespace detail
 
 }  // namespace sylva::scene
