@@ -1,5 +1,7 @@
 #include <sylva/grass/far_field.hpp>
 
+#include "shadow_binding.hpp"
+
 #include <sylva/core/log.hpp>
 #include <sylva/core/params.hpp>
 #include <sylva/core/rng.hpp>
@@ -429,6 +431,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
   const FarFieldSettings& s = settings_;
   const glm::vec4 fades(near_distance_, s.clump_fade_in, s.mid_distance, s.mid_fade);
   const glm::vec2 far_fades(s.far_distance, s.far_fade);
+  const bool receive = s.receive_shadows && detail::shadow_block_bound();
   if (!visible_clump_tiles_.empty()) {
     const WindFrame wf = wind.frame(std::isfinite(time) ? time : 0.0, origin_);
     wind_.update(0, sizeof(WindGpuParams), &wf.gpu);
@@ -442,7 +445,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_sway", s.sway * wind_response_ / std::max(mean_stiffness_, 1.0f));
     p.set("u_base_color", base_color_);
     p.set("u_tip_color", tip_color_);
-    p.set("u_receive_shadows", s.receive_shadows ? 1 : 0);
+    p.set("u_receive_shadows", receive ? 1 : 0);
     atlas_.bind(0);
     clump_vao_.bind();
     p.use();
@@ -472,7 +475,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_map_size", glm::vec2(map_rect_.size()));
     p.set("u_base_color", base_color_);
     p.set("u_tip_color", tip_color_);
-    p.set("u_receive_shadows", s.receive_shadows ? 1 : 0);
+    p.set("u_receive_shadows", receive ? 1 : 0);
     ground_texture_.bind(0);
     density_.bind(1);
     ground_vao_.bind();

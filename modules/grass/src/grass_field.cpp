@@ -1,5 +1,7 @@
 #include <sylva/grass/grass_field.hpp>
 
+#include "shadow_binding.hpp"
+
 #include <sylva/core/assert.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/render/frame_context.hpp>
@@ -276,7 +278,7 @@ void GrassField::draw_blades(const render::Camera& camera, render::PassStats* st
   draw_.set("u_tip_color", settings_.tip_color);
   const ShadingSettings& sh = settings_.shading;
   draw_.set("u_shading", glm::vec4(sh.translucency, sh.ambient, sh.root_occlusion, sh.specular));
-  draw_.set("u_receive_shadows", sh.receive_shadows ? 1 : 0);
+  draw_.set("u_receive_shadows", sh.receive_shadows && detail::shadow_block_bound() ? 1 : 0);
 
   vao_.bind();
   draw_.use();
