@@ -342,6 +342,89 @@ TEST_F(ShadowMapsGl, LowSunAndTiltedViews) {
   }
 }
 
+// Peter-panning measured directly: on the ground just behind the box (the side away from the
+// sun) the shadow must start at the box's face. Fixed ground points a quarter texel apart run
+// outward from the face; the first one with visibility < 0.5 may be at most one shadow texel
+// from the face. Points between one texel and the shadow's far end (minus the filter band) must
+// all be shadowed.
+struct ContactGap {
+  double worst_gap_texels = 0.0;  // largest distance face -> first shadowed point, in texels
+  int rows = 0, inside = 0, unshadowed_inside = 0, nan = 0;
+  bool shadow_found = true;
+};
+
+ContactGap measure_contact_gap(ShadowScene& scene, ShadowMaps& maps, const Camera& cam, float elevation_deg) {
+  ContactGap g;
+  const float e = glm::radians(elevation_deg);
+  const glm::vec3 sun(-std::cos(e), std::sin(e), 0.0f);  // shadow falls toward +x, behind the x = 2 face
+  EXPECT_TRUE(maps.render(cam, sun).ok());
+  // Texel of the cascade holding the face (checked against the cascade the shader picks).
+  const float depth = glm::dot(glm::vec3(glm::dvec3(2.0, 0.0, 0.0) - cam.position()), cam.forward());
+  int cascade = 0;
+  while (cascade + 1 < maps.cascades().count &&
+         depth >= maps.cascades().cascades[static_cast<std::size_t>(cascade)].far_depth) {
+    ++cascade;
+  }
+  const double texel = maps.cascades().cascades[static_cast<std::size_t>(cascade)].texel_size;
+  const double spacing = texel / 4.0;
+  // Columns run along +x from the face, rows across the middle of the face (|z| <= 1).
+  const glm::dvec3 grid(2.0 + 0.5 * spacing, 0.0, -std::min(1.0, 64.0 * spacing));
+  const Image img = scene.draw_points(maps, cam, grid, static_cast<float>(spacing));
+  const double length = 3.0 / std::tan(static_cast<double>(e));  // analytic shadow length behind the face
+  const int pcf = maps.settings().pcf_radius;
+  for (int row = 0; row < kSize && grid.z + row * spacing <= 1.0; ++row) {
+    ++g.rows;
+    EXPECT_EQ(static_cast<int>(std::lround(img.at(0, row, 1))), cascade) << "face not in the expected cascade";
+    int first = -1;
+    for (int x = 0; x < kSize; ++x) {
+      const float v = img.at(x, row, 0);
+      if (!std::isfinite(v)) ++g.nan;
+      const double dist = (x + 0.5) * spacing;
+      if (first < 0 && v < 0.5f) first = x;
+      if (dist > texel && dist < length - (pcf + 2) * texel) {
+        ++g.inside;
+        if (!(v < 0.5f)) ++g.unshadowed_inside;
+      }
+    }
+    if (first < 0) {
+      g.shadow_found = false;
+      first = kSize;
+    }
+    g.worst_gap_texels = std::max(g.worst_gap_texels, first * spacing / texel);
+  }
+  return g;
+}
+
+TEST_F(ShadowMapsGl, ShadowStartsAtTheCasterWithinOneTexel) {
+  // A solid box and a 10 cm wall (thin casters are where depth bias detaches shadows), both with
+  // their shadow-side face at x = 2 and 3 m high.
+  for (const Box& caster : {Box{{-2, 0, -2}, {2, 3, 2}}, Box{{1.9f, 0, -2}, {2, 3, 2}}}) {
+    const bool wall = caster.lo.x > 0.0f;
+    ShadowScene scene(caster);
+    Result<ShadowMaps> maps = ShadowMaps::create(test_settings());
+    ASSERT_TRUE(maps.ok());
+    maps->add_caster(scene.caster());
+    const Camera cam = make_camera({6.0, 5.0, 6.0}, {2.0, 0.0, 0.0});
+    for (const float elevation_deg : {70.0f, 40.0f, 14.0f}) {
+      const ContactGap g = measure_contact_gap(scene, *maps, cam, elevation_deg);
+      const char* what = wall ? "wall" : "box";
+      ASSERT_GT(g.rows, 10);
+      EXPECT_EQ(g.nan, 0);
+      EXPECT_TRUE(g.shadow_found) << what << ", " << elevation_deg << " deg sun: no shadow behind the caster";
+      EXPECT_LE(g.worst_gap_texels, 1.0) << what << ", " << elevation_deg << " deg sun: the shadow starts "
+                                         << g.worst_gap_texels << " texels behind the face (peter-panning)";
+      ASSERT_GT(g.inside, g.rows * 8);
+      EXPECT_EQ(g.unshadowed_inside, 0) << what << ", " << elevation_deg << " deg sun";
+    }
+    if (wall) {
+      // The check can fail: a constant depth bias of 10 texels detaches the wall's shadow.
+      maps->settings().min_bias = 0.1f;
+      const ContactGap detached = measure_contact_gap(scene, *maps, cam, 40.0f);
+      EXPECT_GT(detached.worst_gap_texels, 2.0) << "a 10-texel depth bias should show peter-panning";
+    }
+  }
+}
+
 TEST_F(ShadowMapsGl, SunStraightUpCastsShadowBelowFloatingBox) {
   ShadowScene scene({{-1.5f, 1.0f, -1.5f}, {1.5f, 2.0f, 1.5f}});
   Result<ShadowMaps> maps = ShadowMaps::create(test_settings());
