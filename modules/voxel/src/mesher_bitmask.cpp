@@ -69,6 +69,10 @@ inline void ao_corner(std::uint64_t s1, std::uint64_t s2, std::uint64_t c, std::
   hi = ~(both | (c & x));
 }
 
+constexpr std::uint8_t kFlagAlpha = 1;     // alpha-cut block
+constexpr std::uint8_t kFlagSidesOnly = 2;  // no faces along y
+constexpr std::uint8_t kFlagCullSame = 4;   // alpha-cut block hiding faces towards itself
+
 class BitmaskMesher final : public Mesher {
  public:
   explicit BitmaskMesher(const MesherOptions& options) : options_(options) {}
@@ -81,20 +85,30 @@ class BitmaskMesher final : public Mesher {
     p_ = n_ + 2;
     full_ = n_ == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n_) - 1;
     build_masks(blocks, palette);
+    // One flag byte per block for the face loop: most faces are of plain opaque blocks and pass
+    // with a single load and test.
     const std::uint8_t* render = palette.render_table().data();
+    const std::uint8_t* sides_only = palette.sides_only_table().data();
+    flags_.resize(palette.size());
+    for (std::size_t i = 0; i < palette.size(); ++i) {
+      const auto id = static_cast<BlockId>(i);
+      const bool alpha = render[i] == static_cast<std::uint8_t>(RenderClass::kAlphaCut);
+      flags_[i] = static_cast<std::uint8_t>((alpha ? kFlagAlpha : 0) | (sides_only[i] ? kFlagSidesOnly : 0) |
+                                            (alpha && palette.culls_same(id) ? kFlagCullSame : 0));
+    }
     const BlockId* ids = blocks.ids.data();
-    mesh_face<0>(ids, palette, render, out);
-    mesh_face<1>(ids, palette, render, out);
-    mesh_face<2>(ids, palette, render, out);
-    mesh_face<3>(ids, palette, render, out);
-    mesh_face<4>(ids, palette, render, out);
-    mesh_face<5>(ids, palette, render, out);
+    mesh_face<0>(ids, render, out);
+    mesh_face<1>(ids, render, out);
+    mesh_face<2>(ids, render, out);
+    mesh_face<3>(ids, render, out);
+    mesh_face<4>(ids, render, out);
+    mesh_face<5>(ids, render, out);
   }
 
  private:
   // One face direction, specialised so the axis mapping is resolved at compile time.
   template <int F>
-  void mesh_face(const BlockId* ids, const BlockPalette& palette, const std::uint8_t* render, ChunkMesh& out) {
+  void mesh_face(const BlockId* ids, const std::uint8_t* render, ChunkMesh& out) {
     constexpr int kAxis = F >> 1;
     constexpr int kSign = (F & 1) ? -1 : 1;
     const int n = n_;
@@ -104,17 +118,19 @@ class BitmaskMesher final : public Mesher {
     // Stride between consecutive bits of a row, in the padded id array: bits run along y for
     // +-X faces and along x otherwise.
     const int bit_stride = kAxis == 0 ? p * p : 1;
-    const auto alpha_class = static_cast<std::uint8_t>(RenderClass::kAlphaCut);
     // Raw pointers: stores into the output vectors would otherwise force reloads of every
     // member vector's data pointer inside the loops.
     const std::uint64_t* ax = ax_.data();
     const std::uint64_t* ox = ox_.data();
     const std::uint64_t* ay = ay_.data();
     const std::uint64_t* oy = oy_.data();
-    const std::uint8_t* sides_only = palette.sides_only_table().data();
+    const std::uint8_t* flags = flags_.data();
+    // Flags that exclude a face of this direction outright / that need a closer look.
+    constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
     for (int s = 0; s < n; ++s) {
       slot_count_ = 0;
       int last_slot = -1;
+      std::uint32_t last_key = 0;
       const int layer = s + kSign;  // the slice in front of the faces, in [-1, n]
       for (int r = 0; r < n; ++r) {
         std::uint64_t faces;
@@ -139,9 +155,12 @@ class BitmaskMesher final : public Mesher {
           faces &= faces - 1;
           const int idx = row_base + b * bit_stride;
           const BlockId self = ids[idx];
-          const bool alpha = render[self] == alpha_class;
-          if (alpha && ids[idx + front] == self && palette.culls_same(self)) continue;
-          if (kAxis == 1 && sides_only[self]) continue;
+          const std::uint8_t f = flags[self];
+          const bool alpha = (f & kFlagAlpha) != 0;
+          if (f & kSpecial) {
+            if (kAxis == 1 && (f & kFlagSidesOnly)) continue;
+            if ((f & kFlagCullSame) && ids[idx + front] == self) continue;
+          }
           std::uint32_t aob = 0xffu;  // all four corners open
           if (occluded) {
             if ((ao.uniform >> b) & 1u) {
@@ -155,14 +174,15 @@ class BitmaskMesher final : public Mesher {
           }
           if (ao_uniform(aob)) {
             const std::uint32_t key = pack_word1(self, F, aob);
-            if (last_slot < 0 || keys_[static_cast<std::size_t>(last_slot)] != key) {
-              last_slot = find_slot(key);
+            if (last_slot < 0 || last_key != key || slot_row == nullptr) {
+              if (last_slot < 0 || last_key != key) {
+                last_slot = find_slot(key);
+                last_key = key;
+              }
               slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
-            } else if (slot_row == nullptr) {
-              slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
+              used_[static_cast<std::size_t>(last_slot)] |= std::uint64_t{1} << r;
             }
             *slot_row |= std::uint64_t{1} << b;
-            used_[static_cast<std::size_t>(last_slot)] |= std::uint64_t{1} << r;
           } else {
             int x, y, z;
             origin(F, s, r, b, x, y, z);
@@ -396,7 +416,8 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint8_t> xlo_, xhi_, ylo_, yhi_;
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> rows_;
-  std::vector<std::uint64_t> used_;  // per slot: rows holding faces (bit r)
+  std::vector<std::uint64_t> used_;
+  std::vector<std::uint8_t> flags_;   // per block: kFlag* bits  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;
 };
 
