@@ -31,6 +31,9 @@ std::vector<StabilityCase> all_stability_cases() {
   std::vector<StabilityCase> cases;
   add_core_stability_cases(cases);
   add_render_stability_cases(cases);
+#ifdef SYLVA_BENCH_WITH_SCENE
+  add_scene_stability_cases(cases);
+#endif
 #ifdef SYLVA_BENCH_WITH_TERRAIN
   add_terrain_stability_cases(cases);
 #endif
@@ -48,6 +51,9 @@ std::vector<StabilityCase> all_stability_cases() {
 
 std::vector<std::string> missing_stability_modules() {
   std::vector<std::string> missing;
+#ifndef SYLVA_BENCH_WITH_SCENE
+  missing.push_back("scene");
+#endif
 #ifndef SYLVA_BENCH_WITH_TERRAIN
   missing.push_back("terrain");
 #endif

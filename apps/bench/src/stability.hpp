@@ -76,6 +76,7 @@ Status write_stability_report(const StabilityReport& report, const std::filesyst
 // Per-module case lists (stability_<module>.cpp); content modules only when built.
 void add_core_stability_cases(std::vector<StabilityCase>& cases);
 void add_render_stability_cases(std::vector<StabilityCase>& cases);
+void add_scene_stability_cases(std::vector<StabilityCase>& cases);
 void add_terrain_stability_cases(std::vector<StabilityCase>& cases);
 void add_grass_stability_cases(std::vector<StabilityCase>& cases);
 void add_vegetation_stability_cases(std::vector<StabilityCase>& cases);

@@ -5,6 +5,7 @@
 
 #include <sylva/render/camera.hpp>
 #include <sylva/render/readback.hpp>
+#include <sylva/render/shadow_cascades.hpp>
 
 #include <fmt/format.h>
 
@@ -54,6 +55,40 @@ StabilityOutcome camera_extreme_fov() {
   }
   o.passed = true;
   o.detail = "fov 1e-4..3.14 rad, pitch +-90 deg: projection matrices finite";
+  return o;
+}
+
+// Cascaded shadow maps (seed 004 §3): for suns straight up (the seed's lookAt failure), at and
+// below the horizon, zero and NaN, with the camera 1e9 m out and 3 or 4 cascades, every matrix
+// stays finite and every cascade has a positive texel size.
+StabilityOutcome shadow_cascades_extreme_suns() {
+  StabilityOutcome o;
+  int cases = 0, bad_texel = 0;
+  for (double d : {0.0, 1e6, 1e9}) {
+    for (const glm::vec3 sun : {glm::vec3(0, 1, 0), glm::vec3(0, -1, 0), glm::vec3(1, 0, 0), glm::vec3(0.3f, -0.2f, 0.9f),
+                                glm::vec3(0, 0, 0), glm::vec3(NAN, 1, 0), glm::vec3(1e-30f, 1, 1e-30f)}) {
+      for (int count : {1, 4}) {
+        render::Camera cam;
+        cam.set_position(glm::dvec3(d, 300.0, -d));
+        cam.set_yaw_pitch(0.7f, -1.5707f);
+        cam.set_aspect(256, 144);
+        render::ShadowSettings settings;
+        settings.cascade_count = count;
+        const render::ShadowCascades c = render::compute_shadow_cascades(cam, sun, settings);
+        for (int i = 0; i < c.count; ++i) {
+          o.nan_count += non_finite(c.cascades[i].relative_view_projection) + non_finite(c.cascades[i].relative_texture);
+          bad_texel += !(c.cascades[i].texel_size > 0.0f && std::isfinite(c.cascades[i].texel_size));
+        }
+        o.nan_count += !std::isfinite(c.light_direction.x) + !std::isfinite(c.light_direction.y) +
+                       !std::isfinite(c.light_direction.z);
+        ++cases;
+      }
+    }
+  }
+  o.passed = o.nan_count == 0 && bad_texel == 0;
+  o.detail = fmt::format("{} camera/sun/count combinations: {} non-finite matrix entries, {} cascades without a positive "
+                         "texel size",
+                         cases, o.nan_count, bad_texel);
   return o;
 }
 
@@ -113,6 +148,10 @@ void add_render_stability_cases(std::vector<StabilityCase>& cases) {
                    "(< 1e-6 m) with the camera 1e9 m from the origin; no NaN", false, camera_far_from_origin});
   cases.push_back({"render", "camera_extreme_fov", "projection finite for fov 1e-4..3.14 rad and pitch at +-90 deg",
                    false, camera_extreme_fov});
+  cases.push_back({"render", "shadow_cascades_extreme_suns",
+                   "cascade matrices finite and texel sizes positive for a vertical, horizon, below-horizon, zero and "
+                   "NaN sun with the camera up to 1e9 m out looking straight down",
+                   false, shadow_cascades_extreme_suns});
   cases.push_back({"render", "sun_at_zenith", "sky, fog and lighting with the sun straight up: no NaN pixel, colours >= 0",
                    true, [] {
                      return render_ground({{"lighting.sun_direction", "0,1,0"}},

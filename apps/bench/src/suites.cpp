@@ -13,7 +13,7 @@ Result<SuiteSpec> make_scene_suite(const std::string& name);
 #endif
 #ifdef SYLVA_BENCH_WITH_TERRAIN
 // with_terrain/terrain_suite.cpp: the terrain module's LOD pipeline on the bench's own target
-// until the terrain renderer is part of modules/scene.
+// (builtin:terrain), for builds whose scene module lacks the terrain section.
 Result<SuiteSpec> make_terrain_suite();
 #endif
 
@@ -25,6 +25,11 @@ Result<SuiteSpec> make_suite(const std::string& name) {
     return make_error(ErrorCode::kNotFound, fmt::format("unknown suite \"{}\"; suites are terrain, grass, trees, voxel", name));
   }
   if (name == "terrain") {
+#if defined(SYLVA_BENCH_WITH_SCENE) && defined(SYLVA_BENCH_WITH_TERRAIN)
+    // The scene's terrain (what the player draws) when the scene module integrates it.
+    auto scene_suite = make_scene_suite(name);
+    if (scene_suite.ok() || scene_suite.error().code != ErrorCode::kUnsupported) return scene_suite;
+#endif
 #ifdef SYLVA_BENCH_WITH_TERRAIN
     return make_terrain_suite();
 #else

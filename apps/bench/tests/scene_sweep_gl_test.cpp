@@ -60,6 +60,60 @@ TEST(BenchSceneSweep, GroundSceneResolutionSweep) {
   EXPECT_NE(html->find("ground.resolution=33"), std::string::npos);
 }
 
+#ifdef SYLVA_BENCH_WITH_TERRAIN
+// The scene's terrain (modules/scene terrain section drawn by the terrain module's renderer):
+// the bench reads the drawn chunks' largest projected geometric error and the chunks per LOD
+// level. tau bounds the error of every chunk that could have been refined (the "certified"
+// metric); leaf chunks have nothing finer and may exceed it close up (the path comes within 3 m
+// of a leaf box), so the drawn maximum is at least the certified one.
+TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
+  const fs::path out = test_dir("terrain");
+  const fs::path scene = out / "terrain_small.json";
+  ASSERT_TRUE(sylva::write_file_atomic(scene, R"({
+  "sylva_scene": 1,
+  "camera": {"position": [-400.0, 60.0, 400.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0},
+  "sun": {"azimuth_deg": 200.0, "elevation_deg": 35.0},
+  "render": {"shadows": {"enabled": false}},
+  "terrain": {"size": 1024.0, "resolution": 257, "height": 250.0, "generator": "fbm",
+              "noise": {"octaves": 7, "frequency": 0.002, "seed": 21}, "tree": {"leaf_dimension": 17}},
+  "camera_paths": {"fly": {"keys": [
+    {"time_s": 0.0, "position": [-400.0, 60.0, 400.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0},
+    {"time_s": 4.0, "position": [200.0, 40.0, -150.0], "height_mode": "above_ground", "yaw_deg": -40.0, "pitch_deg": -8.0}]}}
+})").ok());
+  std::string output;
+  const int code = run("'" + scene.string() + "' --sweep terrain.render.lod.max_pixel_error=1,4 "
+                       "--reference terrain.render.lod.max_pixel_error=0.05 --camera-path fly --frames 2 --warmup 1 "
+                       "--size 96x54 --out '" + (out / "o").string() + "'",
+                       out / "log.txt", output);
+  ASSERT_EQ(code, 0) << output;
+  auto text = sylva::read_file(out / "o" / "results.json");
+  ASSERT_TRUE(text.ok());
+  const nlohmann::json j = nlohmann::json::parse(*text);
+  ASSERT_EQ(j["settings"].size(), 2u);
+  const double taus[2] = {1.0, 4.0};
+  for (int i = 0; i < 2; ++i) {
+    const nlohmann::json& s = j["settings"][i];
+    ASSERT_TRUE(s["image_error"].contains("max_geometric_error_px")) << s.dump();
+    const double rho = s["image_error"]["max_geometric_error_px"].get<double>();
+    ASSERT_TRUE(s["metrics"].contains("terrain.certified_projected_error_px")) << s["metrics"].dump();
+    const double certified = s["metrics"]["terrain.certified_projected_error_px"]["max"].get<double>();
+    EXPECT_GT(certified, 0.0);
+    EXPECT_LE(certified, taus[i] * (1.0 + 1e-6)) << "tau " << taus[i];
+    EXPECT_GE(rho, certified);
+    bool has_level = false;
+    for (auto it = s["totals"]["lod_instances"].begin(); it != s["totals"]["lod_instances"].end(); ++it) {
+      has_level = has_level || it.key().rfind("terrain.level", 0) == 0;
+    }
+    EXPECT_TRUE(has_level) << s["totals"].dump();
+  }
+  EXPECT_LT(j["settings"][1]["totals"]["triangles"].get<std::uint64_t>(),
+            j["settings"][0]["totals"]["triangles"].get<std::uint64_t>());
+  auto html = sylva::read_file(out / "o" / "report.html");
+  ASSERT_TRUE(html.ok());
+  EXPECT_NE(html->find("max geometric error px"), std::string::npos);
+}
+#endif
+
 TEST(BenchSceneSweep, UnknownScenePathAndCameraPathAreNamed) {
   const fs::path out = test_dir("unknown");
   std::string output;

@@ -19,6 +19,63 @@ Error unavailable(const std::string& suite, const std::string& module) {
                                 suite, module, module));
 }
 
+// Terrain: the scene's ground drawn by modules/terrain (chunk tree, screen-space-error or seed
+// distance selection, seams/skirts, morphing, shadows: exactly what the player draws). A 4 km
+// field of 900 m relief, flown over diagonally 70-130 m above the ground with the horizon in
+// view, so near chunks are fine, far chunks coarse and silhouettes of distant ridges show.
+constexpr const char* kTerrainScene = R"json({
+  "sylva_scene": 1,
+  "name": "bench: terrain flight",
+  "camera": {"position": [-1720.0, 120.0, 1720.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -9.0, "fov_deg": 60.0},
+  "sun": {"azimuth_deg": 200.0, "elevation_deg": 35.0, "fog_density": 0.0002},
+  "terrain": {"size": 4096.0, "resolution": 1025, "height": 900.0, "generator": "fbm",
+              "noise": {"octaves": 9, "persistence": 0.5, "frequency": 0.0004, "seed": 21},
+              "tree": {"leaf_dimension": 33},
+              "render": {"lod": {"max_pixel_error": 1.0, "morph_fraction": 0.25, "crack_fix": "seams"}}},
+  "camera_paths": {
+    "flight": {"interpolation": "catmull_rom", "keys": [
+      {"time_s": 0.0, "position": [-1720.0, 130.0, 1720.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -9.0},
+      {"time_s": 4.0, "position": [-614.0, 100.0, 1044.0], "height_mode": "above_ground", "yaw_deg": -50.0, "pitch_deg": -7.0},
+      {"time_s": 8.0, "position": [500.0, 80.0, -491.0], "height_mode": "above_ground", "yaw_deg": -40.0, "pitch_deg": -8.0},
+      {"time_s": 12.0, "position": [1638.0, 110.0, -1638.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0}]}
+  }
+})json";
+
+Result<SuiteSpec> terrain_suite() {
+  if (scene::find_module("terrain") == nullptr) return unavailable("terrain", "terrain");
+  SuiteSpec s;
+  s.name = "terrain";
+  s.module = "terrain";
+  RunSpec& r = s.run;
+  r.factory = scene_text_factory(kTerrainScene, "<bench terrain suite>");
+  r.scene = "terrain suite scene (modules/scene terrain section: 4 km fBm field, 1025 x 1025 samples, 900 m relief, "
+            "33-vertex chunks)";
+  r.suite = "terrain";
+  r.description =
+      "Terrain chunked LOD as the scene draws it: the screen-space error bound tau (Ulrich 2002, "
+      "terrain.render.lod.max_pixel_error) against the seed's distance criterion (terrain.render.lod.lod_distance), "
+      "seams against skirts and no crack fix, and tau without morphing (the seed's criterion never morphs), each "
+      "against the tree refined to tau = 0.05 px. The table's max geometric error is the largest projected error of "
+      "the drawn chunks (K delta / (D - delta) with each chunk's measured delta, from the scene's terrain renderer), "
+      "the number tau certifies and the seed's criterion does not.";
+  const std::string lod = "terrain.render.lod.";
+  r.sweep_groups = {
+      {{lod + "criterion", {"screen_space_error"}}, {lod + "max_pixel_error", {"0.5", "1", "2", "4", "8"}}},
+      {{lod + "criterion", {"seed_distance"}}, {lod + "lod_distance", {"10", "20", "40", "80", "160"}}},
+      {{lod + "max_pixel_error", {"2"}}, {lod + "crack_fix", {"skirts", "none"}}},
+      // The seed's criterion never morphs; these separate what morphing costs in per-frame image
+      // error (it buys the absence of pops, which a per-frame metric cannot see).
+      {{lod + "morph_fraction", {"0"}}, {lod + "max_pixel_error", {"1", "2", "4"}}},
+  };
+  r.reference = {{lod + "criterion", "screen_space_error"}, {lod + "max_pixel_error", "0.05"}};
+  r.reference_note = "screen-space criterion with tau = 0.05 px (practically the full-resolution field where it is "
+                     "on screen)";
+  r.camera_path = "flight";
+  r.frames = 12;
+  r.size = {256, 144};
+  return s;
+}
+
 // Grass: blades near, billboard clumps in the middle, a ground layer far (seeds 001/003). The
 // walk looks across a 100 m meadow so every band is on screen.
 constexpr const char* kGrassScene = R"json({
@@ -117,19 +174,28 @@ Result<SuiteSpec> trees_suite() {
   r.scene = "trees suite forest (100 m x 100 m, 40 broadleaf trees per hectare, fBm hills)";
   r.suite = "trees";
   r.description =
-      "Tree LOD as far as the vegetation module exposes it: the drawing distance (max_distance), the animation "
-      "level (the seed's table 5.5: static, trunk, branches, leaves) and the bark mesh detail (ring spacing), "
-      "against all trees drawn at the finest mesh with full animation. The image-based LOD1/LOD2 thresholds join "
-      "this suite when the module offers them.";
+      "Tree LOD (seed 000): the image-based levels' thresholds, v1 (LOD0 geometry to LOD1 slices) with v2 far out, "
+      "and v2 (LOD1 to the LOD2 billboard) with v1 near, the screen-size criterion's s1, the drawing distance "
+      "(max_distance), the animation level (the seed's table 5.5: static, trunk, branches, leaves) and the bark mesh "
+      "detail (ring spacing), against every tree drawn as full geometry (image-based levels off) at the finest mesh "
+      "with full animation. The table counts instances per LOD level (vegetation.lod0/1/2; a tree in a transition "
+      "band counts in both levels).";
+  const std::string f = "vegetation.forest.";
   r.sweep_groups = {
-      {{"vegetation.max_distance", {"25", "50", "100"}}},
-      {{"vegetation.animation", {"static", "trunk", "branches"}}},
-      {{"vegetation.mesh.ring_spacing", {"0.5", "1", "2", "4"}}},
+      {{f + "lod.v2", {"200"}}, {f + "lod.v1", {"10", "25", "45", "80"}}},
+      {{f + "lod.v1", {"20"}}, {f + "lod.v2", {"30", "60", "110"}}},
+      {{f + "lod.criterion", {"screen_size"}}, {f + "lod.s1", {"40", "70", "140"}}},
+      // Full geometry everywhere, as in the reference, so these groups measure only their own setting.
+      {{f + "lod.enabled", {"false"}}, {f + "max_distance", {"25", "50", "100"}}},
+      {{f + "lod.enabled", {"false"}}, {f + "animation_level", {"static", "trunk", "branches"}}},
+      {{f + "lod.enabled", {"false"}}, {"vegetation.mesh.ring_spacing", {"0.5", "1", "2", "4"}}},
   };
-  r.reference = {{"vegetation.max_distance", "2000"},
-                 {"vegetation.animation", "leaves"},
+  r.reference = {{f + "lod.enabled", "false"},
+                 {f + "max_distance", "2000"},
+                 {f + "animation_level", "leaves"},
                  {"vegetation.mesh.ring_spacing", "0.25"}};
-  r.reference_note = "every tree drawn (max_distance 2 km), full animation, bark rings every 0.25 m";
+  r.reference_note = "every tree drawn as full geometry (image-based LOD off, max_distance 2 km), full animation, "
+                     "bark rings every 0.25 m";
   r.camera_path = "approach";
   r.frames = 8;
   r.size = {256, 144};
@@ -180,6 +246,7 @@ Result<SuiteSpec> voxel_suite() {
 }  // namespace
 
 Result<SuiteSpec> make_scene_suite(const std::string& name) {
+  if (name == "terrain") return terrain_suite();
   if (name == "grass") return grass_suite();
   if (name == "trees") return trees_suite();
   if (name == "voxel") return voxel_suite();

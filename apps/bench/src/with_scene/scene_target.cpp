@@ -8,8 +8,16 @@
 #include <sylva/scene/scene.hpp>
 #include <sylva/scene/scene_document.hpp>
 
+#ifdef SYLVA_BENCH_WITH_TERRAIN
+#include <sylva/terrain/chunk_tree.hpp>
+#include <sylva/terrain/lod_view.hpp>
+#include <sylva/terrain/renderer.hpp>
+#include <sylva/terrain/selection.hpp>
+#endif
+
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sylva::bench {
@@ -36,6 +44,44 @@ void collect_stats(const nlohmann::json& j, const std::string& prefix, const std
     }
   }
 }
+
+#ifdef SYLVA_BENCH_WITH_TERRAIN
+// The projected geometric error of the chunks the scene's terrain drew this frame:
+// K * delta / (D - delta) with each chunk's measured delta and D the distance to its box (Ulrich's
+// bound as the selection evaluates it, seed 002 §2.3), from the renderer's own selection and view.
+// `drawn` covers every drawn chunk; `certified` only chunks that had finer children to refine
+// into, which is what tau bounds: a leaf chunk is drawn however close the camera comes, with the
+// error its flat-vertex reduction left (ChunkTreeSettings::flat_tolerance). Capped at 1e4 px.
+struct TerrainError {
+  double drawn = 0.0;
+  double certified = 0.0;
+};
+
+std::optional<TerrainError> terrain_projected_error_px(scene::Scene& scene, const render::Camera& camera,
+                                                       glm::ivec2 size) {
+  scene::ModuleInstance* module = scene.module("terrain");
+  if (module == nullptr) return std::nullopt;
+  for (render::Drawable* d : module->drawables()) {
+    const auto* renderer = dynamic_cast<const terrain::TerrainRenderer*>(d);
+    if (renderer == nullptr) continue;
+    const terrain::LodView view = terrain::TerrainRenderer::view_for(camera, size);
+    const terrain::ChunkTree& tree = renderer->tree();
+    TerrainError e;
+    for (const terrain::SelectedChunk& s : renderer->selection().chunks) {
+      const terrain::Chunk& c = tree.chunk(s.index);
+      if (c.error <= 0.0f) continue;
+      glm::dvec3 lo, hi;
+      tree.chunk_bounds(s.index, lo, hi);
+      const double dist = view.distance_to_box(lo, hi) - c.error;
+      const double rho = std::min(dist > 1e-3 ? view.k * c.error / dist : 1.0e4, 1.0e4);
+      e.drawn = std::max(e.drawn, rho);
+      if (c.key.level + 1 < tree.levels()) e.certified = std::max(e.certified, rho);
+    }
+    return e;
+  }
+  return std::nullopt;
+}
+#endif
 
 class SceneTarget final : public BenchTarget {
  public:
@@ -124,6 +170,12 @@ class SceneTarget final : public BenchTarget {
     for (auto it = modules.begin(); it != modules.end(); ++it) {
       if (it.value().is_object()) collect_stats(it.value(), "", it.key(), out);
     }
+#ifdef SYLVA_BENCH_WITH_TERRAIN
+    if (std::optional<TerrainError> e = terrain_projected_error_px(*scene_, camera, size_)) {
+      out.metrics["terrain.max_projected_error_px"] = e->drawn;
+      out.metrics["terrain.certified_projected_error_px"] = e->certified;
+    }
+#endif
     // Per-module GPU time, for the CSV and JSON.
     for (const auto& [module, passes] : s.modules) {
       double ms = 0.0;
