@@ -44,7 +44,9 @@ struct Bench {
 std::unique_ptr<Bench> make_bench(int n, int width, int height) {
   if (context() == nullptr) return nullptr;
   auto b = std::make_unique<Bench>();
-  Result<Forest> f = Forest::create();
+  ForestSettings settings;
+  settings.lod.enabled = false;  // LOD0 costs; lod_bench.cpp measures the image-based levels
+  Result<Forest> f = Forest::create(settings);
   if (!f.ok()) return nullptr;
   b->forest = std::move(f).value();
   b->forest.settings().receive_shadows = false;  // no shadow maps in this benchmark

@@ -41,7 +41,7 @@ struct Forest::Impl {
   ForestStats stats;
   glm::dvec3 origin{0.0};
   double time = 0.0;
-  WindField wind;  // the last update's wind (copied: the frame's reference may not outlive it)
+  WindFrame wind_frame;  // the last update's wind split at the camera (WindField::frame)
   float season = 0.0f;
   bool updated = false;
   bool reported_error = false;
@@ -85,6 +85,14 @@ struct Forest::Impl {
     p.level = settings.animation_level;
     p.receive_shadows = settings.receive_shadows;
     return p;
+  }
+
+  // The instance record for the last update's camera and wind. The wind comes from the per-frame
+  // split at the camera (WindField::evaluate(frame, local): float work per tree, no double noise
+  // setup), the same in the colour and the shadow passes.
+  InstanceGpu record(const TreeInstance& t) const {
+    const glm::vec3 local(t.position - origin);
+    return make_instance_gpu(t, origin, WindField::evaluate(wind_frame, local) * settings.animation.wind_scale);
   }
 
   void report(const Status& st) {
@@ -213,12 +221,12 @@ void Forest::update(const render::FrameContext& frame) {
   const double time = std::isfinite(frame.time) ? frame.time : 0.0;
   m.origin = frame.camera.position();
   m.time = time;
-  m.wind = frame.wind;
   // Season: wrapped in double so a long-running animation keeps full precision.
   const double season = static_cast<double>(st.shading.season) + static_cast<double>(st.season_speed) * time;
   m.season = static_cast<float>(season - std::floor(season));
   const AnimationGpu anim = make_animation_gpu(st.animation, time);
-  const WindGpuParams wind_gpu = frame.wind.frame(time, m.origin).gpu;
+  m.wind_frame = frame.wind.frame(time, m.origin);
+  const WindGpuParams wind_gpu = m.wind_frame.gpu;
   m.renderer.set_frame(anim, wind_gpu);
   m.slice_renderer.set_frame(anim, wind_gpu, time, st.lod);
   const render::Frustum frustum = frame.camera.frustum();
@@ -251,7 +259,7 @@ void Forest::update(const render::FrameContext& frame) {
       upload.clear();
       upload.reserve(q.size());
       for (const LodQueueEntry& e : q) {
-        InstanceGpu g = make_instance_gpu(s.instances[e.instance], m.origin, frame.wind, time, st.animation);
+        InstanceGpu g = m.record(s.instances[e.instance]);
         g.lod = glm::vec4(e.fade, e.instance < s.lod_state.level.size() ? s.lod_state.level[e.instance] : 0.0f, 0.0f, 0.0f);
         upload.push_back(g);
         if (seen[e.instance] == 0) {
@@ -329,7 +337,7 @@ Status Forest::draw_depth(const glm::mat4& relative_view_proj, const render::Fru
       float l = 0.0f;
       if (lod) l = i < s.lod_state.level.size() && !std::isnan(s.lod_state.level[i]) ? s.lod_state.level[i] : 2.0f;
       const LodDraws draws = lod_draws(l);
-      const InstanceGpu g = make_instance_gpu(s.instances[i], m.origin, m.wind, m.time, m.settings.animation);
+      const InstanceGpu g = m.record(s.instances[i]);
       for (int k = 0; k < draws.count; ++k) {
         InstanceGpu r = g;
         r.lod = glm::vec4(draws.draw[static_cast<std::size_t>(k)].fade, l, 0.0f, 0.0f);
