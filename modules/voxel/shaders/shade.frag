@@ -1,11 +1,13 @@
 #version 450 core
 // Phong shading of voxel faces and plant parts (seed 004 §2.3): ambient scaled by ambient
 // occlusion, sun diffuse and specular (specular map, §2.3.2), point lights from emissive blocks
-// with attenuation 1 / (Kc + Kl d + Kq d^2) (§2.3.3.2), emission, fog. ALPHA_CUT builds the
+// with attenuation 1 / (Kc + Kl d + Kq d^2) (§2.3.3.2), the host's point lights from the render
+// core (UBO 3), emission, fog. ALPHA_CUT builds the
 // cut-out variant (discard below u_alpha_cutoff, two-sided normals).
 #include "voxel/common.glsl"
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
+#include "render/lib/point_lights.glsl"
 #include "voxel/shadow_hook.glsl"
 
 #ifndef ALPHA_CUT
@@ -59,6 +61,8 @@ void main() {
     float att = 1.0 / (u_attenuation.x + u_attenuation.y * dist + u_attenuation.z * dist * dist);
     color += att * u_light_color[i].rgb * (lambert(n, ld) * albedo.rgb + phong(n, view, ld, shininess) * spec_map);
   }
+  // The host's point lights (e.g. the scene's), same attenuation family, diffuse only.
+  color += albedo.rgb * sylva_point_lights_diffuse(v_rel_pos, n);
   color += b.emission.rgb * albedo.rgb * 2.0;
   o_color = vec4(apply_fog(color, v_rel_pos), 1.0);
 }

@@ -93,6 +93,10 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   // means "disabled" (sylva_shadow returns 1).
   const std::vector<unsigned char> zeros(368, 0);
   r->no_shadows_ubo_ = render::Buffer::immutable(zeros.size(), zeros.data());
+  // SylvaPointLights (render/lib/point_lights.glsl) is 3 x 16 vec4 + 1 ivec4 = 784 bytes; all
+  // zero means "no lights".
+  const std::vector<unsigned char> no_lights(784, 0);
+  r->no_point_lights_ubo_ = render::Buffer::immutable(no_lights.size(), no_lights.data());
   VoxelRenderer* self = r.get();
   r->caster_ = std::make_unique<render::CallbackShadowCaster>(
       [self](const render::ShadowCasterContext& c) { self->draw_shadow(c); });
@@ -387,25 +391,25 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
   }
 }
 
-VoxelRenderer::UboBinding VoxelRenderer::bind_shadow_block() {
+VoxelRenderer::UboBinding VoxelRenderer::bind_fallback_block(GLuint index, const render::Buffer& fallback, bool use_host) {
   UboBinding b;
-  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, render::kShadowUniformBinding, &b.buffer);
-  if (settings_.receive_shadows && b.buffer != 0) return b;
-  glGetInteger64i_v(GL_UNIFORM_BUFFER_START, render::kShadowUniformBinding, &b.start);
-  glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, render::kShadowUniformBinding, &b.size);
-  no_shadows_ubo_.bind_base(GL_UNIFORM_BUFFER, render::kShadowUniformBinding);
+  b.index = index;
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, index, &b.buffer);
+  if (use_host && b.buffer != 0) return b;
+  glGetInteger64i_v(GL_UNIFORM_BUFFER_START, index, &b.start);
+  glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, index, &b.size);
+  fallback.bind_base(GL_UNIFORM_BUFFER, index);
   b.replaced = true;
   return b;
 }
 
-void VoxelRenderer::restore_shadow_block(const UboBinding& b) {
+void VoxelRenderer::restore_block(const UboBinding& b) {
   if (!b.replaced) return;
   const auto buffer = static_cast<GLuint>(b.buffer);
   if (buffer != 0 && b.size > 0) {
-    glBindBufferRange(GL_UNIFORM_BUFFER, render::kShadowUniformBinding, buffer, static_cast<GLintptr>(b.start),
-                      static_cast<GLsizeiptr>(b.size));
+    glBindBufferRange(GL_UNIFORM_BUFFER, b.index, buffer, static_cast<GLintptr>(b.start), static_cast<GLsizeiptr>(b.size));
   } else {
-    glBindBufferBase(GL_UNIFORM_BUFFER, render::kShadowUniformBinding, buffer);
+    glBindBufferBase(GL_UNIFORM_BUFFER, b.index, buffer);
   }
 }
 
@@ -424,7 +428,10 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   }
   if (pass != render::Pass::kOpaque) return;
   vao_.bind();  // vertex pulling: an empty VAO (the core profile needs one bound)
-  const UboBinding shadow_block = bind_shadow_block();
+  // Shadows (UBO 2) and the host's point lights (UBO 3) as the host bound them, or all-zero
+  // blocks (none) when it bound nothing; restored afterwards for the other drawables.
+  const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
+  const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -440,7 +447,8 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   bind_common(plant_alpha_program_, &frame);
   draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
-  restore_shadow_block(shadow_block);
+  restore_block(light_block);
+  restore_block(shadow_block);
 }
 
 void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,

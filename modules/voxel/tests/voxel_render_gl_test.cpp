@@ -2,6 +2,7 @@
 // blocks from the origin render exactly like at the origin; point lights and culling work; a
 // generated world renders (screenshots saved for inspection).
 
+#include <sylva/render/point_lights.hpp>
 #include <sylva/render/testing.hpp>
 #include <sylva/voxel/world_builder.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
@@ -11,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <sylva/render/readback.hpp>
@@ -162,6 +164,46 @@ TEST_F(VoxelRenderGl, PointLightBrightensWithSeedAttenuation) {
   EXPECT_GT(near_px, mid_px);
   EXPECT_GT(mid_px, far_px);
   EXPECT_GT(near_px, lum(dark, 64 + 12, cy) + 0.2f);
+}
+
+// The host's point lights (render core, UBO 3, e.g. the scene's) light voxel faces with the
+// same attenuation; with nothing bound there the renderer binds an empty block (no lights) and
+// restores the host's binding afterwards.
+TEST_F(VoxelRenderGl, HostPointLightsFromTheRenderCoreLightTheFloor) {
+  const BlockPalette& pal = BlockPalette::standard();
+  World world(pal);
+  for (int z = -20; z < 20; ++z)
+    for (int x = -20; x < 20; ++x) (void)world.set({x, 0, z}, pal.id("stone"));
+  remesh_all(world, MesherKind::kGreedy);
+  auto scene = testing::VoxelGlScene::create(96, 96);
+  scene.lighting.sun_intensity = 0.0f;
+  scene.lighting.ambient = glm::vec3(0.02f);
+  scene.camera.set_position({0.5, 30.0, 0.6});
+  scene.camera.look_at({0.5, 0.0, 0.5});
+  auto renderer = VoxelRenderer::create(world, nullptr);
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  glBindBufferBase(GL_UNIFORM_BUFFER, render::kPointLightBinding, 0);
+  scene.render(**renderer);
+  const Image dark = scene.color();
+  render::PointLightUniforms lights = render::PointLightUniforms::create();
+  render::PointLight lamp;
+  lamp.position = {0.5, 3.0, 0.5};
+  lamp.color = {1.0f, 0.8f, 0.6f};
+  lamp.intensity = 2.0f;
+  lamp.range = 30.0f;
+  ASSERT_TRUE(lights.update(std::span<const render::PointLight>(&lamp, 1), scene.camera.position()).ok());
+  lights.bind();
+  scene.render(**renderer);
+  const Image lit = scene.color();
+  GLint bound = 0;
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, render::kPointLightBinding, &bound);
+  EXPECT_NE(bound, 0) << "the host's block stays bound";
+  auto lum = [](const Image& im, int x, int y) { return im.at(x, y, 0) + im.at(x, y, 1) + im.at(x, y, 2); };
+  const float centre = lum(lit, 48, 48), edge = lum(lit, 48 + 40, 48);
+  std::printf("host point light: centre %.3f (dark %.3f), edge %.3f\n", centre, lum(dark, 48, 48), edge);
+  EXPECT_GT(centre, lum(dark, 48, 48) + 0.3f);
+  EXPECT_GT(centre, edge);
+  glBindBufferBase(GL_UNIFORM_BUFFER, render::kPointLightBinding, 0);
 }
 
 // Specular maps (seed §2.3.2): seen at the sun's mirror angle, snow (specular 0.6 with its map)

@@ -11,7 +11,8 @@
 //  * Phong lighting (seed §2.3): ambient (hemisphere, scaled by per-vertex AO), sun diffuse,
 //    specular from the specular map, and up to max_point_lights point lights from emissive
 //    blocks nearest the camera with attenuation 1 / (Kc + Kl d + Kq d^2) (Kc = 1, Kl = 0.045,
-//    Kq = 0.0075). The sun term is multiplied by the render core's cascaded shadows
+//    Kq = 0.0075), plus the host's point lights (render/lib/point_lights.glsl, UBO 3, bound by
+//    the host with PointLightUniforms::bind; none when nothing is bound). The sun term is multiplied by the render core's cascaded shadows
 //    (render/lib/shadows.glsl, bound by the host with ShadowMaps::bind); set_shadow_receiver
 //    replaces that lookup (tests, other shadow techniques).
 //  * Shadow casting (seed §3.7.1): opaque chunk quads and opaque plant parts draw depth with an
@@ -29,6 +30,7 @@
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/drawable.hpp>
 #include <sylva/render/shader_library.hpp>
+#include <sylva/render/point_lights.hpp>
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/texture.hpp>
 #include <sylva/render/vertex_array.hpp>
@@ -145,15 +147,16 @@ class VoxelRenderer final : public render::Drawable {
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
   void draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
                        const glm::dvec3& origin, render::PassStats& stats);
-  // Binds the all-zero "shadows disabled" block at UBO 2 when receiving is off or no host bound
-  // one; returns the previous binding so it can be restored for the other drawables.
+  // Binds `fallback` (an all-zero "disabled" block) at uniform binding `index` unless use_host
+  // and the host bound one there; returns the previous binding so it can be restored.
   struct UboBinding {
+    GLuint index = 0;
     GLint buffer = 0;
     GLint64 start = 0, size = 0;
     bool replaced = false;
   };
-  UboBinding bind_shadow_block();
-  static void restore_shadow_block(const UboBinding& b);
+  static UboBinding bind_fallback_block(GLuint index, const render::Buffer& fallback, bool use_host);
+  static void restore_block(const UboBinding& b);
 
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
@@ -161,6 +164,7 @@ class VoxelRenderer final : public render::Drawable {
   render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Buffer no_shadows_ubo_;
+  render::Buffer no_point_lights_ubo_;
   std::unique_ptr<render::ShadowCaster> caster_;
   // The cascade last cast into through draw(kShadow), for draw_depth's de-duplication.
   const render::ShadowCasterContext* cast_context_ = nullptr;
