@@ -150,13 +150,13 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
 
 void GrassField::set_colliders(std::span<const glm::dvec3> centers, std::span<const float> radii) {
   SYLVA_ASSERT(centers.size() == radii.size(), "centers={} radii={}", centers.size(), radii.size());
-  std::vector<glm::vec4> local;
-  for (std::size_t i = 0; i < centers.size() && i < kMaxColliders; ++i) {
-    local.emplace_back(glm::vec3(centers[i] - origin_), radii[i]);
+  colliders_.clear();
+  for (std::size_t i = 0; i < centers.size() && i + 1 < kMaxColliders; ++i) {
+    colliders_.emplace_back(glm::vec3(centers[i] - origin_), radii[i]);
   }
-  if (centers.size() > kMaxColliders) log_warn("grass: {} colliders given, only the first {} are used", centers.size(), kMaxColliders);
-  sphere_count_ = static_cast<int>(local.size());
-  if (!local.empty()) spheres_.update(std::span<const glm::vec4>(local));
+  if (centers.size() + 1 > kMaxColliders) {
+    log_warn("grass: {} colliders given, only the first {} are used", centers.size(), kMaxColliders - 1);
+  }
 }
 
 void GrassField::update(const render::FrameContext& frame) {
@@ -223,7 +223,12 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
     const PhysicsSettings& ps = settings_.physics;
     physics_.set("u_physics", glm::vec4(ps.gravity, ps.front_gravity, ps.wind_response, ps.collision_recovery));
     physics_.set("u_substep", glm::vec2(ps.max_substep, static_cast<float>(ps.max_substeps)));
-    physics_.set("u_sphere_count", sphere_count_);
+    std::vector<glm::vec4> spheres = colliders_;
+    if (ps.camera_collider_radius > 0.0f) {
+      spheres.emplace_back(glm::vec3(camera.position() - origin_) + ps.camera_collider_offset, ps.camera_collider_radius);
+    }
+    if (!spheres.empty()) spheres_.update(std::span<const glm::vec4>(spheres));
+    physics_.set("u_sphere_count", static_cast<int>(spheres.size()));
     physics_.set("u_wind_offset", glm::vec3(0.0f));
     sim_query_.begin(frame_);
     physics_.use();

@@ -223,6 +223,75 @@ TEST_F(GrassFieldGl, SplitStorageIsTransparent) {
   EXPECT_NE(too_small.error().message.find("storage buffer"), std::string::npos) << too_small.error().message;
 }
 
+TEST_F(GrassFieldGl, CameraColliderPushesBladesAside) {
+  // physics.camera_collider_radius: a sphere following the camera (the walker's body) pushes
+  // the simulated blades out of it (Jahrmann & Wimmer's per-step push on tip and midpoint,
+  // then length restoration, so blades rooted under it stay partly inside) and weakens their
+  // recovery; invariants hold.
+  const glm::dvec3 origin(-500.0, 20.0, 300.0);
+  GroundMesh quad;
+  const std::vector<glm::vec3> pos = {{-3.0f, 0, -3.0f}, {3.0f, 0, -3.0f}, {3.0f, 0, 3.0f}, {-3.0f, 0, 3.0f}};
+  const std::vector<glm::vec3> nrm(4, glm::vec3(0, 1, 0));
+  const std::vector<std::uint32_t> idx = {0, 2, 1, 0, 3, 2};
+  quad.positions = pos;
+  quad.normals = nrm;
+  quad.indices = idx;
+  GrassFieldSettings fs;
+  fs.density = 150.0f;
+  fs.tile_size = 16.0f;  // one tile: every blade is simulated while the camera sees the quad
+  BladeSet set = generate_blades_on_mesh(fs, BladeSettings{}, quad, origin).value();
+  GrassRenderSettings rs;
+  rs.cull.near_distance = 50.0f;
+  rs.physics.camera_collider_radius = 0.6f;
+  rs.physics.camera_collider_offset = {0.0f, -0.9f, 0.0f};
+  BladeSet copy = set;
+  auto with = GrassField::create(std::move(set), rs);
+  rs.physics.camera_collider_radius = 0.0f;
+  auto without = GrassField::create(std::move(copy), rs);
+  ASSERT_TRUE(with.ok()) << with.error().message;
+  ASSERT_TRUE(without.ok()) << without.error().message;
+  testing::GlScene scene = testing::GlScene::create(64, 36);
+  scene.wind = WindField(WindSettings{.strength = 0.0f, .gust_amplitude = 0.0f, .turbulence_amplitude = 0.0f});
+  scene.camera.set_position(origin + glm::dvec3(0.0, 1.0, 0.0));
+  scene.camera.look_at(origin + glm::dvec3(3.0, 0.0, 0.0));
+  for (int i = 1; i <= 10; ++i) {
+    scene.render(*with, i / 30.0, 1.0f / 30.0f);
+    scene.render(*without, i / 30.0, 1.0f / 30.0f);
+  }
+  const glm::vec3 centre(0.0f, 0.1f, 0.0f);  // blade-set local
+  // Penetration of each blade's upper half (midpoint of control point and tip) into the sphere.
+  auto penetration = [&](const std::vector<Blade>& blades, float& worst) {
+    double sum = 0.0;
+    worst = 0.0f;
+    for (const Blade& b : blades) {
+      const float d = std::max(0.0f, 0.6f - glm::length(0.5f * (b.control() + b.tip()) - centre));
+      worst = std::max(worst, d);
+      sum += d;
+    }
+    return sum;
+  };
+  const std::vector<Blade> pushed = with->read_blades();
+  float worst_with = 0.0f, worst_without = 0.0f;
+  const double sum_with = penetration(pushed, worst_with);
+  const double sum_without = penetration(without->read_blades(), worst_without);
+  int weakened = 0;
+  for (const Blade& b : pushed) weakened += b.collision() > 0.05f;
+  std::printf("camera sphere: summed penetration %.3f m (without %.3f m), deepest %.3f m (without %.3f m), %d blades "
+              "weakened\n", sum_with, sum_without, worst_with, worst_without, weakened);
+  RecordProperty("penetration_with", std::to_string(sum_with));
+  RecordProperty("penetration_without", std::to_string(sum_without));
+  EXPECT_GT(sum_without, 5.0) << "the sphere must overlap the grass";
+  EXPECT_LT(sum_with, 0.5 * sum_without);
+  EXPECT_LT(worst_with, worst_without);
+  EXPECT_GT(weakened, 20);
+  for (const Blade& b : pushed) {
+    const BladeInvariants inv = check_blade(b);
+    ASSERT_TRUE(inv.finite);
+    EXPECT_LE(inv.length_error, 0.01f);
+    EXPECT_GE(inv.tip_height, -1e-4f);
+  }
+}
+
 TEST_F(GrassFieldGl, GrassOnASphereRendersAndKeepsInvariants) {
   const testing::SphereMesh sphere = testing::make_sphere(4.0f, 24, 48);
   GrassFieldSettings fs;

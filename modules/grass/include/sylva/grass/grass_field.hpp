@@ -124,7 +124,9 @@ class GrassField : public render::Drawable {
   GrassRenderSettings& settings() { return settings_; }
   const GrassRenderSettings& settings() const { return settings_; }
 
-  // Colliders in world coordinates (converted to blade-set local). At most kMaxColliders.
+  // Colliders in world coordinates (converted to blade-set local). At most kMaxColliders - 1
+  // (one slot is kept for settings().physics.camera_collider_radius). Only blades of tiles in
+  // view are simulated, so a collider acts on the grass the camera sees.
   static constexpr std::size_t kMaxColliders = 64;
   void set_colliders(std::span<const glm::dvec3> centers, std::span<const float> radii);
 
@@ -205,7 +207,7 @@ class GrassField : public render::Drawable {
   render::PassQuery cull_query_;
   render::PassQuery draw_query_;
   std::uint64_t frame_ = 0;
-  int sphere_count_ = 0;
+  std::vector<glm::vec4> colliders_;  // blade-set local centre, radius
   std::size_t job_count_ = 0;
   std::uint64_t blades_in_culled_tiles_ = 0;
   CullView view_{};

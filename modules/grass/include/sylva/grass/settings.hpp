@@ -77,6 +77,10 @@ struct PhysicsSettings {
   float collision_recovery = 1.5f;  // time constant of the decay of a blade's collision strength [s]
   float max_substep = 1.0f / 60.0f; // longest sub-step [s]; accuracy only, stability never depends on it
   int max_substeps = 4;          // upper bound on sub-steps per frame (cost bound)
+  // A collision sphere that follows the camera (the walker's body), added to the field's own
+  // colliders every frame; radius 0 turns it off. Centre = camera position + offset [m].
+  float camera_collider_radius = 0.0f;
+  glm::vec3 camera_collider_offset{0.0f, -1.2f, 0.0f};
 
   template <class V>
   void visit(V& v) {
@@ -87,6 +91,10 @@ struct PhysicsSettings {
                                                  .help = "How long a trampled blade stays weakened"});
     v(max_substep, "max_substep", {.min = 0.001f, .max = 1.0f, .unit = "s", .help = "Longest physics sub-step"});
     v(max_substeps, "max_substeps", {.min = 1.0f, .max = 64.0f, .help = "Most sub-steps per frame"});
+    v(camera_collider_radius, "camera_collider_radius", {.min = 0.0f, .max = 100.0f, .unit = "m",
+                                                         .help = "Sphere around the camera pushing blades aside (0 = off)"});
+    v(camera_collider_offset, "camera_collider_offset", {.min = -100.0f, .max = 100.0f, .unit = "m",
+                                                         .help = "Centre of the camera sphere relative to the camera"});
   }
 };
 
