@@ -3,6 +3,7 @@
 // generated world renders (screenshots saved for inspection).
 
 #include <sylva/render/point_lights.hpp>
+#include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/testing.hpp>
 #include <sylva/voxel/world_builder.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
@@ -373,7 +374,34 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
     scene.camera.set_position(base + glm::dvec3(-11.0, 12.0, -11.0));
     scene.camera.look_at(base + glm::dvec3(0.0, 7.0, 0.0));
     scene.render(**renderer);
-    testing::save_png(scene.color(), std::string("voxel_tree_") + std::string(to_string(tree->species)));
+    const Image unshadowed = scene.color();
+    testing::save_png(unshadowed, std::string("voxel_tree_") + std::string(to_string(tree->species)));
+    // The same view in the render core's cascaded shadows: the tree shades the ground and itself.
+    scene.lighting.sun_direction = glm::normalize(glm::vec3(0.6f, 0.5f, 0.3f));
+    scene.render(**renderer);
+    const Image sunlit = scene.color();
+    render::ShadowSettings ss;
+    ss.cascade_count = 1;
+    ss.resolution = 1024;
+    ss.max_distance = 50.0f;
+    auto maps = render::ShadowMaps::create(ss);
+    ASSERT_TRUE(maps.ok());
+    maps->add_caster(&(*renderer)->shadow_caster());
+    render::apply_reversed_z_state();
+    ASSERT_TRUE(maps->render(scene.camera, scene.lighting.sun_direction, nullptr, nullptr).ok());
+    maps->remove_caster(&(*renderer)->shadow_caster());
+    maps->bind();
+    scene.render(**renderer);
+    const Image shadowed = scene.color();
+    testing::save_png(shadowed, std::string("voxel_tree_shadowed_") + std::string(to_string(tree->species)));
+    double a = 0.0, b = 0.0;
+    for (int y = 0; y < shadowed.height(); ++y)
+      for (int x = 0; x < shadowed.width(); ++x) {
+        a += shadowed.at(x, y, 1);
+        b += sunlit.at(x, y, 1);
+      }
+    EXPECT_LT(a, 0.97 * b) << "shadows darken the view";
+    glBindBufferBase(GL_UNIFORM_BUFFER, render::kShadowUniformBinding, 0);
     break;
   }
 }
