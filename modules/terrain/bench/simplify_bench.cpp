@@ -86,11 +86,12 @@ Segments& segments() {
 
 enum class Method { kQem, kQemPasses, kSeed, kMeshopt };
 
-std::vector<std::uint32_t> reduce(Method method, const Segments& s, const std::vector<std::uint32_t>& seg) {
+std::vector<std::uint32_t> reduce(Method method, const Segments& s, const std::vector<std::uint32_t>& seg,
+                                  SimplifyStats* st) {
   const std::size_t target = seg.size() / 3 / 4;
-  if (method == Method::kQem) return simplify_qem(s.positions, seg, s.locked, target);
-  if (method == Method::kQemPasses) return simplify_qem_passes(s.positions, seg, s.locked, target);
-  if (method == Method::kSeed) return simplify_shortest_edge(s.positions, seg, s.locked, target);
+  if (method == Method::kQem) return simplify_qem(s.positions, seg, s.locked, target, st);
+  if (method == Method::kQemPasses) return simplify_qem_passes(s.positions, seg, s.locked, target, st);
+  if (method == Method::kSeed) return simplify_shortest_edge(s.positions, seg, s.locked, target, st);
   // meshoptimizer on a compact copy of the segment (it sizes its work arrays by vertex count).
   std::unordered_map<std::uint32_t, std::uint32_t> local;
   std::vector<std::uint32_t> global, li(seg.size());
@@ -112,8 +113,14 @@ std::vector<std::uint32_t> reduce(Method method, const Segments& s, const std::v
 void BM_Simplify(benchmark::State& state, Method method) {
   const Segments& s = segments();
   std::vector<std::vector<std::uint32_t>> results(s.segments.size());
+  std::size_t passes = 0;
   for (auto _ : state) {
-    for (std::size_t i = 0; i < s.segments.size(); ++i) results[i] = reduce(method, s, s.segments[i]);
+    passes = 0;
+    for (std::size_t i = 0; i < s.segments.size(); ++i) {
+      SimplifyStats st;
+      results[i] = reduce(method, s, s.segments[i], &st);
+      passes = std::max(passes, st.passes);
+    }
     benchmark::DoNotOptimize(results.data());
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(s.triangles));
@@ -128,6 +135,7 @@ void BM_Simplify(benchmark::State& state, Method method) {
     bad += c.degenerate + c.non_manifold + c.duplicate;
   }
   state.counters["input_tris"] = static_cast<double>(s.triangles);
+  state.counters["max_passes"] = static_cast<double>(passes);
   state.counters["output_tris"] = out_tris;
   state.counters["hausdorff_m"] = err;
   state.counters["segments_outline_kept"] = static_cast<double>(borders_kept);

@@ -28,6 +28,19 @@ std::uint64_t BuildReport::triangles() const {
   return total;
 }
 
+std::string BuildReport::describe() const {
+  std::string out = fmt::format("chunk tree built in {:.0f} ms on {} thread(s) (error grid {:.0f} ms, meshes {:.0f} ms), "
+                                "{} triangles over {} levels",
+                                total_ms, threads, error_grid_ms, meshes_ms, triangles(), levels.size());
+  for (const LevelReport& l : levels) {
+    out += fmt::format("\n  level {}: {} chunks, {} triangles ({:.1f} % of its grid), max error {:.3f} m", l.level,
+                       l.chunks, l.triangles,
+                       100.0 * static_cast<double>(l.triangles) / std::max<double>(1.0, static_cast<double>(l.grid_triangles)),
+                       l.max_error);
+  }
+  return out;
+}
+
 std::uint32_t ChunkTree::index(int level, std::uint32_t x, std::uint32_t z) const {
   SYLVA_ASSERT(level >= 0 && level < levels_, "level={} levels={}", level, levels_);
   const std::uint32_t side = chunks_per_side(level);

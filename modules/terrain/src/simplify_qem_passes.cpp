@@ -89,6 +89,23 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   std::vector<Candidate> cand;
   std::uint32_t mark_id = 0;
   const double cos_limit = 0.35;
+  // Open-boundary vertices (an edge used once) are locked. Computed once: with locked boundary
+  // vertices and the link condition, collapses never create or remove boundary edges.
+  {
+    std::vector<std::uint64_t> half(3 * tris.size()), twin(3 * tris.size());
+    for (std::size_t t = 0; t < tris.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint64_t a = tris[t][static_cast<std::size_t>(k)], b = tris[t][static_cast<std::size_t>((k + 1) % 3)];
+        half[3 * t + static_cast<std::size_t>(k)] = (a << 32) | b;
+        twin[3 * t + static_cast<std::size_t>(k)] = (b << 32) | a;
+      }
+    std::sort(half.begin(), half.end());
+    for (std::uint64_t e : twin) {
+      if (std::binary_search(half.begin(), half.end(), e)) continue;
+      locked[static_cast<std::size_t>(e >> 32)] = 1;  // e is b->a of an unmatched a->b
+      locked[static_cast<std::size_t>(e & 0xFFFFFFFFu)] = 1;
+    }
+  }
   while (tris.size() > target_triangles) {
     ++st.passes;
     // Vertex -> triangle adjacency of the current mesh (CSR).
@@ -100,28 +117,13 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
     std::copy(offset.begin(), offset.end() - 1, fill.begin());
     for (std::uint32_t t = 0; t < tris.size(); ++t)
       for (std::uint32_t v : tris[t]) adj[fill[v]++] = t;
-    // Open-boundary vertices: an edge used once. Counted through the neighbours' triangles.
-    std::vector<std::uint8_t> boundary(nv, 0);
-    for (std::uint32_t t = 0; t < tris.size(); ++t) {
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = tris[t][static_cast<std::size_t>(k)], b = tris[t][static_cast<std::size_t>((k + 1) % 3)];
-        // The twin half-edge b->a exists in a triangle around b.
-        bool twin = false;
-        for (std::uint32_t i = offset[b]; i < offset[b + 1] && !twin; ++i) {
-          const auto& o = tris[adj[i]];
-          for (int j = 0; j < 3; ++j)
-            twin = twin || (o[static_cast<std::size_t>(j)] == b && o[static_cast<std::size_t>((j + 1) % 3)] == a);
-        }
-        if (!twin) boundary[a] = boundary[b] = 1;
-      }
-    }
     // Best collapse of every edge (each interior edge once: from the half-edge with a < b).
     cand.clear();
     for (const auto& tr : tris) {
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t a = tr[static_cast<std::size_t>(k)], b = tr[static_cast<std::size_t>((k + 1) % 3)];
         if (a > b) continue;
-        const bool free_a = !locked[a] && !boundary[a], free_b = !locked[b] && !boundary[b];
+        const bool free_a = !locked[a], free_b = !locked[b];
         if (!free_a && !free_b) continue;
         const double ca = free_a ? q[a].error_sum(q[b], pos[b]) : 1e300;  // a into b
         const double cb = free_b ? q[b].error_sum(q[a], pos[a]) : 1e300;  // b into a
@@ -133,9 +135,11 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       }
     }
     if (cand.empty()) break;
-    // Only the cheapest "still needed" collapses compete in this pass (about two triangles each).
+    // Only the cheapest candidates compete in this pass (a collapse removes about two triangles).
     const std::size_t needed = (tris.size() - target_triangles + 1) / 2;
-    const std::size_t keep = std::min(cand.size(), std::max<std::size_t>(needed, 16));
+    // Three times as many candidates as collapses still needed: the touched rule blocks many, so
+    // this fills a pass with the next cheapest independent collapses and halves the pass count.
+    const std::size_t keep = std::min(cand.size(), std::max<std::size_t>(3 * needed, 64));
     auto by_cost = [](const Candidate& x, const Candidate& y) { return x.cost < y.cost; };
     if (keep < cand.size()) std::nth_element(cand.begin(), cand.begin() + static_cast<std::ptrdiff_t>(keep), cand.end(), by_cost);
     cand.resize(keep);

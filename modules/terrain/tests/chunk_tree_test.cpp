@@ -60,6 +60,9 @@ TEST(ChunkTree, LevelLayoutCoversTheField) {
   EXPECT_GT(r.total_ms, 0.0);
   // The rough field keeps most of the leaf grid.
   EXPECT_GT(r.levels[3].triangles, r.levels[3].grid_triangles / 2);
+  EXPECT_GE(r.threads, 1);
+  const std::string text = r.describe();
+  EXPECT_NE(text.find("level 3: 64 chunks, " + std::to_string(r.levels[3].triangles) + " triangles"), std::string::npos) << text;
 }
 
 TEST(ChunkTree, MeasuredErrorEqualsBruteForceMaximum) {

@@ -254,6 +254,14 @@ TEST_F(TerrainGl, CrackTestCliffFieldAtLeast100Poses) {
   EXPECT_EQ(c.holes, 0u) << "background pixels inside the terrain silhouette";
 }
 
+// The cheap alternative: skirts whose depth comes from the chunks' error bounds cover every gap.
+TEST_F(TerrainGl, SkirtsAlsoLeaveNoCracksOnTheCliffField) {
+  const Scene s = make_scene(cliff_field(161, 161, 2.0, 60.0f, 72), 5);
+  const CrackResult c = crack_test(s, CrackFix::kSkirts, 52, 4, "skirts");
+  EXPECT_GT(c.inside, 52u * 256u * 144u / 5);
+  EXPECT_EQ(c.holes, 0u) << "background pixels inside the terrain silhouette";
+}
+
 TEST_F(TerrainGl, WithoutSeamsTheCrackTestSeesCracks) {
   const Scene s = make_scene(cliff_field(161, 161, 2.0, 60.0f, 72), 5);
   const CrackResult c = crack_test(s, CrackFix::kNone, 40, 3, "no_seams");

@@ -38,6 +38,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace sylva::terrain {
@@ -106,6 +107,8 @@ struct BuildReport {
   int threads = 1;
   std::vector<LevelReport> levels;
   std::uint64_t triangles() const;
+  // Multi-line human-readable report: time, threads, triangles and max error per level.
+  std::string describe() const;
 };
 
 // Progress in [0, 1] (called from the building thread) and cancellation (checked between chunks).

@@ -56,6 +56,18 @@ struct HeightImageSettings {
   double height_offset = 0.0;
   bool repair_non_finite = false;  // replace NaN/Inf samples instead of refusing the file
   int channel = 0;
+
+  template <class V>
+  void visit(V& v) {
+    v(spacing, "spacing", {.min = 1e-3, .max = 1e4, .unit = "m", .help = "Metres per pixel",
+      .rebuild = Rebuild::kOffline, .log_scale = true});
+    v(height_scale, "height_scale", {.min = 0.0, .max = 1e5, .unit = "m", .help = "Metres per normalised unit",
+      .rebuild = Rebuild::kOffline});
+    v(height_offset, "height_offset", {.min = -1e5, .max = 1e5, .unit = "m", .rebuild = Rebuild::kOffline});
+    v(repair_non_finite, "repair_non_finite", {.help = "Replace NaN/Inf samples by their neighbours' mean",
+      .rebuild = Rebuild::kOffline});
+    v(channel, "channel", {.min = 0, .max = 3, .help = "Image channel holding the height", .rebuild = Rebuild::kOffline});
+  }
 };
 
 // Any image core reads (16-bit PNG, float EXR/TIFF, ...). An 8-bit image loads with a warning
