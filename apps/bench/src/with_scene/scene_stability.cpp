@@ -8,12 +8,17 @@
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
+#include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 #include <sylva/scene/scene_document.hpp>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
+#include <functional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -60,11 +65,16 @@ struct SceneFrame {
   scene::CameraView view;
   double time = 0.0;
   float dt = 0.0f;
+  std::vector<std::pair<std::string, std::string>> set = {};  // Scene::set_param before the frame
 };
+
+// Called after each frame with its index and Scene::module_stats().
+using FrameStatsSink = std::function<void(std::size_t, const nlohmann::json&)>;
 
 // Builds the scene from `text` and renders `frames` into a 96x54 RGBA32F target; counts
 // non-finite pixels over all frames.
-StabilityOutcome render_scene(const std::string& text, const std::vector<SceneFrame>& frames) {
+StabilityOutcome render_scene(const std::string& text, const std::vector<SceneFrame>& frames,
+                              const FrameStatsSink& sink = nullptr) {
   StabilityOutcome o;
   std::vector<std::string> warnings;
   auto doc = scene::SceneDocument::from_text(text, "<stability>", warnings);
@@ -87,7 +97,15 @@ StabilityOutcome render_scene(const std::string& text, const std::vector<SceneFr
   render::FrameProfiler profiler;
   float lo = INFINITY, hi = -INFINITY;
   std::uint64_t fragments = 0;
-  for (const SceneFrame& f : frames) {
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const SceneFrame& f = frames[i];
+    for (const auto& [path, value] : f.set) {
+      const Status set = s.set_param(path, value);
+      if (!set.ok()) {
+        o.detail = set.error().describe();
+        return o;
+      }
+    }
     const render::Camera camera = s.make_camera(s.resolve(f.view), size);
     s.update(camera, f.time, f.dt, size);
     s.render(*fb, profiler);
@@ -106,6 +124,7 @@ StabilityOutcome render_scene(const std::string& text, const std::vector<SceneFr
         hi = std::max(hi, v);
       }
     }
+    if (sink) sink(i, s.module_stats());
   }
   o.passed = o.nan_count == 0 && lo >= 0.0f && fragments > 0;
   o.detail = fmt::format("{} frame(s): {} non-finite values; colour range [{:.3f}, {:.3f}]; {} fragments", frames.size(),
@@ -134,9 +153,83 @@ scene::CameraView view_at(double x, double y, double z, float yaw, float pitch, 
   return v;
 }
 
+// A small forest (seed 000 trees with image-based LOD1/LOD2, 32-texel slices) on flat ground.
+constexpr const char* kForestScene = R"({
+  "sylva_scene": 1,
+  "camera": {"position": [0.0, 6.0, 70.0], "fov_deg": 60.0},
+  "sun": {"azimuth_deg": 150.0, "elevation_deg": 40.0},
+  "render": {"shadows": {"enabled": true, "cascade_count": 1, "resolution": 256}},
+  "ground": {"size": 300.0, "resolution": 33, "height": 0.0, "generator": "flat"},
+  "vegetation": {"area_min": [-30.0, -30.0], "area_max": [30.0, 30.0], "trees_per_hectare": 40.0, "min_spacing": 6.0,
+                 "seed": 4, "forest": {"lod": {"slice_resolution": 32}}}
+})";
+
+// Per-level instance counts from the scene's vegetation stats.
+std::array<std::uint64_t, 3> lod_counts(const nlohmann::json& stats) {
+  std::array<std::uint64_t, 3> n{0, 0, 0};
+  if (!stats.contains("vegetation") || !stats["vegetation"].contains("instances_per_lod")) return n;
+  const nlohmann::json& per = stats["vegetation"]["instances_per_lod"];
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string key = fmt::format("lod{}", i);
+    if (per.contains(key) && per[key].is_number()) n[i] = per[key].get<std::uint64_t>();
+  }
+  return n;
+}
+
+// Extreme LOD thresholds (seed 000 §2.8 v1/v2, the screen-size criterion, band and hysteresis at
+// their limits, v1 > v2), set at run time on one scene (so the programs are built once): every
+// frame finite, and the levels the thresholds demand are used.
+StabilityOutcome vegetation_lod_extremes() {
+  using Set = std::vector<std::pair<std::string, std::string>>;
+  struct Variant {
+    const char* name;
+    Set set;
+    int expect;  // -1: any mix; else the only level that may be drawn
+  };
+  const std::string l = "vegetation.forest.lod.";
+  const std::vector<Variant> variants = {
+      {"v1 = v2 = 0", {{l + "v1", "0"}, {l + "v2", "0"}, {l + "band", "0"}}, 2},
+      {"v1 = v2 = 1e7 m", {{l + "v1", "1e7"}, {l + "v2", "1e7"}}, 0},
+      {"screen size, s1 = s2 = 1e5 px", {{l + "criterion", "screen_size"}, {l + "s1", "1e5"}, {l + "s2", "1e5"}}, 2},
+      {"v1 > v2, band 4, hysteresis 1",
+       {{l + "criterion", "distance"}, {l + "v1", "30"}, {l + "v2", "10"}, {l + "band", "4"}, {l + "hysteresis", "1"}},
+       -1},
+  };
+  // One frame per variant from the forest's edge (trees from 5 to 80 m away).
+  std::vector<SceneFrame> frames;
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    frames.push_back({view_at(0.0, 3.0, 35.0, 10.0f, -2.0f), static_cast<double>(i) / 30.0, 1.0f / 30.0f, variants[i].set});
+  }
+  std::vector<std::array<std::uint64_t, 3>> counts(variants.size());
+  StabilityOutcome o = render_scene(kForestScene, frames,
+                                    [&](std::size_t i, const nlohmann::json& stats) { counts[i] = lod_counts(stats); });
+  bool levels_ok = true;
+  std::string detail;
+  for (std::size_t i = 0; i < variants.size(); ++i) {
+    const std::array<std::uint64_t, 3>& n = counts[i];
+    bool ok = n[0] + n[1] + n[2] > 0;
+    if (variants[i].expect >= 0) {
+      for (int lv = 0; lv < 3; ++lv) ok = ok && (lv == variants[i].expect || n[static_cast<std::size_t>(lv)] == 0);
+    }
+    levels_ok = levels_ok && ok;
+    detail += fmt::format("{}{}: LOD0/1/2 {}/{}/{}{}", detail.empty() ? "" : "; ", variants[i].name, n[0], n[1], n[2],
+                          ok ? "" : " (unexpected levels)");
+  }
+  o.passed = o.passed && levels_ok;
+  o.detail = detail + "; " + o.detail;
+  return o;
+}
+
 }  // namespace
 
 void add_scene_stability_cases(std::vector<StabilityCase>& cases) {
+  if (scene::find_module("vegetation") != nullptr) {
+    cases.push_back({"vegetation", "lod_extreme_thresholds",
+                     "image-based LOD with v1 = v2 = 0 (all LOD2), v1 = v2 = 1e7 m (all LOD0), v1 > v2 with band 4 and "
+                     "hysteresis 1, and the screen-size criterion at 1e5 px (all LOD2): no NaN pixel, instances drawn, "
+                     "only the levels the thresholds demand",
+                     true, vegetation_lod_extremes});
+  }
   cases.push_back({"scene", "hostile_documents",
                    "truncated JSON, a future version, wrong types, out-of-range and absurd values are refused with a "
                    "message (no crash, nothing loaded)",
