@@ -45,6 +45,15 @@ Status EditorSession::new_scene() {
   return adopt(scene::SceneDocument{}, std::nullopt);
 }
 
+Status EditorSession::open_default() {
+  std::vector<std::string> warnings;
+  auto doc = scene::default_scene(warnings);
+  if (!doc.ok()) return doc.error();
+  SYLVA_TRY(adopt(std::move(*doc), std::nullopt));
+  warnings_ = std::move(warnings);
+  return {};
+}
+
 Status EditorSession::save() {
   if (!path_) return make_error(ErrorCode::kInvalidArgument, "the scene has no file yet; use save as");
   return save_as(*path_);

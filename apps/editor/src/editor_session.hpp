@@ -36,6 +36,9 @@ class EditorSession final : public EditTarget {
   // --- documents ---
   Status load(const std::filesystem::path& file);  // replaces the scene, clears the undo history
   Status new_scene();
+  // The embedded default scene (terrain + forest + grass meadow as far as built in), without a
+  // file: saving it asks for a path (save as).
+  Status open_default();
   Status save();                                   // kInvalidArgument when the scene has no file yet
   Status save_as(const std::filesystem::path& file);
   const std::optional<std::filesystem::path>& path() const { return path_; }

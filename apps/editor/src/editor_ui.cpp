@@ -77,6 +77,10 @@ void EditorUi::continue_pending() {
       apply(session_.new_scene());
       selected_ = "environment";
       break;
+    case Pending::kOpenDefault:
+      apply(session_.open_default());
+      selected_ = "environment";
+      break;
     case Pending::kOpen:
       open_dialog_ = true;
       std::snprintf(path_buffer_, sizeof(path_buffer_), "%s", session_.path() ? session_.path()->string().c_str() : "scenes/meadow.json");
@@ -134,6 +138,11 @@ void EditorUi::menu_bar() {
   if (ImGui::BeginMenu("File")) {
     if (ImGui::MenuItem("New")) {
       pending_ = Pending::kNew;
+      if (session_.unsaved()) unsaved_dialog_ = true;
+      else continue_pending();
+    }
+    if (ImGui::MenuItem("Open default scene")) {
+      pending_ = Pending::kOpenDefault;
       if (session_.unsaved()) unsaved_dialog_ = true;
       else continue_pending();
     }

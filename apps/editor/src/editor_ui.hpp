@@ -30,7 +30,7 @@ class EditorUi {
   void message(std::string text);
 
  private:
-  enum class Pending { kNone, kNew, kOpen, kQuit };
+  enum class Pending { kNone, kNew, kOpenDefault, kOpen, kQuit };
 
   void menu_bar();
   void outline_panel();

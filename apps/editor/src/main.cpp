@@ -124,10 +124,9 @@ int run_window(const Options& o) {
       status = 1;
     } else {
       sylva::editor::EditorSession& s = **session;
-      if (o.scene) {
-        sylva::Status loaded = s.load(*o.scene);
-        if (!loaded.ok()) std::cerr << "sylva-editor: " << loaded.error().message << "\n";
-      }
+      // Like the player, the editor opens the embedded default scene when given none.
+      sylva::Status loaded = o.scene ? s.load(*o.scene) : s.open_default();
+      if (!loaded.ok()) std::cerr << "sylva-editor: " << loaded.error().message << "\n";
       sylva::editor::EditorUi ui(s, window);
       sylva::Stopwatch clock;
       auto draw_frame = [&](double dt) {

@@ -19,6 +19,7 @@ const std::map<std::string, Arity, std::less<>>& commands() {
   static const std::map<std::string, Arity, std::less<>> table = {
       {"load", {1, 1, "load PATH"}},
       {"new", {0, 0, "new"}},
+      {"load_default", {0, 0, "load_default"}},
       {"add_module", {1, 1, "add_module NAME"}},
       {"remove_module", {1, 1, "remove_module NAME"}},
       {"set", {1, 2, "set PATH VALUE"}},

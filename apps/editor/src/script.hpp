@@ -5,6 +5,7 @@
 //
 //   load PATH                    open a scene file (relative paths: from the script's folder)
 //   new                          an empty scene (sky only)
+//   load_default                 the embedded default scene (no file: save needs a PATH)
 //   add_module NAME              add a module section with default settings (undoable)
 //   remove_module NAME           remove a module section (undoable)
 //   set PATH VALUE | set PATH=VALUE   set a parameter (undoable), e.g. set grass.field.density 120

@@ -25,6 +25,7 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
   const auto& a = c.args;
   if (c.name == "load") return s.load(resolve(base, a[0]));
   if (c.name == "new") return s.new_scene();
+  if (c.name == "load_default") return s.open_default();
   if (c.name == "add_module") return s.add_module(a[0]);
   if (c.name == "remove_module") return s.remove_module(a[0]);
   if (c.name == "set") return s.set_param(a[0], a[1]);

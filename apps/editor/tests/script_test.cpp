@@ -31,11 +31,12 @@ save out/scene.json
 expect grass.field.density 120
 expect_unsaved no
 print done "with spaces"
+load_default
 quit
 )";
   auto script = parse_script(text, "t.sylva");
   ASSERT_TRUE(script.ok()) << script.error().message;
-  ASSERT_EQ(script->size(), 25u);
+  ASSERT_EQ(script->size(), 26u);
   const auto& c = *script;
   EXPECT_EQ(c[0].name, "load");
   EXPECT_EQ(c[0].line, 2);
@@ -48,8 +49,10 @@ quit
   EXPECT_EQ(c[10].count, 2);
   EXPECT_EQ(c[15].count, 5);
   EXPECT_EQ(c[23].args[1], "with spaces");
+  EXPECT_EQ(c[24].name, "load_default");
+  EXPECT_TRUE(c[24].args.empty());
   EXPECT_EQ(c.back().name, "quit");
-  EXPECT_EQ(c.back().line, 26);
+  EXPECT_EQ(c.back().line, 27);
 }
 
 TEST(Script, MistakesNameTheLine) {
