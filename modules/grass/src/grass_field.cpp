@@ -311,11 +311,14 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   CullView light = make_cull_view(vp_local, camera_local_, camera.forward(), 1.0f, 1.0f);
   CullSettings cs = settings_.cull;
   cs.frustum = true;
+  // Tile reach only; the blades keep the colour pass's thinning (cull uniforms below).
+  CullSettings reach = cs;
+  reach.near_distance = std::min(cs.near_distance, settings_.shadow_distance);
   std::size_t jobs = 0;
   std::vector<std::vector<TileJob>> per_chunk(chunks_.size());
   for (std::size_t i = 0; i < tiles_.size(); ++i) {
     const GrassTile& t = tiles_[i];
-    if (t.count == 0 || !tile_visible(t, light, cs)) continue;
+    if (t.count == 0 || !tile_visible(t, light, reach)) continue;
     const Chunk& c = chunks_[tile_chunk_[i]];
     per_chunk[tile_chunk_[i]].push_back({t.first - c.first_blade, t.count, 0.0f, 0u});
     shadow_stats_.considered += t.count;

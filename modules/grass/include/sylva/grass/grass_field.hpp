@@ -18,12 +18,15 @@
 // Shadows (render core, modules/render/README.md "Lighting and shadows"): draw(kShadow) inside
 // render::ShadowMaps::render() (render::active_shadow_cascade() non-null) casts the blades into
 // the first `shadow_cascades` cascades: per cascade the CPU picks the tiles inside the light
-// frustum (and near_distance of the camera), cull.comp culls their blades against the light
+// frustum whose nearest point is within min(near_distance, shadow_distance) of the camera (a
+// cost bound; the cut moves tile by tile with the camera), cull.comp culls their blades against the light
 // frustum with the camera's distance thinning and no orientation test (edge-on to the camera is
 // not edge-on to the sun), and the blade tessellation shaders draw them with the cascade matrix
 // and the same uniforms as the colour pass, so the shadow is the simulated, tessellated blade the
 // camera sees. Tiles outside the camera's view keep the pose of their last simulated frame.
-// The colour pass receives through render/lib/shadows.glsl (the caller binds ShadowMaps).
+// The colour pass receives through render/lib/shadows.glsl when the caller bound
+// ShadowMaps::bind() (UBO 2, texture unit 15) and shading.receive_shadows is on; with no shadow
+// block bound the blades are lit (the block is never read unbound).
 //
 // Storage: blades are split at tile boundaries into chunks of at most
 // GL_MAX_SHADER_STORAGE_BLOCK_SIZE / 96 blades (1.39 M on llvmpipe's 128 MB), one storage
@@ -77,6 +80,7 @@ struct GrassRenderSettings {
   bool simulate = true;                         // physics on/off (off: blades keep their pose)
   bool cast_shadows = true;                     // draw into the sun's shadow cascades
   int shadow_cascades = 2;                      // cast into cascades 0 .. shadow_cascades - 1 only
+  float shadow_distance = 10.0f;                // only tiles nearer the camera than this cast [m]
 
   template <class V>
   void visit(V& v) {
@@ -90,6 +94,8 @@ struct GrassRenderSettings {
     v(cast_shadows, "cast_shadows", {.help = "Blades cast into the sun's shadow cascades"});
     v(shadow_cascades, "shadow_cascades", {.min = 0.0f, .max = 4.0f,
                                            .help = "Blades cast only into the nearest this many cascades (cost bound)"});
+    v(shadow_distance, "shadow_distance", {.min = 0.0f, .max = 5000.0f, .unit = "m",
+                                           .help = "Only tiles nearer the camera than this cast (cost bound)"});
   }
 };
 
