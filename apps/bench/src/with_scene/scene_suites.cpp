@@ -77,11 +77,12 @@ Result<SuiteSpec> terrain_suite() {
 }
 
 // Grass: blades near, billboard clumps in the middle, a ground layer far (seeds 001/003). The
-// walk looks across a 100 m meadow so every band is on screen.
+// walk looks across a 100 m meadow so every band is on screen; its heights are above the ground
+// (with absolute heights the 6 m hills put the camera under the ground in part of the walk).
 constexpr const char* kGrassScene = R"json({
   "sylva_scene": 1,
   "name": "bench: grass meadow",
-  "camera": {"position": [0.0, 1.7, 45.0], "yaw_deg": 0.0, "pitch_deg": -6.0, "fov_deg": 60.0},
+  "camera": {"position": [0.0, 1.7, 45.0], "height_mode": "above_ground", "yaw_deg": 0.0, "pitch_deg": -6.0, "fov_deg": 60.0},
   "sun": {"azimuth_deg": 210.0, "elevation_deg": 32.0, "fog_density": 0.0015},
   "wind": {"direction_deg": 30.0, "strength": 4.0, "gust_amplitude": 3.0, "seed": 5},
   "ground": {"size": 400.0, "resolution": 129, "height": 6.0, "snow_fraction": 1.0,
@@ -89,10 +90,10 @@ constexpr const char* kGrassScene = R"json({
   "grass": {"area_min": [-50.0, -50.0], "area_max": [50.0, 50.0], "field": {"density": 40.0, "seed": 9}},
   "camera_paths": {
     "walk": {"interpolation": "catmull_rom", "keys": [
-      {"time_s": 0.0, "position": [0.0, 1.7, 45.0], "yaw_deg": 0.0, "pitch_deg": -6.0},
-      {"time_s": 4.0, "position": [-6.0, 1.8, 25.0], "yaw_deg": 15.0, "pitch_deg": -8.0},
-      {"time_s": 8.0, "position": [-2.0, 4.0, 5.0], "yaw_deg": -20.0, "pitch_deg": -18.0},
-      {"time_s": 12.0, "position": [10.0, 2.0, -15.0], "yaw_deg": -60.0, "pitch_deg": -5.0}]}
+      {"time_s": 0.0, "position": [0.0, 1.7, 45.0], "height_mode": "above_ground", "yaw_deg": 0.0, "pitch_deg": -6.0},
+      {"time_s": 4.0, "position": [-6.0, 1.8, 25.0], "height_mode": "above_ground", "yaw_deg": 15.0, "pitch_deg": -8.0},
+      {"time_s": 8.0, "position": [-2.0, 4.0, 5.0], "height_mode": "above_ground", "yaw_deg": -20.0, "pitch_deg": -18.0},
+      {"time_s": 12.0, "position": [10.0, 2.0, -15.0], "height_mode": "above_ground", "yaw_deg": -60.0, "pitch_deg": -5.0}]}
   }
 })json";
 
