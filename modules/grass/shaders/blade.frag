@@ -29,14 +29,19 @@ void main() {
   float v = te_uv.y;
   vec3 albedo = mix(u_base_color, u_tip_color, pow(v, 0.8)) * te_color_mult;
   float ao = mix(1.0 - u_shading.z, 1.0, smoothstep(0.0, 1.0, v));
+  // A blade is not a flat card: its cross-section is curved and it sits in a canopy lit from
+  // above, so the sun and the sky are gathered with the normal leaned towards up. With the bare
+  // card normal, blades seen edge-on to the sun or facing down went black (dark strokes in the
+  // meadow). The sum is at least 0.6 - 0.4 = 0.2 long (|n| = 1), so it never vanishes.
+  vec3 n_lit = normalize(n * 0.6 + vec3(0.0, 0.4, 0.0));
   float ndl = dot(n, l);
-  float diffuse = max(ndl, 0.0);
+  float diffuse = max(dot(n_lit, l), 0.0);
   // Light through the blade: the unlit face glows, strongest when looking towards the sun.
   float through = max(-ndl, 0.0) * (0.5 + 0.5 * max(dot(-view, l), 0.0));
   vec3 transmitted = u_shading.x * through * vec3(1.0, 1.05, 0.55);
   float lit = u_receive_shadows != 0 ? sylva_shadow(te_rel_pos, n) : 1.0;
   vec3 direct = sun_radiance() * (diffuse + transmitted) * lit;
-  vec3 ambient = hemisphere_ambient(n) * u_shading.y * (0.8 + 0.4 * te_shade);
+  vec3 ambient = hemisphere_ambient(n_lit) * u_shading.y * (0.8 + 0.4 * te_shade);
   float sheen = u_shading.w * blinn_phong(n, view, l, 24.0) * v;
   vec3 color = (albedo * (direct + ambient) + sheen * lit * sun_radiance() * 0.04) * ao;
   o_color = vec4(apply_fog(color, te_rel_pos), 1.0);
