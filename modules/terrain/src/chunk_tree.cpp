@@ -109,6 +109,36 @@ float round_up(double v) {
   return f;
 }
 
+// The root grid's heights: the field with clamped padding.
+HeightGrid padded_heights(const HeightField& field, std::uint32_t root_n, int threads) {
+  HeightGrid hg;
+  hg.n = static_cast<std::int32_t>(root_n);
+  const std::size_t side = static_cast<std::size_t>(root_n) + 1;
+  hg.h.resize(side * side);
+  detail::parallel_for(side, threads, [&](std::size_t z) {
+    const int fz = std::min(static_cast<int>(z), field.rows() - 1);
+    for (std::size_t x = 0; x < side; ++x) {
+      const int fx = std::min(static_cast<int>(x), field.columns() - 1);
+      hg.h[z * side + x] = field.sample(fx, fz);
+    }
+  }, nullptr, 64);
+  return hg;
+}
+
+ActiveRule make_rule(const ErrorGrid& errors, int levels, std::uint32_t n, const ChunkTreeSettings& settings,
+                     double spacing) {
+  ActiveRule rule;
+  rule.errors = &errors;
+  rule.levels = levels;
+  rule.leaf_n = static_cast<std::int32_t>(n);
+  rule.eps.resize(static_cast<std::size_t>(levels));
+  for (int l = 0; l < levels; ++l) {
+    rule.eps[static_cast<std::size_t>(l)] =
+        static_cast<float>(settings.flat_tolerance * spacing * static_cast<double>(rule.step(l)));
+  }
+  return rule;
+}
+
 struct ChunkBuildContext {
   const ChunkTree* tree;
   const HeightGrid* heights;
@@ -319,32 +349,14 @@ Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkT
 
   // Padded height grid.
   Stopwatch watch;
-  HeightGrid hg;
-  hg.n = static_cast<std::int32_t>(tree.root_n_);
-  const std::size_t side = static_cast<std::size_t>(tree.root_n_) + 1;
-  hg.h.resize(side * side);
-  detail::parallel_for(side, threads, [&](std::size_t z) {
-    const int fz = std::min(static_cast<int>(z), field.rows() - 1);
-    for (std::size_t x = 0; x < side; ++x) {
-      const int fx = std::min(static_cast<int>(x), field.columns() - 1);
-      hg.h[z * side + x] = field.sample(fx, fz);
-    }
-  }, nullptr, 64);
+  HeightGrid hg = padded_heights(field, tree.root_n_, threads);
   const ErrorGrid errors = detail::compute_errors(hg, threads);
   tree.report_.error_grid_ms = watch.lap_ms();
   if (control.cancel != nullptr && control.cancel->load()) {
     return make_error(ErrorCode::kCancelled, "terrain: chunk tree build cancelled");
   }
 
-  ActiveRule rule;
-  rule.errors = &errors;
-  rule.levels = levels;
-  rule.leaf_n = static_cast<std::int32_t>(n);
-  rule.eps.resize(static_cast<std::size_t>(levels));
-  for (int l = 0; l < levels; ++l) {
-    rule.eps[static_cast<std::size_t>(l)] =
-        static_cast<float>(settings.flat_tolerance * field.spacing() * static_cast<double>(rule.step(l)));
-  }
+  const ActiveRule rule = make_rule(errors, levels, n, settings, field.spacing());
 
   // Chunk slots for every level; presence: the chunk's low corner lies inside the field extent
   // (or on the field's first row/column, so a 1-sample-wide field still has its chunks).
@@ -382,69 +394,201 @@ Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkT
   }, control.cancel);
   if (!finished) return make_error(ErrorCode::kCancelled, "terrain: chunk tree build cancelled");
 
-  // Monotone error bounds, finest level first.
-  const double growth = 1.0 / (1.0 - static_cast<double>(settings.max_morph_fraction));
-  for (int l = levels - 1; l >= 0; --l) {
-    for (std::uint32_t i = tree.level_offset_[static_cast<std::size_t>(l)];
-         i < tree.level_offset_[static_cast<std::size_t>(l)] + (1u << l) * (1u << l); ++i) {
-      Chunk& c = tree.chunks_[i];
-      if (!c.present) continue;
-      double bound = c.error;
-      if (l + 1 < levels) {
-        for (std::uint32_t ci : tree.child_indices(i)) {
-          const Chunk& child = tree.chunks_[ci];
-          if (child.present) bound = std::max(bound, growth * child.error_bound);
-        }
-      }
-      c.error_bound = round_up(bound);
-    }
-  }
+  tree.compute_error_bounds();
 
   // Morph error of each vertex: the smallest error bound among the coarser chunks containing it,
   // so the vertex has reached the coarser surface whichever of them is selected first.
   if (settings.keep_meshes) {
     detail::parallel_for(present.size(), threads, [&](std::size_t i) {
       Chunk& c = tree.chunks_[present[i]];
-      for (ChunkVertex& v : c.mesh.vertices) {
-        if (v.intro_level == 0) {
-          v.morph_error = 0.0f;
-          continue;
-        }
-        const int pl = v.intro_level - 1;
-        const std::uint32_t size = tree.chunk_size(pl);
-        float best = std::numeric_limits<float>::infinity();
-        for (int dz = 0; dz < 2; ++dz) {
-          for (int dx = 0; dx < 2; ++dx) {
-            if (dx == 1 && (v.gx % size != 0)) continue;
-            if (dz == 1 && (v.gz % size != 0)) continue;
-            std::int64_t cx = v.gx / size - dx, cz = v.gz / size - dz;
-            const std::int64_t side_chunks = tree.chunks_per_side(pl);
-            if (cx == side_chunks) continue;  // on the root's far edge: only the chunk below counts
-            if (cz == side_chunks) continue;
-            if (const Chunk* pc = tree.find(pl, cx, cz)) best = std::min(best, pc->error_bound);
-          }
-        }
-        SYLVA_ASSERT(std::isfinite(best), "vertex ({}, {}) of level {} has no coarser chunk", v.gx, v.gz, pl + 1);
-        v.morph_error = best;
-      }
+      for (ChunkVertex& v : c.mesh.vertices) v.morph_error = tree.morph_error_of(v);
     }, control.cancel);
   }
   tree.report_.meshes_ms = watch.lap_ms();
 
-  tree.report_.levels.resize(static_cast<std::size_t>(levels));
-  for (int l = 0; l < levels; ++l) tree.report_.levels[static_cast<std::size_t>(l)].level = l;
-  for (std::uint32_t i : present) {
-    const Chunk& c = tree.chunks_[i];
-    LevelReport& r = tree.report_.levels[static_cast<std::size_t>(c.key.level)];
-    ++r.chunks;
-    r.triangles += c.triangle_count;
-    r.grid_triangles += 2ull * n * n;
-    r.max_error = std::max(r.max_error, c.error);
-  }
+  tree.fill_level_report();
   tree.compute_nodes();
   tree.report_.total_ms = total_watch.elapsed_ms();
   if (control.progress) control.progress(1.0f);
   return tree;
+}
+
+
+void ChunkTree::compute_error_bounds() {
+  // Monotone error bounds, finest level first.
+  const double growth = 1.0 / (1.0 - static_cast<double>(settings_.max_morph_fraction));
+  for (int l = levels_ - 1; l >= 0; --l) {
+    for (std::uint32_t i = level_offset_[static_cast<std::size_t>(l)];
+         i < level_offset_[static_cast<std::size_t>(l)] + (1u << l) * (1u << l); ++i) {
+      Chunk& c = chunks_[i];
+      if (!c.present) continue;
+      double bound = c.error;
+      if (l + 1 < levels_) {
+        for (std::uint32_t ci : child_indices(i)) {
+          const Chunk& child = chunks_[ci];
+          if (child.present) bound = std::max(bound, growth * child.error_bound);
+        }
+      }
+      c.error_bound = round_up(bound);
+    }
+  }
+}
+
+// Morph error of a vertex: the smallest error bound among the coarser chunks containing it, so
+// the vertex has reached the coarser surface whichever of them is selected first.
+float ChunkTree::morph_error_of(const ChunkVertex& v) const {
+  if (v.intro_level == 0) return 0.0f;
+  const int pl = v.intro_level - 1;
+  const std::uint32_t size = chunk_size(pl);
+  float best = std::numeric_limits<float>::infinity();
+  for (int dz = 0; dz < 2; ++dz) {
+    for (int dx = 0; dx < 2; ++dx) {
+      if (dx == 1 && (v.gx % size != 0)) continue;
+      if (dz == 1 && (v.gz % size != 0)) continue;
+      std::int64_t cx = v.gx / size - dx, cz = v.gz / size - dz;
+      const std::int64_t side_chunks = chunks_per_side(pl);
+      if (cx == side_chunks) continue;  // on the root's far edge: only the chunk below counts
+      if (cz == side_chunks) continue;
+      if (const Chunk* pc = find(pl, cx, cz)) best = std::min(best, pc->error_bound);
+    }
+  }
+  SYLVA_ASSERT(std::isfinite(best), "vertex ({}, {}) of level {} has no coarser chunk", v.gx, v.gz, pl + 1);
+  return best;
+}
+
+void ChunkTree::fill_level_report() {
+  report_.levels.assign(static_cast<std::size_t>(levels_), LevelReport{});
+  for (int l = 0; l < levels_; ++l) report_.levels[static_cast<std::size_t>(l)].level = l;
+  for (const Chunk& c : chunks_) {
+    if (!c.present) continue;
+    LevelReport& r = report_.levels[static_cast<std::size_t>(c.key.level)];
+    ++r.chunks;
+    r.triangles += c.triangle_count;
+    r.grid_triangles += 2ull * n_ * n_;
+    r.max_error = std::max(r.max_error, c.error);
+  }
+}
+
+Result<RegionRebuild> ChunkTree::rebuild_region(const HeightField& field, int x0, int z0, int x1, int z1) {
+  Stopwatch watch;
+  RegionRebuild out;
+  if (!settings_.keep_meshes) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "terrain.tree.keep_meshes: rebuild_region needs the chunk meshes (keep_meshes = true)");
+  }
+  if (field.columns() != columns_ || field.rows() != rows_ || field.spacing() != spacing_ ||
+      field.origin() != origin_ ||
+      field.samples().size() != static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_)) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("terrain: rebuild_region got a {}x{} field (spacing {} m), the tree was built from "
+                                  "{}x{} (spacing {} m); rebuild the whole tree instead",
+                                  field.columns(), field.rows(), field.spacing(), columns_, rows_, spacing_));
+  }
+  x0 = std::max(x0, 0);
+  z0 = std::max(z0, 0);
+  x1 = std::min(x1, columns_);
+  z1 = std::min(z1, rows_);
+  if (x0 >= x1 || z0 >= z1) return out;
+  for (std::size_t i = static_cast<std::size_t>(z0) * static_cast<std::size_t>(columns_);
+       i < static_cast<std::size_t>(z1) * static_cast<std::size_t>(columns_); ++i) {
+    if (!std::isfinite(field.samples()[i])) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("terrain: the edited height field has a NaN/Inf sample at column {} row {}",
+                                    i % static_cast<std::size_t>(columns_), i / static_cast<std::size_t>(columns_)));
+    }
+  }
+  // The edited rectangle in root-grid points (inclusive). Padding points copy the nearest field
+  // sample, so an edit touching the last column/row also changes the padding beyond it.
+  const std::int64_t rn = root_n_;
+  const std::int64_t ex0 = x0, ez0 = z0;
+  const std::int64_t ex1 = (x1 == columns_) ? rn : x1 - 1;
+  const std::int64_t ez1 = (z1 == rows_) ? rn : z1 - 1;
+  auto dist = [&](std::int64_t gx, std::int64_t gz) {  // Chebyshev distance from a point to the edit
+    const std::int64_t dx = gx < ex0 ? ex0 - gx : (gx > ex1 ? gx - ex1 : 0);
+    const std::int64_t dz = gz < ez0 ? ez0 - gz : (gz > ez1 ? gz - ez1 : 0);
+    return std::max(dx, dz);
+  };
+
+  const int threads = detail::resolve_threads(settings_.threads);
+  HeightGrid hg = padded_heights(field, root_n_, threads);
+  // The whole error grid is recomputed (O(N^2), a few ms for 257^2) rather than kept: keeping
+  // it would double the tree's memory for every terrain that is never edited.
+  const ErrorGrid errors = detail::compute_errors(hg, threads);
+  const ActiveRule rule = make_rule(errors, levels_, n_, settings_, spacing_);
+
+  // Chunks whose mesh, heights or measured error can change: a chunk's mesh is decided by the
+  // errors of the points in its square, and a point on the square's edge has a diamond reaching
+  // half a chunk into the neighbour (rtin.hpp), so the square grown by size / 2 must meet the edit.
+  std::vector<std::uint32_t> rebuild;
+  std::vector<std::uint8_t> rebuilt_flag(chunks_.size(), 0);
+  for (std::uint32_t i = 0; i < chunks_.size(); ++i) {
+    const Chunk& c = chunks_[i];
+    if (!c.present) continue;
+    const std::int64_t size = chunk_size(c.key.level), half = size / 2;
+    const std::int64_t cx0 = static_cast<std::int64_t>(c.key.x) * size - half, cx1 = cx0 + size + 2 * half;
+    const std::int64_t cz0 = static_cast<std::int64_t>(c.key.z) * size - half, cz1 = cz0 + size + 2 * half;
+    if (cx0 <= ex1 && ex0 <= cx1 && cz0 <= ez1 && ez0 <= cz1) {
+      rebuild.push_back(i);
+      rebuilt_flag[i] = 1;
+    }
+  }
+  ChunkBuildContext ctx{this, &hg, &rule, columns_, rows_, settings_.keep_meshes, settings_.optimize_vertex_cache};
+  detail::parallel_for(rebuild.size(), threads, [&](std::size_t i) {
+    Chunk& c = chunks_[rebuild[i]];
+    c.mesh = ChunkMesh{};
+    build_chunk(ctx, c);
+  });
+  out.rebuilt = rebuild;
+
+  // Monotone bounds over the whole tree (O(chunks)): an edit may raise or lower any ancestor's.
+  compute_error_bounds();
+
+  // Morph data of the chunks not rebuilt: morph_target is the coarser level's surface, which
+  // depends on points within chunk_size(intro - 1) of the vertex (the level's quadrant grown by
+  // half a quadrant); morph_error follows the coarser chunks' bounds, which may change anywhere.
+  std::vector<std::uint8_t> updated_flag(chunks_.size(), 0);
+  std::vector<std::uint32_t> present;
+  for (std::uint32_t i = 0; i < chunks_.size(); ++i)
+    if (chunks_[i].present) present.push_back(i);
+  detail::parallel_for(present.size(), threads, [&](std::size_t k) {
+    const std::uint32_t i = present[k];
+    Chunk& c = chunks_[i];
+    bool changed = false;
+    for (ChunkVertex& v : c.mesh.vertices) {
+      if (!rebuilt_flag[i] && v.intro_level > 0 &&
+          dist(v.gx, v.gz) <= static_cast<std::int64_t>(chunk_size(v.intro_level - 1))) {
+        const float t = static_cast<float>(detail::level_surface_height(
+            rule, hg, v.intro_level - 1, Pt{static_cast<std::int32_t>(v.gx), static_cast<std::int32_t>(v.gz)}));
+        if (t != v.morph_target) {
+          v.morph_target = t;
+          changed = true;
+        }
+      }
+      const float e = morph_error_of(v);
+      if (e != v.morph_error) {
+        v.morph_error = e;
+        changed = true;
+      }
+    }
+    if (changed && !rebuilt_flag[i]) {
+      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+      for (const ChunkVertex& v : c.mesh.vertices) {
+        lo = std::min({lo, v.height, v.morph_target});
+        hi = std::max({hi, v.height, v.morph_target});
+      }
+      c.min_y = lo;
+      c.max_y = hi;
+      updated_flag[i] = 1;
+    }
+  });
+  for (std::uint32_t i : present)
+    if (updated_flag[i]) out.updated.push_back(i);
+  for (std::uint32_t i = 0; i < chunks_.size(); ++i)
+    if (!rebuilt_flag[i] && !updated_flag[i] && nodes_[i].error_bound != chunks_[i].error_bound) out.bounds_only.push_back(i);
+  fill_level_report();
+  compute_nodes();
+  out.ms = watch.elapsed_ms();
+  return out;
 }
 
 }  // namespace sylva::terrain

@@ -117,6 +117,15 @@ struct BuildControl {
   const std::atomic<bool>* cancel = nullptr;
 };
 
+// What ChunkTree::rebuild_region changed, as chunk indices (ascending). The renderer re-uploads
+// rebuilt + updated; bounds_only chunks keep their mesh and only changed their error_bound.
+struct RegionRebuild {
+  std::vector<std::uint32_t> rebuilt;      // re-triangulated and re-measured
+  std::vector<std::uint32_t> updated;      // mesh kept; morph_target / morph_error (and min_y/max_y) changed
+  std::vector<std::uint32_t> bounds_only;  // only error_bound (selection data) changed
+  double ms = 0.0;                         // CPU time of the call
+};
+
 class ChunkTree {
  public:
   ChunkTree() = default;
@@ -127,6 +136,22 @@ class ChunkTree {
   // (kLimit), cancellation (kCancelled).
   static Result<ChunkTree> build(const HeightField& field, const ChunkTreeSettings& settings,
                                  const BuildControl& control = {});
+
+  // Updates the tree in place after the samples in the rectangle [x0, x1) x [z0, z1) (field
+  // columns x rows; x1/z1 EXCLUSIVE, clamped to the field) of `field` changed; `field` is the whole
+  // edited field, of the size, spacing and origin the tree was built from. Afterwards every chunk
+  // equals what build(field) would give (vertices, indices, error, error_bound, bounds).
+  // Rebuilt: every present chunk whose square grown by half a chunk on each side meets the
+  // edited samples (a point on a chunk edge has an error diamond reaching half a chunk into the
+  // neighbour, rtin.hpp), at every level; an edit on a chunk corner therefore rebuilds all chunks
+  // sharing the corner. Then the monotone error bounds are recomputed up the tree, the morph data
+  // of other chunks is refreshed where the coarser surface or bounds changed (`updated`), and the
+  // selection nodes and report are recomputed. Cost: the padded height and error grids are
+  // recomputed in full (O(N^2), a few ms at 257^2), the chunk meshes only for `rebuilt`.
+  // Errors: keep_meshes false (kInvalidArgument; the morph data lives in the meshes), a field of
+  // another size/spacing/origin or NaN/Inf samples in the rectangle (kInvalidArgument); the tree
+  // is unchanged on error. An empty rectangle changes nothing.
+  Result<RegionRebuild> rebuild_region(const HeightField& field, int x0, int z0, int x1, int z1);
 
   int levels() const { return levels_; }
   std::uint32_t leaf_intervals() const { return n_; }          // leaf_dimension - 1
@@ -182,6 +207,9 @@ class ChunkTree {
   std::vector<ChunkNode> nodes_;
   BuildReport report_;
   void compute_nodes();
+  void compute_error_bounds();
+  float morph_error_of(const ChunkVertex& v) const;
+  void fill_level_report();
 };
 
 }  // namespace sylva::terrain
