@@ -57,10 +57,28 @@ void transpose_bits(std::uint64_t* a, int width) {
 // ao = (s1 && s2) ? 0 : 3 - (s1 + s2 + c), i.e. the two bits of ao are the complement of the
 // two bits of the count s1 + s2 + c (a full adder), with both sides set forcing 0.
 struct AoPlanes {
-  std::uint64_t lo[4];    // bit 0 of each corner's AO (pack_ao corner order)
-  std::uint64_t hi[4];    // bit 1
-  std::uint64_t uniform;  // faces whose four corners have the same AO (the only ones that merge)
+  // lo/hi interleaved as in pack_ao: bit 2i of a face's AO byte is lo of corner i, bit 2i+1 hi.
+  alignas(16) std::uint64_t v[8];  // v[2i]: bit 0 of corner i's AO (pack_ao corner order), v[2i+1]: bit 1
+  std::uint64_t uniform;            // faces whose four corners have the same AO (the only ones that merge)
 };
+
+// The eight AO bits of the face at bit b as one pack_ao byte.
+inline std::uint32_t gather_ao(const AoPlanes& ao, int b) {
+#if defined(__SSE2__)
+  // Shift bit b of every plane to bit 63 and collect the sign bits, two planes per movemask.
+  const __m128i count = _mm_cvtsi32_si128(63 - b);
+  auto pair = [&](int i) {
+    const __m128i v = _mm_load_si128(reinterpret_cast<const __m128i*>(ao.v + 2 * i));
+    return static_cast<std::uint32_t>(_mm_movemask_pd(_mm_castsi128_pd(_mm_sll_epi64(v, count))));
+  };
+  return pair(0) | pair(1) << 2 | pair(2) << 4 | pair(3) << 6;
+#else
+  return static_cast<std::uint32_t>(((ao.v[0] >> b) & 1u) | ((ao.v[1] >> b) & 1u) << 1 |
+                                    ((ao.v[2] >> b) & 1u) << 2 | ((ao.v[3] >> b) & 1u) << 3 |
+                                    ((ao.v[4] >> b) & 1u) << 4 | ((ao.v[5] >> b) & 1u) << 5 |
+                                    ((ao.v[6] >> b) & 1u) << 6 | ((ao.v[7] >> b) & 1u) << 7);
+#endif
+}
 
 inline void ao_corner(std::uint64_t s1, std::uint64_t s2, std::uint64_t c, std::uint64_t& lo, std::uint64_t& hi) {
   const std::uint64_t both = s1 & s2;
@@ -114,6 +132,7 @@ class BitmaskMesher final : public Mesher {
     const int n = n_;
     const int p = p_;
     const int stride[3] = {1, p * p, p};
+    const bool ao_on = options_.ambient_occlusion;
     const int front = kSign * stride[kAxis];
     // Stride between consecutive bits of a row, in the padded id array: bits run along y for
     // +-X faces and along x otherwise.
@@ -124,6 +143,7 @@ class BitmaskMesher final : public Mesher {
     const std::uint64_t* ox = ox_.data();
     const std::uint64_t* ay = ay_.data();
     const std::uint64_t* oy = oy_.data();
+    const std::uint64_t* ex = ex_.data();
     const std::uint8_t* flags = flags_.data();
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
@@ -135,59 +155,91 @@ class BitmaskMesher final : public Mesher {
       for (int r = 0; r < n; ++r) {
         std::uint64_t faces;
         if constexpr (kAxis == 0) {
-          faces = ay[idx2(s, r)] & ~oy[idx2(layer, r)];
+          faces = ay[idx2(s, r, p)] & ~oy[idx2(layer, r, p)];
         } else if constexpr (kAxis == 1) {
-          faces = ax[idx2(s, r)] & ~ox[idx2(layer, r)];
+          faces = ax[idx2(s, r, p)] & ~ox[idx2(layer, r, p)];
         } else {
-          faces = ax[idx2(r, s)] & ~ox[idx2(r, layer)];
+          faces = ax[idx2(r, s, p)] & ~ox[idx2(r, layer, p)];
         }
         if (!faces) continue;
         // AO of the whole row as bit planes; rows with nothing opaque in front (open ground)
         // skip it: every corner is open there.
         AoPlanes ao;
-        const bool occluded = options_.ambient_occlusion && ao_planes<F>(layer, r, ao);
+        const bool occluded = ao_on && ao_planes<F>(layer, r, p, ao);
         int x0, y0, z0;
         origin(F, s, r, 0, x0, y0, z0);
         const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
         std::uint64_t* slot_row = nullptr;
-        while (faces) {
-          const int b = std::countr_zero(faces);
-          faces &= faces - 1;
+        // Adds the faces `bits` (one block, one uniform AO value) to the slot of `key`.
+        auto add = [&](std::uint32_t key, std::uint64_t bits) __attribute__((always_inline)) {
+          if (last_slot < 0 || last_key != key || slot_row == nullptr) {
+            if (last_slot < 0 || last_key != key) {
+              last_slot = find_slot(key);
+              last_key = key;
+            }
+            slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
+            used_[static_cast<std::size_t>(last_slot)] |= std::uint64_t{1} << r;
+          }
+          *slot_row |= bits;
+        };
+        // One face at bit b: special blocks, AO gathered per corner.
+        auto one = [&](int b) __attribute__((always_inline)) {
           const int idx = row_base + b * bit_stride;
           const BlockId self = ids[idx];
           const std::uint8_t f = flags[self];
           const bool alpha = (f & kFlagAlpha) != 0;
           if (f & kSpecial) {
-            if (kAxis == 1 && (f & kFlagSidesOnly)) continue;
-            if ((f & kFlagCullSame) && ids[idx + front] == self) continue;
+            if (kAxis == 1 && (f & kFlagSidesOnly)) return;
+            if ((f & kFlagCullSame) && ids[idx + front] == self) return;
           }
           std::uint32_t aob = 0xffu;  // all four corners open
           if (occluded) {
             if ((ao.uniform >> b) & 1u) {
-              aob = static_cast<std::uint32_t>(((ao.lo[0] >> b) & 1u) | (((ao.hi[0] >> b) & 1u) << 1)) * 0x55u;
+              aob = static_cast<std::uint32_t>(((ao.v[0] >> b) & 1u) | (((ao.v[1] >> b) & 1u) << 1)) * 0x55u;
             } else {
-              aob = static_cast<std::uint32_t>(((ao.lo[0] >> b) & 1u) | ((ao.hi[0] >> b) & 1u) << 1 |
-                                               ((ao.lo[1] >> b) & 1u) << 2 | ((ao.hi[1] >> b) & 1u) << 3 |
-                                               ((ao.lo[2] >> b) & 1u) << 4 | ((ao.hi[2] >> b) & 1u) << 5 |
-                                               ((ao.lo[3] >> b) & 1u) << 6 | ((ao.hi[3] >> b) & 1u) << 7);
+              aob = gather_ao(ao, b);
             }
           }
           if (ao_uniform(aob)) {
-            const std::uint32_t key = pack_word1(self, F, aob);
-            if (last_slot < 0 || last_key != key || slot_row == nullptr) {
-              if (last_slot < 0 || last_key != key) {
-                last_slot = find_slot(key);
-                last_key = key;
-              }
-              slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
-              used_[static_cast<std::size_t>(last_slot)] |= std::uint64_t{1} << r;
-            }
-            *slot_row |= std::uint64_t{1} << b;
+            add(pack_word1(self, F, aob), std::uint64_t{1} << b);
           } else {
             int x, y, z;
             origin(F, s, r, b, x, y, z);
             (alpha ? out.alpha_cut : out.opaque).push_back(PackedQuad{pack_word0(x, y, z, 1, 1), pack_word1(self, F, aob)});
           }
+        };
+        if constexpr (kAxis != 0) {
+          // Bits run along x here: faces with uniform AO go in runs of one block id and one AO
+          // value (ex_ bit b: the block at b + 1 has the same id as the one at b), one slot
+          // update per run instead of per face.
+          const std::uint64_t same_next = ex[kAxis == 1 ? idx2(s, r, p) : idx2(r, s, p)];
+          std::uint64_t uni = occluded ? faces & ao.uniform : faces;
+          faces &= ~uni;
+          while (uni) {
+            const int b = std::countr_zero(uni);
+            const BlockId self = ids[row_base + b];
+            if (flags[self] & kSpecial) {
+              one(b);
+              uni &= uni - 1;
+              continue;
+            }
+            std::uint64_t group = uni;
+            std::uint32_t aob = 0xffu;
+            if (occluded) {
+              const std::uint64_t l = (ao.v[0] >> b) & 1u, h = (ao.v[1] >> b) & 1u;
+              group &= ~(ao.v[0] ^ (std::uint64_t{0} - l)) & ~(ao.v[1] ^ (std::uint64_t{0} - h));
+              aob = static_cast<std::uint32_t>(l | h << 1) * 0x55u;
+            }
+            const int len = 1 + std::countr_one(((group >> 1) & same_next) >> b);
+            const std::uint64_t run = (len >= 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << len) - 1)) << b;
+            uni &= ~run;
+            add(pack_word1(self, F, aob), run);
+          }
+        }
+        while (faces) {
+          const int b = std::countr_zero(faces);
+          faces &= faces - 1;
+          one(b);
         }
       }
       for (int k = 0; k < slot_count_; ++k) merge_slot(k, F, s, render, out);
@@ -195,14 +247,15 @@ class BitmaskMesher final : public Mesher {
   }
 
   // Index of padded (a, b) in [-1, n]^2 for the P x P mask arrays.
-  int idx2(int a, int b) const { return (a + 1) * p_ + (b + 1); }
+  // (p passed in: the member would be reloaded after every store into the uint64_t scratch.)
+  static int idx2(int a, int b, int p) { return (a + 1) * p + (b + 1); }
 
   void build_masks(const PaddedBlocks& blocks, const BlockPalette& palette) {
     const int n = n_;
     const int p = p_;
     const auto pp = static_cast<std::size_t>(p * p);
     // Every entry is written below (no clearing pass: it cost as much as a transpose).
-    for (auto* v : {&ax_, &ox_, &ay_, &oy_}) v->resize(pp);
+    for (auto* v : {&ax_, &ox_, &ay_, &oy_, &ex_}) v->resize(pp);
     for (auto* v : {&xlo_, &xhi_, &ylo_, &yhi_}) v->resize(pp);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const BlockId* ids = blocks.ids.data();
@@ -214,7 +267,9 @@ class BitmaskMesher final : public Mesher {
         const auto k = static_cast<std::size_t>(yy * p + zz);
         std::uint64_t nonair = 0;
         std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
-        classify_row(row + 1, n, first_special, nonair, special);
+        std::uint64_t same = 0;
+        classify_row(row + 1, n, first_special, nonair, special, same);
+        ex_[k] = same;
         std::uint64_t alpha = 0;
         for (std::uint64_t m = special; m;) {
           const int b = std::countr_zero(m);
@@ -286,9 +341,10 @@ class BitmaskMesher final : public Mesher {
     }
   }
 
-  // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special.
+  // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special;
+  // same: bit x set when row[x + 1] == row[x] (row[n] is the padding block, readable).
   static void classify_row(const BlockId* row, int n, BlockId first_special, std::uint64_t& nonair,
-                           std::uint64_t& special) {
+                           std::uint64_t& special, std::uint64_t& same) {
     int x = 0;
 #if defined(__SSE2__)
     {
@@ -303,14 +359,19 @@ class BitmaskMesher final : public Mesher {
         const __m128i s0 = _mm_or_si128(_mm_cmpgt_epi16(v0, limit), _mm_cmplt_epi16(v0, zero));
         const __m128i s1 = _mm_or_si128(_mm_cmpgt_epi16(v1, limit), _mm_cmplt_epi16(v1, zero));
         const int spec = _mm_movemask_epi8(_mm_packs_epi16(s0, s1));
+        const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
+        const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
+        const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
         nonair |= static_cast<std::uint64_t>(~air & 0xffff) << x;
         special |= static_cast<std::uint64_t>(spec & 0xffff) << x;
+        same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
       }
     }
 #endif
     for (; x < n; ++x) {
       nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
       special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
+      same |= static_cast<std::uint64_t>(row[x + 1] == row[x]) << x;
     }
   }
 
@@ -318,40 +379,43 @@ class BitmaskMesher final : public Mesher {
   // r, r+1 of the layer, each shifted by -1, 0, +1 bit. Returns false when none is opaque (every
   // corner open). Specialised per face so the row addressing and axis mapping fold to constants.
   template <int F>
-  bool ao_planes(int layer, int r, AoPlanes& out) const {
+  __attribute__((always_inline)) bool ao_planes(int layer, int r, int p, AoPlanes& out) const {
     constexpr int kAxis = F >> 1;
     // Rows r-1, r, r+1 of the layer are consecutive entries of the P x P mask array, except for
     // +-Z faces (layer = z, rows = y), where they are P apart.
-    const int step = kAxis == 2 ? p_ : 1;
-    const std::size_t k = static_cast<std::size_t>(kAxis == 2 ? idx2(r, layer) : idx2(layer, r));
+    const int step = kAxis == 2 ? p : 1;
+    const std::size_t k = static_cast<std::size_t>(kAxis == 2 ? idx2(r, layer, p) : idx2(layer, r, p));
     const std::uint64_t* m = kAxis == 0 ? oy_.data() : ox_.data();
     const std::uint8_t* lo = kAxis == 0 ? ylo_.data() : xlo_.data();
     const std::uint8_t* hi = kAxis == 0 ? yhi_.data() : xhi_.data();
-    std::uint64_t occ[3][3];  // [dr + 1][db + 1]: neighbour at row offset dr, bit offset db
-    std::uint64_t any = 0;
-    for (int dr = 0; dr < 3; ++dr) {
-      const std::size_t at = k + static_cast<std::size_t>((dr - 1) * step);
-      const std::uint64_t row = m[at];
-      const std::uint64_t l = lo[at], h = hi[at];
-      occ[dr][0] = ((row << 1) | l) & full_;          // value at b - 1
-      occ[dr][1] = row;                                // value at b
-      occ[dr][2] = (row >> 1) | (h << (n_ - 1));      // value at b + 1
-      any |= occ[dr][0] | occ[dr][1] | occ[dr][2];
-    }
+    // Locals, not members: the stores into `out` (also uint64_t) would otherwise force reloads.
+    const std::uint64_t full = full_;
+    const int top = n_ - 1;
+    const std::size_t k0 = k - static_cast<std::size_t>(step), k2 = k + static_cast<std::size_t>(step);
+    const std::uint64_t r0 = m[k0], r1 = m[k], r2 = m[k2];
+    const std::uint64_t l0 = lo[k0], l1 = lo[k], l2 = lo[k2];
+    const std::uint64_t h0 = hi[k0], h1 = hi[k], h2 = hi[k2];
+    // Every shifted neighbour mask is zero exactly when its row and end bits are.
+    if ((r0 | r1 | r2 | l0 | l1 | l2 | h0 | h1 | h2) == 0) return false;
+    // [dr + 1][db + 1]: neighbour at row offset dr, bit offset db (b - 1 / b / b + 1).
+    const std::uint64_t occ[3][3] = {{((r0 << 1) | l0) & full, r0, (r0 >> 1) | (h0 << top)},
+                                     {((r1 << 1) | l1) & full, r1, (r1 >> 1) | (h1 << top)},
+                                     {((r2 << 1) | l2) & full, r2, (r2 >> 1) | (h2 << top)}};
     // (The centre occ[1][1] is the faces' own front neighbour, clear for every visible face.)
-    if (any == 0) return false;
     // Neighbour at face offsets (du, dv): for +-Y faces u runs along rows and v along bits,
     // otherwise u along bits and v along rows.
     constexpr bool kUIsRow = kAxis == 1;
     auto at = [&occ](int du, int dv) { return kUIsRow ? occ[du + 1][dv + 1] : occ[dv + 1][du + 1]; };
     const std::uint64_t mm = at(-1, -1), zm = at(0, -1), pm = at(1, -1), mz = at(-1, 0), pz = at(1, 0),
                         mp = at(-1, 1), zp = at(0, 1), pp = at(1, 1);
-    ao_corner(mz, zm, mm, out.lo[0], out.hi[0]);  // (u0, v0)
-    ao_corner(pz, zm, pm, out.lo[1], out.hi[1]);  // (u1, v0)
-    ao_corner(pz, zp, pp, out.lo[2], out.hi[2]);  // (u1, v1)
-    ao_corner(mz, zp, mp, out.lo[3], out.hi[3]);  // (u0, v1)
-    out.uniform = ~((out.lo[0] ^ out.lo[1]) | (out.lo[0] ^ out.lo[2]) | (out.lo[0] ^ out.lo[3]) |
-                    (out.hi[0] ^ out.hi[1]) | (out.hi[0] ^ out.hi[2]) | (out.hi[0] ^ out.hi[3]));
+    std::uint64_t v0, v1, v2, v3, v4, v5, v6, v7;
+    ao_corner(mz, zm, mm, v0, v1);  // (u0, v0)
+    ao_corner(pz, zm, pm, v2, v3);  // (u1, v0)
+    ao_corner(pz, zp, pp, v4, v5);  // (u1, v1)
+    ao_corner(mz, zp, mp, v6, v7);  // (u0, v1)
+    out.uniform = ~((v0 ^ v2) | (v0 ^ v4) | (v0 ^ v6) | (v1 ^ v3) | (v1 ^ v5) | (v1 ^ v7));
+    out.v[0] = v0, out.v[1] = v1, out.v[2] = v2, out.v[3] = v3;
+    out.v[4] = v4, out.v[5] = v5, out.v[6] = v6, out.v[7] = v7;
     return true;
   }
 
@@ -413,6 +477,7 @@ class BitmaskMesher final : public Mesher {
   int p_ = 0;
   std::uint64_t full_ = 0;
   std::vector<std::uint64_t> ax_, ox_, ay_, oy_;
+  std::vector<std::uint64_t> ex_;  // per x row: bit x set when block x + 1 has the same id
   std::vector<std::uint8_t> xlo_, xhi_, ylo_, yhi_;
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> rows_;
