@@ -50,18 +50,7 @@ void main() {
   // view and direction k's normal and the weights are normalised, so every pixel of the cluster
   // shows exactly one direction, picked by a hash against the cumulative weights. Directions are
   // blended, never stacked: the cluster never covers more than one projection of the tree would.
-  int dirs = int(sylva_slices.extent.z);
-  float total = 0.0;
-  float before = 0.0;
-  float own = 0.0;
-  for (int k = 0; k < dirs; ++k) {
-    float w = smoothstep(sylva_slices.fade_range.x, sylva_slices.fade_range.y, abs(dot(h, sylva_slice_normal(k).xz)));
-    if (k < j) before += w;
-    if (k == j) own = w;
-    total += w;
-  }
-  total = max(total, 1.0e-6);
-  v_pick = vec2(before, before + own) / total;
+  v_pick = sylva_slice_pick_range(j, vec3(h.x, 0.0, h.y));
   v_fade = inst.lod.x;
   vec4 oc = u_view_proj * vec4(sylva_instance_point(inst, centre), 1.0);
   v_origin = oc.xy / max(abs(oc.w), 1.0e-6);
@@ -70,5 +59,8 @@ void main() {
   v_slice = quad;
   v_direction = j;
   v_instance = index;
-  gl_Position = (v_pick.y > v_pick.x && v_fade > 0.0) ? u_view_proj * vec4(rel, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
+  // A slice hidden by the centre's weights is collapsed (no fragments) unless the camera is within
+  // four cluster radii, where the fragment shaders pick per fragment (sylva_slice_pick_range).
+  bool near = length(view) < 4.0 * R * inst.translation_scale.w && u_view_direction.w == 0.0;
+  gl_Position = ((v_pick.y > v_pick.x || near) && v_fade > 0.0) ? u_view_proj * vec4(rel, 1.0) : vec4(2.0, 2.0, 2.0, 1.0);
 }

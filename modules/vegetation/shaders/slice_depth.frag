@@ -26,10 +26,11 @@ void main() {
   vec2 size = sylva_slice_rect_size();
   vec2 dx = dFdx(v_q) / size;
   vec2 dy = dFdy(v_q) / size;
-  float footprint = max(length(dFdx(v_q)), length(dFdy(v_q)));
+  float footprint = sylva_slice_footprint(dFdx(v_q), dFdy(v_q));
   float minified = clamp(footprint * sylva_slices.fade_range.z / size.x - 1.0, 0.0, 1.0);
   vec3 view_obj = sylva_instance_inverse_vector(inst, u_view_direction.w != 0.0 ? u_view_direction.xyz : -v_rel);
   vec2 qp = sylva_slice_parallax(v_q, v_slice, v_direction, view_obj);
+  vec2 pick_range = u_view_direction.w != 0.0 ? v_pick : sylva_slice_pick_range(v_direction, view_obj);
   vec2 q0 = sylva_backward_transform(qp, v_slice, v_direction, inst);
   vec2 uv = (q0 - sylva_slice_rect_min()) / size;
   bool inside = all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
@@ -42,7 +43,7 @@ void main() {
   // travels with the tree on screen), shared by all slices of the instance.
   ivec2 px = ivec2(floor(gl_FragCoord.xy - (v_origin * 0.5 + 0.5) * u_viewport));
   float pick = float(sylva_hash(ivec3(px, v_instance), 0x2545f491u) >> 8u) * (1.0 / 16777216.0);
-  bool picked = pick >= v_pick.x && pick < v_pick.y;
+  bool picked = pick >= pick_range.x && pick < pick_range.y;
   float a = (inside && picked) ? textureGrad(u_slice_color, vec3(uv, float(v_slice)), dx, dy).a : 0.0;
   float number = clamp((nrm.a - 0.25) / 0.75, 0.0, 1.0);
   if (nrm.a > 0.125 && texture(u_season, vec2(0.5, u_season_time + u_leaf_spread * number + inst.rotation.w)).a < 0.5) a = 0.0;

@@ -8,6 +8,11 @@ namespace sylva::vegetation {
 namespace {
 
 constexpr double kMinWidth = 1.0e-3;  // [m] a zero band is a continuous step over 1 mm
+// A camera closer than this many bounding-sphere radii to a tree's centre is inside or right
+// next to its slice cluster: slices seen from there are not a picture of the tree (each layer is a
+// flat projection for a distant viewer; from inside they fan over the whole screen, the editor's
+// "dark triangle and green shards"), so such a tree is LOD0 whatever the thresholds say.
+constexpr double kLod0Radii = 1.5;
 
 double finite_or_zero(double v) { return std::isfinite(v) ? std::max(v, 0.0) : 0.0; }
 
@@ -126,7 +131,7 @@ void select_lods(const LodSettings& s, const LodView& view, std::span<const rend
       const LodRamps r = per_instance ? lod_ramps(s, static_cast<double>(heights[i]), view.pixels_per_radian) : shared;
       const double e = lod_follow(state.distance[i], metric, s.hysteresis);
       state.distance[i] = e;
-      l = lod_target(r, e);
+      l = dist3 < kLod0Radii * sp.radius ? 0.0f : lod_target(r, e);
       state.level[i] = l;
     }
     if (view.frustum != nullptr && !view.frustum->intersects(sp)) continue;

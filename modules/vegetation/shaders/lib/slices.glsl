@@ -113,6 +113,37 @@ float sylva_slice_ray_distance(float d, int direction, vec3 view) {
   return d / vn;
 }
 
+// Direction-selection interval [lo, hi) of direction j for a horizontal object-space view
+// direction (seed §2.10 hides view-parallel slices): weight w_k rises with |cos| between the view
+// and direction k's normal, weights normalised, so each pixel shows exactly one direction.
+// slice.vert evaluates it with the direction to the tree's centre (right for a distant camera);
+// the fragment shaders evaluate it again with the direction to the fragment: next to or inside
+// the cluster the two differ by up to 90 degrees, and a slice picked by the centre's weights is
+// then seen edge-on and smears its texels into streaks (editor report, lod_close_gl_test).
+vec2 sylva_slice_pick_range(int j, vec3 view) {
+  vec2 h = view.xz;
+  float hl = length(h);
+  h = hl > 1.0e-6 ? h / hl : vec2(0.0, 1.0);
+  int dirs = int(sylva_slices.extent.z);
+  float total = 0.0;
+  float before = 0.0;
+  float own = 0.0;
+  for (int k = 0; k < dirs; ++k) {
+    float w = smoothstep(sylva_slices.fade_range.x, sylva_slices.fade_range.y, abs(dot(h, sylva_slice_normal(k).xz)));
+    if (k < j) before += w;
+    if (k == j) own = w;
+    total += w;
+  }
+  total = max(total, 1.0e-6);
+  return vec2(before, before + own) / total;
+}
+
+// Pixel footprint on the slice [m] for the hashed cells and the minification blend: the geometric
+// mean of the two screen-axis derivatives, so a slice seen at a grazing angle (one long axis) is
+// not treated as minified (that drew solid blocks of coarse-mip coverage near the camera).
+// Arguments: dFdx and dFdy of the slice coordinate (the library is shared with slice.vert).
+float sylva_slice_footprint(vec2 dqdx, vec2 dqdy) { return sqrt(length(dqdx) * length(dqdy)); }
+
 // Object-space direction of a world (camera-relative) vector for an instance (inverse yaw).
 vec3 sylva_instance_inverse_vector(SylvaTreeInstance inst, vec3 v) {
   float c = inst.rotation.x;

@@ -96,7 +96,9 @@ struct LodState {
 // Selects the LOD of every instance (bounding spheres in world space, tree heights in metres),
 // updates `state` (resized and reset when its size differs from the instance count) and fills
 // `out`. The coordinate of every instance within max_distance is updated, culled or not, so a
-// shadow pass can reuse it. With settings.enabled false every instance is LOD0.
+// shadow pass can reuse it. With settings.enabled false every instance is LOD0. A camera within
+// 1.5 bounding-sphere radii of an instance's centre (inside or next to its slice cluster) always
+// gets LOD0 for it, whatever the thresholds: slices are pictures for a distant viewer.
 void select_lods(const LodSettings& settings, const LodView& view, std::span<const render::Sphere> spheres,
                  std::span<const float> heights, LodState& state, LodQueues& out);
 
