@@ -59,6 +59,43 @@ Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(std::unique_ptr
 
 TerrainRenderer::~TerrainRenderer() = default;
 
+Result<RegionRebuild> TerrainRenderer::apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1) {
+  if (streamer_) {
+    return make_error(ErrorCode::kInvalidArgument, "terrain: a streamed terrain cannot be edited in place");
+  }
+  // Copy-on-write: the chunk meshes are copied (a few MB at 257^2, milliseconds), the expensive
+  // triangulation runs only for the chunks the edit reaches.
+  auto tree = std::make_shared<ChunkTree>(*tree_);
+  auto changed = tree->rebuild_region(field, x0, z0, x1, z1);
+  if (!changed.ok()) return changed.error();
+  tree_ = std::move(tree);
+  meshes_ = tree_meshes(*tree_);
+  selector_ = std::make_unique<LodSelector>(*tree_);
+  shadow_selector_ = std::make_unique<LodSelector>(*tree_);
+  selection_ = &empty_selection_;
+  shadow_selection_ = &empty_selection_;
+  std::vector<std::uint32_t> dirty = changed->rebuilt;
+  dirty.insert(dirty.end(), changed->updated.begin(), changed->updated.end());
+  for (std::uint32_t i : dirty) {
+    auto it = gpu_.find(i);
+    if (it == gpu_.end()) continue;
+    gpu_bytes_ -= it->second.bytes;
+    gpu_.erase(it);
+  }
+  seams_.invalidate(dirty);
+  if (has_heights_) {
+    auto heights = make_height_texture(field);
+    if (heights.ok()) {
+      heights_ = std::move(heights).value();
+    } else {
+      log_warn("{}; normals come from the triangles", heights.error().message);
+      has_heights_ = false;
+    }
+  }
+  height_range_ = glm::vec2(field.min_height(), field.max_height());
+  return changed;
+}
+
 Status TerrainRenderer::init(const HeightField* field) {
   SYLVA_TRY(validate_params(settings_, "terrain"));
   render::embedded::register_terrain_shaders();

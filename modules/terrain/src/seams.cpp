@@ -1,5 +1,7 @@
 #include <sylva/terrain/seams.hpp>
 
+#include <unordered_set>
+
 #include <sylva/core/assert.hpp>
 
 #include <algorithm>
@@ -97,7 +99,24 @@ const Seam& SeamCache::get(const ChunkTree& tree, const MeshSource& meshes, std:
   Entry& entry = map_[key];
   entry.seam = build_seam(tree, meshes, fine, e, coarse);
   entry.lru = lru_.begin();
+  entry.fine = fine;
+  entry.coarse = coarse;
   return entry.seam;
+}
+
+std::size_t SeamCache::invalidate(const std::vector<std::uint32_t>& chunks) {
+  std::unordered_set<std::uint32_t> changed(chunks.begin(), chunks.end());
+  std::size_t dropped = 0;
+  for (auto it = map_.begin(); it != map_.end();) {
+    if (changed.count(it->second.fine) != 0 || changed.count(it->second.coarse) != 0) {
+      lru_.erase(it->second.lru);
+      it = map_.erase(it);
+      ++dropped;
+    } else {
+      ++it;
+    }
+  }
+  return dropped;
 }
 
 void SeamCache::clear() {

@@ -108,6 +108,15 @@ class TerrainRenderer final : public render::Drawable {
                                                          const TerrainRenderSettings& settings);
   ~TerrainRenderer() override;
 
+  // Live height editing (issue 9): applies an edit of the samples [x0, x1) x [z0, z1) (x1/z1
+  // exclusive) of `field`, the whole edited field the tree was built from. The renderer's tree
+  // is replaced by a copy updated with ChunkTree::rebuild_region (the old tree may be shared, so
+  // it is never modified); only the rebuilt/updated chunks' GPU meshes are dropped (re-uploaded
+  // on their next draw) and only the seams touching them rebuilt; the height texture is
+  // re-uploaded. Errors: a streamed renderer (kInvalidArgument) and rebuild_region's; the
+  // renderer is unchanged on error. Needs the renderer's GL context current.
+  Result<RegionRebuild> apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1);
+
   void update(const render::FrameContext& frame) override;
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
 

@@ -58,6 +58,9 @@ class SeamCache {
   const Seam& get(const ChunkTree& tree, std::uint32_t fine, Edge e, std::uint32_t coarse) {
     return get(tree, tree_meshes(tree), fine, e, coarse);
   }
+  // Drops the seams whose fine or coarse chunk is in `chunks` (after ChunkTree::rebuild_region
+  // changed their meshes); returns how many were dropped.
+  std::size_t invalidate(const std::vector<std::uint32_t>& chunks);
   void clear();
   std::size_t size() const { return map_.size(); }
   std::uint64_t builds() const { return builds_; }
@@ -67,6 +70,7 @@ class SeamCache {
   struct Entry {
     Seam seam;
     std::list<std::uint64_t>::iterator lru;
+    std::uint32_t fine = 0, coarse = 0;  // chunk indices, for invalidate()
   };
   std::size_t capacity_;
   std::unordered_map<std::uint64_t, Entry> map_;
