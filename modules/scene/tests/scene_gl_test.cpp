@@ -364,7 +364,13 @@ TEST_F(SceneGl, TerrainIsTheGroundAndFollowsEdits) {
   const glm::dvec2 p = map->grid.world(64, 64);
   EXPECT_FLOAT_EQ(static_cast<float>(scene->ground_height(p.x, p.y)), map->grid.at(64, 64));
   run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 1);
-  EXPECT_EQ(scene->module_stats()["terrain"]["tree_rebuilds"].get<int>(), rebuilds + 1);
+  // Issue 9: the stroke rebuilds only the chunks it reaches, not the whole tree.
+  const nlohmann::json after = scene->module_stats()["terrain"];
+  EXPECT_EQ(after["tree_rebuilds"].get<int>(), rebuilds);
+  EXPECT_EQ(after["tree_partial_rebuilds"].get<int>(), 1);
+  EXPECT_GT(after["chunks_rebuilt"].get<int>(), 0);
+  EXPECT_LT(after["chunks_rebuilt"].get<int>(), after["tree_chunks"].get<int>() / 2) << after.dump();
+  EXPECT_GT(scene->module_stats()["terrain"]["chunks_drawn"].get<int>(), 0);
 }
 
 // Shadows: the scene's cascades make shaded ground darker where a caster blocks the sun, and

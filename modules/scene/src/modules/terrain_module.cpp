@@ -5,10 +5,12 @@
 // render settings. The scene builds the one HeightField from the source; grass and trees stand
 // on it and the terrain renderer shades from it.
 //
-// Edits: the terrain module builds its chunk tree as a whole (it has no partial rebuild), so a
-// painted height region marks the tree stale and it is rebuilt once at the next frame; the
-// number and CPU time of rebuilds are in the stats. Other modules standing on the ground re-seat
-// only what the region touches.
+// Edits (issue 9, live height painting): a painted height region is collected (the union of the
+// changed areas, as field samples) and applied once at the next frame with
+// TerrainRenderer::apply_height_edit, which re-triangulates only the chunks the region can change
+// (ChunkTree::rebuild_region) and re-uploads only those; a failure falls back to a full rebuild.
+// The number and CPU time of rebuilds and the chunks rebuilt by the last edit are in the stats.
+// Other modules standing on the ground re-seat only what the region touches.
 
 #include "modules/module_factories.hpp"
 
@@ -20,6 +22,9 @@
 #include <sylva/terrain/settings.hpp>
 
 #include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
 
 namespace sylva::scene::detail {
 namespace {
@@ -53,8 +58,7 @@ class TerrainInstance final : public ModuleInstance {
   void sync_settings() override {
     if (stale_) {
       stale_ = false;
-      Status s = build();
-      if (!s.ok()) log_warn("terrain: rebuilding after an edit failed: {}", s.error().message);
+      apply_edit();
     }
     const terrain::TerrainRenderSettings& wanted = settings().render;
     terrain::TerrainRenderSettings& live = renderer_->settings();
@@ -73,7 +77,20 @@ class TerrainInstance final : public ModuleInstance {
 
   Status on_map_changed(const std::string& map_id, const WorldArea& area) override {
     (void)map_id;
-    (void)area;
+    // The changed samples, grown by one sample each way so rounding never leaves one out.
+    const HeightField& f = *ctx_.ground;
+    const auto lo = glm::floor((area.min - f.origin()) / f.spacing()) - 1.0;
+    const auto hi = glm::ceil((area.max - f.origin()) / f.spacing()) + 2.0;  // exclusive
+    const int x0 = static_cast<int>(std::clamp(lo.x, 0.0, static_cast<double>(f.columns())));
+    const int z0 = static_cast<int>(std::clamp(lo.y, 0.0, static_cast<double>(f.rows())));
+    const int x1 = static_cast<int>(std::clamp(hi.x, 0.0, static_cast<double>(f.columns())));
+    const int z1 = static_cast<int>(std::clamp(hi.y, 0.0, static_cast<double>(f.rows())));
+    if (x0 >= x1 || z0 >= z1) return {};
+    if (!stale_) {
+      dirty_ = {x0, z0, x1, z1};
+    } else {
+      dirty_ = {std::min(dirty_[0], x0), std::min(dirty_[1], z0), std::max(dirty_[2], x1), std::max(dirty_[3], z1)};
+    }
     stale_ = true;
     return {};
   }
@@ -98,6 +115,9 @@ class TerrainInstance final : public ModuleInstance {
             {"tree_chunks", renderer_->tree().chunk_count()},
             {"tree_levels", renderer_->tree().levels()},
             {"tree_rebuilds", rebuilds_},
+            {"tree_partial_rebuilds", partial_rebuilds_},
+            {"chunks_rebuilt", chunks_rebuilt_},
+            {"chunks_updated", chunks_updated_},
             {"tree_build_ms", last_build_ms_}};
   }
 
@@ -125,9 +145,30 @@ class TerrainInstance final : public ModuleInstance {
     return {};
   }
 
+  // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
+  void apply_edit() {
+    Stopwatch watch;
+    auto changed = renderer_->apply_height_edit(*ctx_.ground, dirty_[0], dirty_[1], dirty_[2], dirty_[3]);
+    if (changed.ok()) {
+      ++partial_rebuilds_;
+      chunks_rebuilt_ = changed->rebuilt.size();
+      chunks_updated_ = changed->updated.size();
+      last_build_ms_ = watch.elapsed_ms();
+      return;
+    }
+    log_warn("terrain: partial rebuild after an edit failed ({}); rebuilding the whole tree", changed.error().message);
+    Status s = build();
+    if (!s.ok()) log_warn("terrain: rebuilding after an edit failed: {}", s.error().message);
+    chunks_rebuilt_ = renderer_->tree().chunk_count();
+    chunks_updated_ = 0;
+  }
+
   ModuleBuildContext ctx_;
   std::unique_ptr<terrain::TerrainRenderer> renderer_;
   bool stale_ = false;
+  std::array<int, 4> dirty_{0, 0, 0, 0};  // edited samples x0, z0, x1, z1 (x1/z1 exclusive)
+  std::uint64_t partial_rebuilds_ = 0;
+  std::size_t chunks_rebuilt_ = 0, chunks_updated_ = 0;
   std::uint64_t rebuilds_ = 0;
   double last_build_ms_ = 0.0;
 };
