@@ -29,7 +29,9 @@ class HotReloadTest : public GlTest {
  protected:
   void SetUp() override {
     GlTest::SetUp();
-    dir_ = test::output_dir() / "hot_reload";
+    // One folder per test: ctest -j runs the cases of this file at once, and shared files made
+    // one case see another's broken edit.
+    dir_ = test::output_dir() / "hot_reload" / ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::create_directories(dir_);
     vert_ = (dir_ / "hr.vert").string();
     frag_ = (dir_ / "hr.frag").string();

@@ -1,5 +1,7 @@
 #include <sylva/terrain/simplify.hpp>
 
+#include "quadric.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -10,24 +12,7 @@ namespace sylva::terrain {
 
 namespace {
 
-struct Quadric {
-  // Symmetric 4x4: a00 a01 a02 a03 a11 a12 a13 a22 a23 a33.
-  std::array<double, 10> m{};
-  void add_plane(const glm::dvec3& n, double d, double w) {
-    const double a = n.x, b = n.y, c = n.z;
-    m[0] += w * a * a; m[1] += w * a * b; m[2] += w * a * c; m[3] += w * a * d;
-    m[4] += w * b * b; m[5] += w * b * c; m[6] += w * b * d;
-    m[7] += w * c * c; m[8] += w * c * d; m[9] += w * d * d;
-  }
-  void operator+=(const Quadric& o) {
-    for (std::size_t i = 0; i < 10; ++i) m[i] += o.m[i];
-  }
-  double error(const glm::dvec3& p) const {
-    const double x = p.x, y = p.y, z = p.z;
-    return m[0] * x * x + 2 * m[1] * x * y + 2 * m[2] * x * z + 2 * m[3] * x + m[4] * y * y + 2 * m[5] * y * z +
-           2 * m[6] * y + m[7] * z * z + 2 * m[8] * z + m[9];
-  }
-};
+using detail::Quadric;
 
 struct Candidate {
   double cost;

@@ -1,5 +1,7 @@
 #include <sylva/terrain/simplify.hpp>
 
+#include "quadric.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,26 +10,7 @@ namespace sylva::terrain {
 
 namespace {
 
-struct Quadric {
-  std::array<double, 10> m{};
-  void add_plane(const glm::dvec3& n, double d, double w) {
-    const double a = n.x, b = n.y, c = n.z;
-    m[0] += w * a * a; m[1] += w * a * b; m[2] += w * a * c; m[3] += w * a * d;
-    m[4] += w * b * b; m[5] += w * b * c; m[6] += w * b * d;
-    m[7] += w * c * c; m[8] += w * c * d; m[9] += w * d * d;
-  }
-  void add(const Quadric& o) {
-    for (std::size_t i = 0; i < 10; ++i) m[i] += o.m[i];
-  }
-  // (this + o) evaluated at p, without forming the sum.
-  double error_sum(const Quadric& o, const glm::dvec3& p) const {
-    double s[10];
-    for (std::size_t i = 0; i < 10; ++i) s[i] = m[i] + o.m[i];
-    const double x = p.x, y = p.y, z = p.z;
-    return s[0] * x * x + 2 * s[1] * x * y + 2 * s[2] * x * z + 2 * s[3] * x + s[4] * y * y + 2 * s[5] * y * z +
-           2 * s[6] * y + s[7] * z * z + 2 * s[8] * z + s[9];
-  }
-};
+using detail::Quadric;
 
 struct Candidate {
   float cost;
@@ -202,7 +185,7 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       for (std::uint32_t i = offset[v]; i < offset[v + 1]; ++i)
         for (std::uint32_t w : tris[adj[i]]) touched[w] = 1;
       remap[v] = u;
-      q[u].add(q[v]);
+      q[u] += q[v];
       removed += shared;
       ++accepted;
     }
