@@ -16,6 +16,7 @@
 #include <sylva/core/params.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/render/framebuffer.hpp>
+#include <sylva/render/queries.hpp>
 
 #include <glm/glm.hpp>
 
@@ -39,6 +40,19 @@ struct FrameOutput {
   FrameCounts counts;
   std::map<std::string, double> metrics;  // module-reported numbers (terrain.max_projected_error_px)
 };
+
+// The frame's counters summed over its passes (lod_instances are left empty for the target).
+inline FrameCounts sum_pass_counts(const std::map<std::string, render::PassStats>& passes) {
+  FrameCounts c;
+  for (const auto& [name, pass] : passes) {
+    c.primitives += pass.primitives;
+    c.fragments += pass.samples;
+    c.triangles += pass.triangles;
+    c.draw_calls += pass.draw_calls;
+    c.instances += pass.instances;
+  }
+  return c;
+}
 
 class BenchTarget {
  public:

@@ -169,14 +169,7 @@ class GroundTarget final : public BenchTarget {
     const std::optional<render::FrameStats> stats = profiler_.flush();
     if (!stats) return make_error(ErrorCode::kGl, "builtin:ground: the frame's GPU queries returned no result");
     out.gpu_ms = stats->gpu_ms;
-    out.counts = {};
-    for (const auto& [name, pass] : stats->passes) {
-      out.counts.primitives += pass.primitives;
-      out.counts.fragments += pass.samples;
-      out.counts.triangles += pass.triangles;
-      out.counts.draw_calls += pass.draw_calls;
-      out.counts.instances += pass.instances;
-    }
+    out.counts = sum_pass_counts(stats->passes);
     return {};
   }
 

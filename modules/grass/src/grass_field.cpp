@@ -163,6 +163,14 @@ void GrassField::update(const render::FrameContext& frame) {
   update(frame.camera, frame.viewport, frame.time, frame.dt, frame.wind);
 }
 
+namespace {
+// The cull shader's side planes, set without formatting their names every frame.
+void set_cull_planes(const render::Program& p, const glm::vec4 (&planes)[4]) {
+  static constexpr const char* kNames[4] = {"u_planes[0]", "u_planes[1]", "u_planes[2]", "u_planes[3]"};
+  for (int i = 0; i < 4; ++i) p.set(kNames[i], planes[i]);
+}
+}  // namespace
+
 void GrassField::set_cull_uniforms(const render::Program& p, const CullView& view) const {
   const CullSettings& c = settings_.cull;
   p.set("u_camera", view.camera);
@@ -243,7 +251,7 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   }
 
   set_cull_uniforms(cull_, view_);
-  for (int i = 0; i < 4; ++i) cull_.set(fmt::format("u_planes[{}]", i), view_.planes[i]);
+  set_cull_planes(cull_, view_.planes);
   cull_.set("u_forward", view_.forward);
   cull_.set("u_orientation", glm::vec2(cs.orientation_threshold, cs.orientation_max_px));
   cull_query_.begin(frame_);
@@ -315,12 +323,12 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   CullSettings reach = cs;
   reach.near_distance = std::min(cs.near_distance, settings_.shadow_distance);
   std::size_t jobs = 0;
-  std::vector<std::vector<TileJob>> per_chunk(chunks_.size());
+  for (Chunk& c : chunks_) c.shadow_job_list.clear();
   for (std::size_t i = 0; i < tiles_.size(); ++i) {
     const GrassTile& t = tiles_[i];
     if (t.count == 0 || !tile_visible(t, light, reach)) continue;
-    const Chunk& c = chunks_[tile_chunk_[i]];
-    per_chunk[tile_chunk_[i]].push_back({t.first - c.first_blade, t.count, 0.0f, 0u});
+    Chunk& c = chunks_[tile_chunk_[i]];
+    c.shadow_job_list.push_back({t.first - c.first_blade, t.count, 0.0f, 0u});
     shadow_stats_.considered += t.count;
     ++jobs;
   }
@@ -330,7 +338,7 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   // Cull against the light frustum: same density and distance thinning (camera distance, as in
   // the colour pass), no orientation test, no behind-the-camera test (forward = 0).
   set_cull_uniforms(cull_, view_);
-  for (int i = 0; i < 4; ++i) cull_.set(fmt::format("u_planes[{}]", i), light.planes[i]);
+  set_cull_planes(cull_, light.planes);
   cull_.set("u_forward", glm::vec3(0.0f));
   cull_.set("u_cull", glm::vec4(cs.density_scale, cs.width_compensation, 1.0f, 0.0f));
   cull_.use();
@@ -340,13 +348,13 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
     reset.instance_count = 1;
     reset.capacity = c.blade_count;
     c.shadow_command.update(0, sizeof(reset), &reset);
-    if (per_chunk[k].empty()) continue;
-    c.shadow_jobs.upload(std::span<const TileJob>(per_chunk[k]));
+    if (c.shadow_job_list.empty()) continue;
+    c.shadow_jobs.upload(std::span<const TileJob>(c.shadow_job_list));
     c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
     c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
     c.shadow_jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
     c.shadow_command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
-    glDispatchCompute(static_cast<GLuint>(per_chunk[k].size()), 1, 1);
+    glDispatchCompute(static_cast<GLuint>(c.shadow_job_list.size()), 1, 1);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
@@ -355,7 +363,7 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   depth_.use();
   glPatchParameteri(GL_PATCH_VERTICES, 1);
   for (std::size_t k = 0; k < chunks_.size(); ++k) {
-    if (per_chunk[k].empty()) continue;
+    if (chunks_[k].shadow_job_list.empty()) continue;
     const Chunk& c = chunks_[k];
     c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
     c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);

@@ -158,14 +158,7 @@ class SceneTarget final : public BenchTarget {
     if (!stats) return make_error(ErrorCode::kGl, "scene frame: the GPU queries returned no result");
     const scene::SceneFrameStats s = scene::split_frame_stats(*stats);
     out.gpu_ms = s.gpu_ms;
-    out.counts = {};
-    for (const auto& [pass, p] : s.passes) {
-      out.counts.primitives += p.primitives;
-      out.counts.fragments += p.samples;
-      out.counts.triangles += p.triangles;
-      out.counts.draw_calls += p.draw_calls;
-      out.counts.instances += p.instances;
-    }
+    out.counts = sum_pass_counts(s.passes);
     const nlohmann::json modules = scene_->module_stats();
     for (auto it = modules.begin(); it != modules.end(); ++it) {
       if (it.value().is_object()) collect_stats(it.value(), "", it.key(), out);

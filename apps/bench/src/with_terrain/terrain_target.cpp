@@ -242,14 +242,7 @@ class TerrainTarget final : public BenchTarget {
     const std::optional<render::FrameStats> stats = profiler_.flush();
     if (!stats) return make_error(ErrorCode::kGl, "builtin:terrain: the frame's GPU queries returned no result");
     out.gpu_ms = stats->gpu_ms;
-    out.counts = {};
-    for (const auto& [name, pass] : stats->passes) {
-      out.counts.primitives += pass.primitives;
-      out.counts.fragments += pass.samples;
-      out.counts.triangles += pass.triangles;
-      out.counts.draw_calls += pass.draw_calls;
-      out.counts.instances += pass.instances;
-    }
+    out.counts = sum_pass_counts(stats->passes);
     for (std::size_t level = 0; level < selection.stats.chunks_per_level.size(); ++level) {
       out.counts.lod_instances[fmt::format("terrain.level{}", level)] = selection.stats.chunks_per_level[level];
     }

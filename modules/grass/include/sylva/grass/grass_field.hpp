@@ -187,6 +187,7 @@ class GrassField : public render::Drawable {
     render::Buffer shadow_visible;  // shadow pass (its own, so the colour list survives)
     render::Buffer shadow_command;
     render::Buffer shadow_jobs;
+    std::vector<TileJob> shadow_job_list;  // per cascade; kept to reuse its capacity
   };
   void set_cull_uniforms(const render::Program& program, const CullView& view) const;
   void set_blade_uniforms(const render::Program& program, const glm::mat4& relative_view_projection,
