@@ -123,12 +123,17 @@ function(sylva_add_module_tests module)
 endfunction()
 
 # sylva_add_module_benches(<module> DEPS ...): every bench/*_bench.cpp becomes bench_<module>_<name>.
+# Files under bench/support/ are linked into every benchmark of the module (as for tests).
 function(sylva_add_module_benches module)
   cmake_parse_arguments(B "" "" "DEPS" ${ARGN})
   file(GLOB bench_files CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/bench/*_bench.cpp")
+  file(GLOB support_files CONFIGURE_DEPENDS "${CMAKE_CURRENT_SOURCE_DIR}/bench/support/*.cpp")
   foreach(f ${bench_files})
     get_filename_component(stem "${f}" NAME_WE)
     string(REGEX REPLACE "_bench$" "" name "${stem}")
-    sylva_add_bench(${module} ${name} SOURCES "${f}" DEPS ${B_DEPS})
+    sylva_add_bench(${module} ${name} SOURCES "${f}" ${support_files} DEPS ${B_DEPS})
+    if(support_files AND TARGET bench_${module}_${name})
+      target_include_directories(bench_${module}_${name} PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}/bench")
+    endif()
   endforeach()
 endfunction()

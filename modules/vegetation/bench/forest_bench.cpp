@@ -13,6 +13,8 @@
 #include <sylva/render/queries.hpp>
 #include <sylva/vegetation/forest.hpp>
 
+#include "support/bench_view.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -23,27 +25,16 @@ namespace {
 using namespace sylva;
 using namespace sylva::vegetation;
 
-render::GlContext* context() {
-  static std::unique_ptr<render::GlContext> ctx = [] {
-    auto created = render::GlContext::create_headless({.debug = false});
-    return created.ok() ? std::make_unique<render::GlContext>(std::move(created).value()) : nullptr;
-  }();
-  return ctx.get();
-}
+using bench::BenchView;
 
-struct Bench {
+struct Bench : BenchView {
   Forest forest;
-  render::Framebuffer target;
-  render::LightingUniforms lighting_ubo;
-  render::Lighting lighting;
-  render::Camera camera;
-  WindField wind{WindSettings{.strength = 6.0f, .gust_amplitude = 3.0f}};
 };
 
 // n trees on a square grid 12 m apart, the camera 30 m up at the grid's edge looking across it.
 std::unique_ptr<Bench> make_bench(int n, int width, int height) {
-  if (context() == nullptr) return nullptr;
   auto b = std::make_unique<Bench>();
+  if (!bench::init_view(*b, width, height)) return nullptr;
   ForestSettings settings;
   settings.lod.enabled = false;  // LOD0 costs; lod_bench.cpp measures the image-based levels
   Result<Forest> f = Forest::create(settings);
@@ -64,12 +55,7 @@ std::unique_ptr<Bench> make_bench(int n, int width, int height) {
   const double extent = (side - 1) * 12.0;
   b->camera.set_position({0.5 * extent, 30.0 + 0.3 * extent, 25.0});
   b->camera.look_at({0.5 * extent, 0.0, -0.55 * extent});
-  b->camera.set_aspect(width, height);
   b->camera.perspective().fov_y = 1.1f;
-  auto fb = render::Framebuffer::create({.width = width, .height = height});
-  if (!fb.ok()) return nullptr;
-  b->target = std::move(fb).value();
-  b->lighting_ubo = render::LightingUniforms::create();
   return b;
 }
 

@@ -18,6 +18,8 @@
 #include <sylva/render/readback.hpp>
 #include <sylva/vegetation/forest.hpp>
 
+#include "support/bench_view.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -29,28 +31,16 @@ namespace {
 using namespace sylva;
 using namespace sylva::vegetation;
 
-render::GlContext* context() {
-  static std::unique_ptr<render::GlContext> ctx = [] {
-    auto created = render::GlContext::create_headless({.debug = false});
-    return created.ok() ? std::make_unique<render::GlContext>(std::move(created).value()) : nullptr;
-  }();
-  return ctx.get();
-}
+using bench::BenchView;
 
-struct Bench {
-  Forest forest;
-  render::Framebuffer target;
-  render::LightingUniforms lighting_ubo;
-  render::Lighting lighting;
-  render::Camera camera;
-  WindField wind{WindSettings{.strength = 6.0f, .gust_amplitude = 3.0f}};
+struct Bench : BenchView {
   LodSettings defaults;  // the shipped thresholds (the shared forest's are overwritten per run)
 };
 
 // One forest per process (the bake is cached on disk as well).
 Forest* shared_forest() {
   static std::unique_ptr<Forest> f = []() -> std::unique_ptr<Forest> {
-    if (context() == nullptr) return nullptr;
+    if (bench::gl_context() == nullptr) return nullptr;
     Result<Forest> r = Forest::create();
     if (!r.ok()) return nullptr;
     auto forest = std::make_unique<Forest>(std::move(r).value());
@@ -124,11 +114,7 @@ std::unique_ptr<Bench> make_bench(int width, int height) {
   Forest* f = shared_forest();
   if (f == nullptr) return nullptr;
   auto b = std::make_unique<Bench>();
-  auto fb = render::Framebuffer::create({.width = width, .height = height});
-  if (!fb.ok()) return nullptr;
-  b->target = std::move(fb).value();
-  b->lighting_ubo = render::LightingUniforms::create();
-  b->camera.set_aspect(width, height);
+  if (!bench::init_view(*b, width, height)) return nullptr;
   return b;
 }
 
