@@ -12,9 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
 #include <chrono>
-#include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -28,28 +26,17 @@
 
 extern char** environ;
 
+#include "run_command.hpp"
+
 namespace fs = std::filesystem;
 using namespace sylva;
 using namespace sylva::editor;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;
-};
+using sylva::test::RunResult;
 
-RunResult run_editor(const std::string& args) {
-  const std::string command = std::string(SYLVA_EDITOR_EXE) + " " + args + " 2>&1";
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 512> buffer{};
-  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+RunResult run_editor(const std::string& args) { return sylva::test::run_command(SYLVA_EDITOR_EXE, args); }
 
 fs::path temp_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("sylva_editor_" + std::to_string(::getpid())) / name;

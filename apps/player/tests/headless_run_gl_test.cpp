@@ -6,33 +6,19 @@
 
 #include <gtest/gtest.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <string>
-#include <sys/wait.h>
 #include <unistd.h>
+
+#include "run_command.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
+using sylva::test::RunResult;
 
-RunResult run_player(const std::string& args) {
-  const std::string command = std::string(SYLVA_PLAYER_EXE) + " " + args + " 2>&1";
-  RunResult result;
-  FILE* pipe = ::popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 512> buffer{};
-  while (std::fgets(buffer.data(), static_cast<int>(buffer.size()), pipe)) result.output += buffer.data();
-  const int status = ::pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+RunResult run_player(const std::string& args) { return sylva::test::run_command(SYLVA_PLAYER_EXE, args); }
 
 fs::path out_dir() {
   const fs::path dir = fs::temp_directory_path() / ("sylva_player_run_" + std::to_string(::getpid()));
