@@ -22,6 +22,11 @@ bool finite3(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v
 
 }  // namespace
 
+Buffer make_empty_point_light_block() {
+  const PointLightBlock empty{};  // count.x = 0
+  return Buffer::immutable(sizeof(empty), &empty);
+}
+
 float point_light_attenuation(const PointLightAttenuation& a, float range, float d) {
   const float denom = std::max(a.constant + a.linear * d + a.quadratic * d * d, 1.0f);
   const float x = std::clamp(d / range, 0.0f, 1.0f);

@@ -28,6 +28,11 @@ const ShadowCasterContext* g_active_cascade = nullptr;
 
 }  // namespace
 
+Buffer make_disabled_shadow_block() {
+  const ShadowBlock disabled{};  // params.z = 0: disabled
+  return Buffer::immutable(sizeof(disabled), &disabled);
+}
+
 const ShadowCasterContext* active_shadow_cascade() { return g_active_cascade; }
 
 Result<ShadowMaps> ShadowMaps::create(const ShadowSettings& settings) {

@@ -107,8 +107,7 @@ Result<SliceRenderer> SliceRenderer::create() {
   SliceRenderer r;
   r.animation_ubo_ = render::Buffer::immutable(sizeof(AnimationGpu), nullptr, true);
   r.wind_ubo_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
-  const std::vector<unsigned char> zeros(368, 0);  // SylvaShadows with shadows disabled
-  r.no_shadows_ubo_ = render::Buffer::immutable(zeros.size(), zeros.data());
+  r.no_shadows_ubo_ = render::make_disabled_shadow_block();
   r.empty_vao_ = render::VertexArray::create();
   r.leaf_displacement_ = render::Texture::create_2d(kDisplacementSize, kDisplacementSize, GL_RG8, 1);
   const std::vector<unsigned char> field = displacement_field();

@@ -171,10 +171,7 @@ Result<TreeRenderer> TreeRenderer::create() {
   TreeRenderer r;
   r.animation_ubo_ = render::Buffer::immutable(sizeof(AnimationGpu), nullptr, true);
   r.wind_ubo_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
-  // SylvaShadows (render/lib/shadows.glsl) is 4 mat4 + 6 vec4 + 1 ivec4 = 368 bytes; all zero means
-  // "disabled" (sylva_shadow returns 1).
-  const std::vector<unsigned char> zeros(368, 0);
-  r.no_shadows_ubo_ = render::Buffer::immutable(zeros.size(), zeros.data());
+  r.no_shadows_ubo_ = render::make_disabled_shadow_block();
   const AnimationGpu rest = rest_animation();
   const WindGpuParams calm{};
   r.set_frame(rest, calm);

@@ -89,14 +89,8 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   r->generator_ = std::move(generator);
   r->settings_ = settings;
   r->vao_ = render::VertexArray::create();
-  // SylvaShadows (render/lib/shadows.glsl) is 4 mat4 + 6 vec4 + 1 ivec4 = 368 bytes; all zero
-  // means "disabled" (sylva_shadow returns 1).
-  const std::vector<unsigned char> zeros(368, 0);
-  r->no_shadows_ubo_ = render::Buffer::immutable(zeros.size(), zeros.data());
-  // SylvaPointLights (render/lib/point_lights.glsl) is 3 x 16 vec4 + 1 ivec4 = 784 bytes; all
-  // zero means "no lights".
-  const std::vector<unsigned char> no_lights(784, 0);
-  r->no_point_lights_ubo_ = render::Buffer::immutable(no_lights.size(), no_lights.data());
+  r->no_shadows_ubo_ = render::make_disabled_shadow_block();
+  r->no_point_lights_ubo_ = render::make_empty_point_light_block();
   VoxelRenderer* self = r.get();
   r->caster_ = std::make_unique<render::CallbackShadowCaster>(
       [self](const render::ShadowCasterContext& c) { self->draw_shadow(c); });

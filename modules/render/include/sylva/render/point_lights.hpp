@@ -22,6 +22,10 @@
 namespace sylva::render {
 
 inline constexpr GLuint kPointLightBinding = 3;
+
+// A SylvaPointLights block holding no lights, sized from the std140 mirror PointLights uploads:
+// for shaders drawn where no host bound point lights.
+Buffer make_empty_point_light_block();
 inline constexpr int kMaxPointLights = 16;
 
 struct PointLightAttenuation {

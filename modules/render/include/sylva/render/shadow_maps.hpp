@@ -36,6 +36,10 @@
 namespace sylva::render {
 
 inline constexpr GLuint kShadowUniformBinding = 2;
+
+// A SylvaShadows block with shadows disabled (sylva_shadow returns 1), sized from the same std140
+// mirror ShadowMaps uploads: for receivers drawn where no host bound shadow maps.
+Buffer make_disabled_shadow_block();
 inline constexpr GLuint kShadowTextureUnit = 15;
 
 struct FrameContext;
