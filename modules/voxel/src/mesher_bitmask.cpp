@@ -75,39 +75,30 @@ void transpose_bits(std::uint64_t* a, int width) {
 }
 
 
-// Per-vertex AO of a whole row of faces as bit planes (Lysenko's rule, see mesher.hpp):
-// ao = (s1 && s2) ? 0 : 3 - (s1 + s2 + c), i.e. the two bits of ao are the complement of the
-// two bits of the count s1 + s2 + c (a full adder), with both sides set forcing 0.
-struct AoPlanes {
-  // lo/hi interleaved as in pack_ao: bit 2i of a face's AO byte is lo of corner i, bit 2i+1 hi.
-  alignas(16) std::uint64_t v[8];  // v[2i]: bit 0 of corner i's AO (pack_ao corner order), v[2i+1]: bit 1
-  std::uint64_t uniform;            // faces whose four corners have the same AO (the only ones that merge)
-};
-
-// The eight AO bits of the face at bit b as one pack_ao byte.
-inline std::uint32_t gather_ao(const AoPlanes& ao, int b) {
-#if defined(__SSE2__)
-  // Shift bit b of every plane to bit 63 and collect the sign bits, two planes per movemask.
-  const __m128i count = _mm_cvtsi32_si128(63 - b);
-  auto pair = [&](int i) {
-    const __m128i v = _mm_load_si128(reinterpret_cast<const __m128i*>(ao.v + 2 * i));
-    return static_cast<std::uint32_t>(_mm_movemask_pd(_mm_castsi128_pd(_mm_sll_epi64(v, count))));
-  };
-  return pair(0) | pair(1) << 2 | pair(2) << 4 | pair(3) << 6;
-#else
-  return static_cast<std::uint32_t>(((ao.v[0] >> b) & 1u) | ((ao.v[1] >> b) & 1u) << 1 |
-                                    ((ao.v[2] >> b) & 1u) << 2 | ((ao.v[3] >> b) & 1u) << 3 |
-                                    ((ao.v[4] >> b) & 1u) << 4 | ((ao.v[5] >> b) & 1u) << 5 |
-                                    ((ao.v[6] >> b) & 1u) << 6 | ((ao.v[7] >> b) & 1u) << 7);
-#endif
+// AO byte (pack_ao order) of a face from its 3 x 3 neighbourhood in the layer in front of it
+// (Lysenko's rule, see mesher.hpp): bit 3 * (dr + 1) + (db + 1) of the index is the opaque
+// neighbour at row offset dr and bit offset db. kUIsRow: the face's u axis runs along rows (+-Y
+// faces), otherwise along bits. Built at compile time from the same vertex formula as AoSampler.
+template <bool kUIsRow>
+constexpr std::array<std::uint8_t, 512> make_ao_table() {
+  std::array<std::uint8_t, 512> t{};
+  for (int nb = 0; nb < 512; ++nb) {
+    auto occ = [nb](int du, int dv) {
+      const int dr = kUIsRow ? du : dv;
+      const int db = kUIsRow ? dv : du;
+      return (nb >> (3 * (dr + 1) + (db + 1))) & 1;
+    };
+    auto vertex = [](int s1, int s2, int c) { return (s1 && s2) ? 0 : 3 - (s1 + s2 + c); };
+    const int a0 = vertex(occ(-1, 0), occ(0, -1), occ(-1, -1));  // (u0, v0)
+    const int a1 = vertex(occ(1, 0), occ(0, -1), occ(1, -1));    // (u1, v0)
+    const int a2 = vertex(occ(1, 0), occ(0, 1), occ(1, 1));      // (u1, v1)
+    const int a3 = vertex(occ(-1, 0), occ(0, 1), occ(-1, 1));    // (u0, v1)
+    t[static_cast<std::size_t>(nb)] = static_cast<std::uint8_t>(a0 | a1 << 2 | a2 << 4 | a3 << 6);
+  }
+  return t;
 }
-
-inline void ao_corner(std::uint64_t s1, std::uint64_t s2, std::uint64_t c, std::uint64_t& lo, std::uint64_t& hi) {
-  const std::uint64_t both = s1 & s2;
-  const std::uint64_t x = s1 ^ s2;
-  lo = ~(x ^ c) & ~both;
-  hi = ~(both | (c & x));
-}
+constexpr std::array<std::uint8_t, 512> kAoRowU = make_ao_table<true>();
+constexpr std::array<std::uint8_t, 512> kAoBitU = make_ao_table<false>();
 
 constexpr std::uint8_t kFlagAlpha = 1;     // alpha-cut block
 constexpr std::uint8_t kFlagSidesOnly = 2;  // no faces along y
@@ -137,18 +128,20 @@ class BitmaskMesher final : public Mesher {
                                             (alpha && palette.culls_same(id) ? kFlagCullSame : 0));
     }
     const BlockId* ids = blocks.ids.data();
-    mesh_face<0>(ids, render, out);
-    mesh_face<1>(ids, render, out);
-    mesh_face<2>(ids, render, out);
-    mesh_face<3>(ids, render, out);
-    mesh_face<4>(ids, render, out);
-    mesh_face<5>(ids, render, out);
+    // Faces on the chunk's edge rows read their padding neighbours straight from the ids.
+    const AoSampler edge_ao(blocks, palette.opaque_table());
+    mesh_face<0>(ids, render, edge_ao, out);
+    mesh_face<1>(ids, render, edge_ao, out);
+    mesh_face<2>(ids, render, edge_ao, out);
+    mesh_face<3>(ids, render, edge_ao, out);
+    mesh_face<4>(ids, render, edge_ao, out);
+    mesh_face<5>(ids, render, edge_ao, out);
   }
 
  private:
   // One face direction, specialised so the axis mapping is resolved at compile time.
   template <int F>
-  void mesh_face(const BlockId* ids, const std::uint8_t* render, ChunkMesh& out) {
+  void mesh_face(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao, ChunkMesh& out) {
     constexpr int kAxis = F >> 1;
     constexpr int kSign = (F & 1) ? -1 : 1;
     const int n = n_;
@@ -169,6 +162,12 @@ class BitmaskMesher final : public Mesher {
     const std::uint8_t* flags = flags_.data();
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
+    // AO neighbourhood table for this orientation, and the opaque masks of the layer's rows.
+    const std::uint8_t* ao_table = kAxis == 1 ? kAoRowU.data() : kAoBitU.data();
+    const std::uint64_t* lm = kAxis == 0 ? oy : ox;
+    const int row_step = kAxis == 2 ? p : 1;  // between rows r - 1, r, r + 1 in the mask array
+    // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
+    const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
       slot_count_ = 0;
       int last_slot = -1;
@@ -184,10 +183,13 @@ class BitmaskMesher final : public Mesher {
           faces = ax[idx2(r, s, p)] & ~ox[idx2(r, layer, p)];
         }
         if (!faces) continue;
-        // AO of the whole row as bit planes; rows with nothing opaque in front (open ground)
-        // skip it: every corner is open there.
-        AoPlanes ao;
-        const bool occluded = ao_on && ao_planes<F>(layer, r, p, ao);
+        // The opaque rows r - 1, r, r + 1 of the layer in front. With none of them opaque and no
+        // face on an edge bit, every corner of every face of the row is open (AO 3): open ground
+        // takes the run path below without any AO work.
+        const std::size_t lk = static_cast<std::size_t>(kAxis == 2 ? idx2(r, layer, p) : idx2(layer, r, p));
+        const std::uint64_t l0 = lm[lk - static_cast<std::size_t>(row_step)], l1 = lm[lk],
+                            l2 = lm[lk + static_cast<std::size_t>(row_step)];
+        const bool occluded = ao_on && ((l0 | l1 | l2) != 0 || (faces & edges) != 0);
         int x0, y0, z0;
         origin(F, s, r, 0, x0, y0, z0);
         const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
@@ -216,10 +218,12 @@ class BitmaskMesher final : public Mesher {
           }
           std::uint32_t aob = 0xffu;  // all four corners open
           if (occluded) {
-            if ((ao.uniform >> b) & 1u) {
-              aob = static_cast<std::uint32_t>(((ao.v[0] >> b) & 1u) | (((ao.v[1] >> b) & 1u) << 1)) * 0x55u;
+            if (b != 0 && b != n - 1) {
+              // Bits b - 1, b, b + 1 of the three rows index the AO table.
+              const int sh = b - 1;
+              aob = ao_table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
             } else {
-              aob = gather_ao(ao, b);
+              aob = edge_ao.face_bits(idx, F);
             }
           }
           if (ao_uniform(aob)) {
@@ -235,7 +239,7 @@ class BitmaskMesher final : public Mesher {
           // value (ex_ bit b: the block at b + 1 has the same id as the one at b), one slot
           // update per run instead of per face.
           const std::uint64_t same_next = ex[kAxis == 1 ? idx2(s, r, p) : idx2(r, s, p)];
-          std::uint64_t uni = occluded ? faces & ao.uniform : faces;
+          std::uint64_t uni = occluded ? 0 : faces;
           faces &= ~uni;
           while (uni) {
             const int b = std::countr_zero(uni);
@@ -245,14 +249,8 @@ class BitmaskMesher final : public Mesher {
               uni &= uni - 1;
               continue;
             }
-            std::uint64_t group = uni;
-            std::uint32_t aob = 0xffu;
-            if (occluded) {
-              const std::uint64_t l = (ao.v[0] >> b) & 1u, h = (ao.v[1] >> b) & 1u;
-              group &= ~(ao.v[0] ^ (std::uint64_t{0} - l)) & ~(ao.v[1] ^ (std::uint64_t{0} - h));
-              aob = static_cast<std::uint32_t>(l | h << 1) * 0x55u;
-            }
-            const int len = 1 + std::countr_one(((group >> 1) & same_next) >> b);
+            const std::uint32_t aob = 0xffu;
+            const int len = 1 + std::countr_one(((uni >> 1) & same_next) >> b);
             const std::uint64_t run = (len >= 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << len) - 1)) << b;
             uni &= ~run;
             add(pack_word1(self, F, aob), run);
@@ -395,50 +393,6 @@ class BitmaskMesher final : public Mesher {
       special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
       same |= static_cast<std::uint64_t>(row[x + 1] == row[x]) << x;
     }
-  }
-
-  // AO bit planes of the faces of row r from the opaque neighbours in front of them: rows r-1,
-  // r, r+1 of the layer, each shifted by -1, 0, +1 bit. Returns false when none is opaque (every
-  // corner open). Specialised per face so the row addressing and axis mapping fold to constants.
-  template <int F>
-  __attribute__((always_inline)) bool ao_planes(int layer, int r, int p, AoPlanes& out) const {
-    constexpr int kAxis = F >> 1;
-    // Rows r-1, r, r+1 of the layer are consecutive entries of the P x P mask array, except for
-    // +-Z faces (layer = z, rows = y), where they are P apart.
-    const int step = kAxis == 2 ? p : 1;
-    const std::size_t k = static_cast<std::size_t>(kAxis == 2 ? idx2(r, layer, p) : idx2(layer, r, p));
-    const std::uint64_t* m = kAxis == 0 ? oy_.data() : ox_.data();
-    const std::uint8_t* lo = kAxis == 0 ? ylo_.data() : xlo_.data();
-    const std::uint8_t* hi = kAxis == 0 ? yhi_.data() : xhi_.data();
-    // Locals, not members: the stores into `out` (also uint64_t) would otherwise force reloads.
-    const std::uint64_t full = full_;
-    const int top = n_ - 1;
-    const std::size_t k0 = k - static_cast<std::size_t>(step), k2 = k + static_cast<std::size_t>(step);
-    const std::uint64_t r0 = m[k0], r1 = m[k], r2 = m[k2];
-    const std::uint64_t l0 = lo[k0], l1 = lo[k], l2 = lo[k2];
-    const std::uint64_t h0 = hi[k0], h1 = hi[k], h2 = hi[k2];
-    // Every shifted neighbour mask is zero exactly when its row and end bits are.
-    if ((r0 | r1 | r2 | l0 | l1 | l2 | h0 | h1 | h2) == 0) return false;
-    // [dr + 1][db + 1]: neighbour at row offset dr, bit offset db (b - 1 / b / b + 1).
-    const std::uint64_t occ[3][3] = {{((r0 << 1) | l0) & full, r0, (r0 >> 1) | (h0 << top)},
-                                     {((r1 << 1) | l1) & full, r1, (r1 >> 1) | (h1 << top)},
-                                     {((r2 << 1) | l2) & full, r2, (r2 >> 1) | (h2 << top)}};
-    // (The centre occ[1][1] is the faces' own front neighbour, clear for every visible face.)
-    // Neighbour at face offsets (du, dv): for +-Y faces u runs along rows and v along bits,
-    // otherwise u along bits and v along rows.
-    constexpr bool kUIsRow = kAxis == 1;
-    auto at = [&occ](int du, int dv) { return kUIsRow ? occ[du + 1][dv + 1] : occ[dv + 1][du + 1]; };
-    const std::uint64_t mm = at(-1, -1), zm = at(0, -1), pm = at(1, -1), mz = at(-1, 0), pz = at(1, 0),
-                        mp = at(-1, 1), zp = at(0, 1), pp = at(1, 1);
-    std::uint64_t v0, v1, v2, v3, v4, v5, v6, v7;
-    ao_corner(mz, zm, mm, v0, v1);  // (u0, v0)
-    ao_corner(pz, zm, pm, v2, v3);  // (u1, v0)
-    ao_corner(pz, zp, pp, v4, v5);  // (u1, v1)
-    ao_corner(mz, zp, mp, v6, v7);  // (u0, v1)
-    out.uniform = ~((v0 ^ v2) | (v0 ^ v4) | (v0 ^ v6) | (v1 ^ v3) | (v1 ^ v5) | (v1 ^ v7));
-    out.v[0] = v0, out.v[1] = v1, out.v[2] = v2, out.v[3] = v3;
-    out.v[4] = v4, out.v[5] = v5, out.v[6] = v6, out.v[7] = v7;
-    return true;
   }
 
   // Block coordinates of bit b in row r of slice s for face f.
