@@ -11,6 +11,23 @@
 #define GRASS_COMMAND_BINDING 3
 #define GRASS_SPHERES_BINDING 4
 #define GRASS_WIND_UBO_BINDING 1
+#define GRASS_BATCHES_BINDING 6  // 5 is far.glsl's clumps
+
+// Members of the per-chunk command block written by cull.comp (std430; mirrored by CommandBlock
+// in src/grass_field.cpp). The first four are a DrawArraysIndirectCommand.
+#define GRASS_COMMAND_MEMBERS \
+  uint draw_count;         /* vertices (= visible blades; may exceed capacity, see overflow) */ \
+  uint instance_count;     /* 1 */ \
+  uint first_vertex;       /* 0 */ \
+  uint base_instance;      /* 0 */ \
+  uint considered;         /* blades tested */ \
+  uint culled_density; \
+  uint culled_distance; \
+  uint culled_frustum; \
+  uint culled_orientation; \
+  uint segments;           /* sum of tessellation segments of the visible blades */ \
+  uint capacity;           /* size of the visible list */ \
+  uint overflow;           /* blades dropped because the list was full (never expected) */
 
 struct Blade {
   vec4 v0;    // xyz root, w orientation [rad]

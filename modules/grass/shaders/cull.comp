@@ -1,7 +1,8 @@
 #version 450 core
 // grass/cull.comp: per-blade culling of the visible tiles (the GPU twin of cull_blade() in
 // src/culling.cpp). Survivors are appended to the visible list and counted into the indirect
-// draw command (one GL_PATCHES vertex per blade); culls are tallied by reason for statistics.
+// draw command (one GL_PATCHES vertex per blade; draw_batches.comp splits it into sub-draws);
+// culls are tallied by reason for statistics.
 #include "grass/blade.glsl"
 
 layout(local_size_x = 64) in;
@@ -9,20 +10,7 @@ layout(local_size_x = 64) in;
 layout(std430, binding = GRASS_BLADES_BINDING) readonly buffer Blades { Blade blades[]; };
 layout(std430, binding = GRASS_VISIBLE_BINDING) writeonly buffer Visible { uint visible[]; };
 layout(std430, binding = GRASS_JOBS_BINDING) readonly buffer Jobs { TileJob jobs[]; };
-layout(std430, binding = GRASS_COMMAND_BINDING) buffer Command {
-  uint draw_count;      // DrawArraysIndirectCommand: vertices (= visible blades)
-  uint instance_count;  // 1
-  uint first_vertex;    // 0
-  uint base_instance;   // 0
-  uint considered;      // blades tested
-  uint culled_density;
-  uint culled_distance;
-  uint culled_frustum;
-  uint culled_orientation;
-  uint segments;        // sum of tessellation segments of the visible blades
-  uint capacity;        // size of the visible list
-  uint overflow;        // blades dropped because the list was full (never expected)
-};
+layout(std430, binding = GRASS_COMMAND_BINDING) buffer Command { GRASS_COMMAND_MEMBERS };
 
 uniform vec4 u_planes[4];     // left, right, bottom, top (blade-set local)
 uniform vec3 u_camera;        // blade-set local

@@ -97,6 +97,14 @@ int tessellation_segments(const Blade& blade, const CullView& view, const CullSe
   return static_cast<int>(std::clamp(n, 1.0f, std::max(s.max_tess_level, 1.0f)));
 }
 
+std::uint32_t blades_per_draw(float max_tess_level) {
+  // The shaders clamp segments to max_tess_level and the tessellator rounds a fractional level
+  // up (equal_spacing) and caps it at GL_MAX_TESS_GEN_LEVEL (64 everywhere we run).
+  const float level = std::isfinite(max_tess_level) ? std::clamp(std::ceil(max_tess_level), 1.0f, 64.0f) : 64.0f;
+  const std::uint32_t vertices = 2u * (static_cast<std::uint32_t>(level) + 1u);
+  return std::max<std::uint32_t>(kTessVerticesPerDraw / vertices, 1u);
+}
+
 bool tile_visible(const GrassTile& tile, const CullView& view, const CullSettings& s) {
   const glm::vec3 nearest = glm::clamp(view.camera, tile.bounds_min, tile.bounds_max);
   if (!(glm::length(nearest - view.camera) < s.near_distance)) return false;

@@ -21,7 +21,7 @@ namespace sylva::grass {
 namespace {
 
 // Layout of the Command block of cull.comp (std430, 12 uints).
-struct CommandBlock {
+struct CommandBlock {  // GRASS_COMMAND_MEMBERS of shaders/blade.glsl
   std::uint32_t draw_count;
   std::uint32_t instance_count;
   std::uint32_t first_vertex;
@@ -37,11 +37,18 @@ struct CommandBlock {
 };
 static_assert(sizeof(CommandBlock) == 48);
 
+// DrawArraysIndirectCommand, as draw_batches.comp writes it.
+struct DrawCommand {
+  std::uint32_t count, instance_count, first, base_instance;
+};
+static_assert(sizeof(DrawCommand) == 16);
+
 constexpr GLuint kBladesBinding = 0;
 constexpr GLuint kVisibleBinding = 1;
 constexpr GLuint kJobsBinding = 2;
 constexpr GLuint kCommandBinding = 3;
 constexpr GLuint kSpheresBinding = 4;
+constexpr GLuint kBatchesBinding = 6;
 constexpr GLuint kWindUboBinding = 1;
 
 }  // namespace
@@ -94,10 +101,13 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
   if (!draw) return draw.error();
   auto depth = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade_depth.frag"});
   if (!depth) return depth.error();
+  auto batch = render::Program::create({"grass/draw_batches.comp"});
+  if (!batch) return batch.error();
   f.physics_ = std::move(*physics);
   f.cull_ = std::move(*cull);
   f.draw_ = std::move(*draw);
   f.depth_ = std::move(*depth);
+  f.batch_ = std::move(*batch);
 
   // Chunks: greedy runs of whole tiles in blade order (blades between tiles ride along).
   struct Range {
@@ -133,6 +143,7 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
     c.shadow_jobs = render::Buffer::dynamic(sizeof(TileJob));
     f.chunks_.push_back(std::move(c));
   }
+  f.allocate_draw_batches();
   f.tiles_ = std::move(blades.tiles);
   f.spheres_ = render::Buffer::immutable(kMaxColliders * sizeof(glm::vec4), nullptr, true);
   f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
@@ -264,8 +275,46 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
     c.command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
     glDispatchCompute(static_cast<GLuint>(c.job_list.size()), 1, 1);
   }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  for (Chunk& c : chunks_) {
+    c.batch_count = c.job_list.empty() ? 0 : write_draw_batches(c, c.command, c.batches);
+  }
   cull_query_.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+void GrassField::set_blades_per_draw(std::uint32_t blades) {
+  blades_per_draw_override_ = blades;
+  allocate_draw_batches();
+}
+
+std::uint32_t GrassField::blades_per_sub_draw() const {
+  return blades_per_draw_override_ > 0 ? blades_per_draw_override_ : blades_per_draw(settings_.cull.max_tess_level);
+}
+
+void GrassField::allocate_draw_batches() {
+  // Room for the most sub-draws any max_tess_level (at most 64 segments) or the override asks for.
+  const std::uint32_t smallest = blades_per_draw_override_ > 0 ? blades_per_draw_override_ : blades_per_draw(64.0f);
+  for (Chunk& c : chunks_) {
+    const std::size_t commands = (std::max<std::size_t>(c.blade_count, 1) + smallest - 1) / smallest;
+    c.batches = render::Buffer::immutable(commands * sizeof(DrawCommand), nullptr);
+    c.shadow_batches = render::Buffer::immutable(commands * sizeof(DrawCommand), nullptr);
+    c.batch_count = 0;
+    c.shadow_batch_count = 0;
+  }
+}
+
+std::uint32_t GrassField::write_draw_batches(const Chunk& chunk, const render::Buffer& command,
+                                             const render::Buffer& batches) const {
+  const std::uint32_t per_draw = blades_per_sub_draw();
+  const std::uint32_t count = (std::max<std::uint32_t>(chunk.blade_count, 1) + per_draw - 1) / per_draw;
+  batch_.use();
+  batch_.set("u_batch", per_draw);
+  batch_.set("u_batch_count", count);
+  command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
+  batches.bind_base(GL_SHADER_STORAGE_BUFFER, kBatchesBinding);
+  glDispatchCompute(1, 1, 1);
+  return count;
 }
 
 void GrassField::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
@@ -301,8 +350,8 @@ void GrassField::draw_blades(const render::Camera& camera, render::PassStats* st
     if (c.job_list.empty()) continue;
     c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
     c.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-    c.command.bind(GL_DRAW_INDIRECT_BUFFER);
-    glDrawArraysIndirect(GL_PATCHES, nullptr);
+    c.batches.bind(GL_DRAW_INDIRECT_BUFFER);
+    glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(c.batch_count), 0);
     if (stats) stats->draw_calls += 1;
   }
   draw_query_.end();
@@ -356,6 +405,10 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
     c.shadow_command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
     glDispatchCompute(static_cast<GLuint>(c.shadow_job_list.size()), 1, 1);
   }
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  for (Chunk& c : chunks_) {
+    c.shadow_batch_count = c.shadow_job_list.empty() ? 0 : write_draw_batches(c, c.shadow_command, c.shadow_batches);
+  }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
 
   set_blade_uniforms(depth_, cascade.relative_view_projection, camera);
@@ -367,8 +420,8 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
     const Chunk& c = chunks_[k];
     c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
     c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-    c.shadow_command.bind(GL_DRAW_INDIRECT_BUFFER);
-    glDrawArraysIndirect(GL_PATCHES, nullptr);
+    c.shadow_batches.bind(GL_DRAW_INDIRECT_BUFFER);
+    glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(c.shadow_batch_count), 0);
     if (stats) stats->draw_calls += 1;
   }
   glBindVertexArray(0);

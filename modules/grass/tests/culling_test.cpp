@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace sylva::grass {
@@ -235,6 +236,24 @@ TEST(GrassCulling, TessellationFollowsProjectedSize) {
     EXPECT_EQ(n, std::clamp(static_cast<int>(std::ceil(px / 5.0f)), 1, 8)) << d;
     prev = n;
   }
+}
+
+TEST(GrassCulling, SubDrawsStayUnderTheTessellatedVertexBudget) {
+  // Invariant: blades_per_draw(L) blades at the most segments L can produce (2 (ceil(L) + 1)
+  // vertices each, L capped at 64) never exceed kTessVerticesPerDraw, and a sub-draw holds at
+  // least one blade whatever the setting (0, negative, fractional, NaN, beyond 64).
+  for (const float level : {1.0f, 2.0f, 7.5f, 8.0f, 8.5f, 16.0f, 63.1f, 64.0f}) {
+    const std::uint32_t blades = blades_per_draw(level);
+    const std::uint32_t vertices = 2u * (static_cast<std::uint32_t>(std::ceil(level)) + 1u);
+    EXPECT_LE(std::uint64_t{blades} * vertices, kTessVerticesPerDraw) << level;
+    EXPECT_GT(std::uint64_t{blades + 1} * vertices, kTessVerticesPerDraw) << level << ": no needless extra draws";
+  }
+  EXPECT_EQ(blades_per_draw(8.0f), 1820u);  // the default max_tess_level
+  EXPECT_EQ(blades_per_draw(64.0f), 252u);
+  EXPECT_EQ(blades_per_draw(1.0e6f), blades_per_draw(64.0f));
+  EXPECT_EQ(blades_per_draw(std::numeric_limits<float>::quiet_NaN()), blades_per_draw(64.0f));
+  EXPECT_EQ(blades_per_draw(0.0f), blades_per_draw(1.0f));
+  EXPECT_EQ(blades_per_draw(-5.0f), blades_per_draw(1.0f));
 }
 
 }  // namespace

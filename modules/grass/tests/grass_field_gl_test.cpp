@@ -1,5 +1,6 @@
 // The GL renderer: physics.comp agrees with the CPU reference, cull.comp agrees with the CPU
-// culling formulas, culling keeps the image, grass on a sphere renders and keeps its invariants.
+// culling formulas, culling keeps the image, fine tessellation draws no streaks, grass on a sphere
+// renders and keeps its invariants.
 #include <sylva/core/image_metrics.hpp>
 #include <sylva/grass/generator.hpp>
 #include <sylva/grass/grass_field.hpp>
@@ -221,6 +222,44 @@ TEST_F(GrassFieldGl, SplitStorageIsTransparent) {
   ASSERT_FALSE(too_small.ok());
   EXPECT_EQ(too_small.error().code, ErrorCode::kLimit);
   EXPECT_NE(too_small.error().message.find("storage buffer"), std::string::npos) << too_small.error().message;
+}
+
+TEST_F(GrassFieldGl, FinelyTessellatedFieldDrawsNoStreaks) {
+  // A close, densely tessellated view (up to 64 segments per blade, hundreds of thousands of
+  // tessellated vertices): the production sub-draw size gives the same picture as tiny
+  // sub-draws of 32 blades. Mesa llvmpipe 22.3 joins vertices of unrelated blades into long
+  // streaks when one draw tessellates past 65,536 vertices (culling.hpp, blades_per_draw), so
+  // this fails if the sub-draws grow past that budget.
+  BladeSet set = make_meadow(60.0f);
+  const glm::dvec3 origin = set.origin;
+  GrassRenderSettings rs;
+  rs.simulate = false;
+  rs.cull.near_distance = 30.0f;
+  rs.cull.max_tess_level = 64.0f;
+  rs.cull.pixels_per_segment = 0.5f;
+  auto field = GrassField::create(std::move(set), rs);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  testing::GlScene scene = testing::GlScene::create(192, 108);
+  scene.camera.set_position(origin + glm::dvec3(-2.0, 1.2, 1.0));
+  scene.camera.look_at(origin + glm::dvec3(12.0, 0.0, -8.0));
+
+  const Image production = scene.render(*field);
+  const GrassFrameStats stats = field->read_frame_stats();
+  const double vertices = 2.0 * static_cast<double>(stats.counts.segments + stats.counts.visible);
+  std::printf("visible blades %llu, tessellated vertices %.0f (%.1f x the 65,536 llvmpipe breaks at), %u blades per "
+              "sub-draw\n", static_cast<unsigned long long>(stats.counts.visible), vertices, vertices / 65536.0,
+              blades_per_draw(rs.cull.max_tess_level));
+  EXPECT_GT(vertices, 3.0 * 65536.0) << "the view must tessellate far past one unsplit draw's budget";
+  testing::save_png(production, "grass_fine_tessellation");
+  EXPECT_GT(std::abs(image_mean(production) - 0.25), 0.01) << "the picture must show grass";
+
+  field->set_blades_per_draw(32);
+  const Image tiny = scene.render(*field);
+  testing::save_png(tiny, "grass_fine_tessellation_tiny_draws");
+  std::size_t differing = 0;
+  for (std::size_t i = 0; i < production.data().size(); ++i) differing += production.data()[i] != tiny.data()[i];
+  // Opaque blades under a depth test: draw order only matters on exact depth ties.
+  EXPECT_LE(static_cast<double>(differing), 1e-3 * static_cast<double>(production.data().size()));
 }
 
 TEST_F(GrassFieldGl, CameraColliderPushesBladesAside) {

@@ -67,6 +67,17 @@ CullResult cull_blade(const Blade& blade, const CullView& view, const CullSettin
 // Segments along the blade for the tessellator, >= 1.
 int tessellation_segments(const Blade& blade, const CullView& view, const CullSettings& settings);
 
+// Most blades (patches) one draw call may hold: kTessVerticesPerDraw / (2 (L + 1)) with
+// L = min(ceil(max_tess_level), 64), since a blade of n segments tessellates to 2 (n + 1)
+// vertices. Why: Mesa llvmpipe (22.3, the CI's GL) joins vertices of unrelated blades into long
+// streaks once one draw's tessellated output passes 65,536 vertices (measured on the default
+// scene at 960x540: 4,096 blades of <= 8 segments per draw streak in about one run of two,
+// 1,024 blades of <= 64 segments streak every run, 256 never). GrassField therefore splits each
+// chunk's blade draw into indirect sub-draws of this size (grass/draw_batches.comp writes them
+// from the cull count); kTessVerticesPerDraw is half the failing count, as margin. Result >= 1.
+inline constexpr std::uint32_t kTessVerticesPerDraw = 32768;
+std::uint32_t blades_per_draw(float max_tess_level);
+
 // Tile-level test (CPU, before any blade is looked at): the tile's box intersects the frustum
 // and its nearest point is closer than near_distance.
 bool tile_visible(const GrassTile& tile, const CullView& view, const CullSettings& settings);

@@ -6,8 +6,9 @@
 // was out of view catches up with one larger step when it comes back, which the unconditionally
 // stable integrator allows); grass/cull.comp culls blade by blade and appends the survivors to
 // an index list whose length is the count of an indirect draw command. draw(kOpaque) then issues
-// one glDrawArraysIndirect of GL_PATCHES (one vertex per blade) through blade.vert/.tesc/.tese/
-// .frag. The far field (billboards and ground layer of seed 003) is a separate drawable,
+// one indirect draw of GL_PATCHES (one vertex per blade) through blade.vert/.tesc/.tese/
+// .frag, split into sub-draws of blades_per_draw() blades (culling.hpp says why) by
+// grass/draw_batches.comp and issued as one glMultiDrawArraysIndirect per chunk. The far field (billboards and ground layer of seed 003) is a separate drawable,
 // far_field.hpp, fed by the same settings.
 //
 // Ownership: the field owns its GPU buffers and a copy of the tiles; the blade array is moved to
@@ -148,6 +149,11 @@ class GrassField : public render::Drawable {
   void update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind);
   void draw_blades(const render::Camera& camera, render::PassStats* stats = nullptr);
 
+  // Blades per sub-draw: 0 (default) = blades_per_draw(settings().cull.max_tess_level), the
+  // llvmpipe-safe size (culling.hpp); any other value is used as is (tests compare sizes; a
+  // driver without the limit could draw in fewer calls). Reallocates the command buffers.
+  void set_blades_per_draw(std::uint32_t blades);
+
   const glm::dvec3& origin() const { return origin_; }
   const std::vector<GrassTile>& tiles() const { return tiles_; }
   std::size_t blade_count() const { return blade_count_; }
@@ -182,13 +188,22 @@ class GrassField : public render::Drawable {
     render::Buffer blades;
     render::Buffer visible;        // colour pass
     render::Buffer command;
+    render::Buffer batches;        // sub-draw commands (draw_batches.comp)
+    std::uint32_t batch_count = 0;  // commands written into `batches` this frame
     render::Buffer jobs;
     std::vector<TileJob> job_list;
     render::Buffer shadow_visible;  // shadow pass (its own, so the colour list survives)
     render::Buffer shadow_command;
+    render::Buffer shadow_batches;
+    std::uint32_t shadow_batch_count = 0;
     render::Buffer shadow_jobs;
     std::vector<TileJob> shadow_job_list;  // per cascade; kept to reuse its capacity
   };
+  // Writes the sub-draw commands for `command`'s cull count into `batches` (after the cull
+  // pass; the caller issues the command barrier) and returns how many were written.
+  std::uint32_t blades_per_sub_draw() const;
+  void allocate_draw_batches();
+  std::uint32_t write_draw_batches(const Chunk& chunk, const render::Buffer& command, const render::Buffer& batches) const;
   void set_cull_uniforms(const render::Program& program, const CullView& view) const;
   void set_blade_uniforms(const render::Program& program, const glm::mat4& relative_view_projection,
                           const render::Camera& camera) const;
@@ -209,6 +224,8 @@ class GrassField : public render::Drawable {
   render::Program cull_;
   render::Program draw_;
   render::Program depth_;
+  render::Program batch_;
+  std::uint32_t blades_per_draw_override_ = 0;
   GrassShadowStats shadow_stats_;
   render::PassQuery sim_query_;
   render::PassQuery cull_query_;
