@@ -204,3 +204,82 @@ TEST(Mesher, WithoutAoAllMeshersAgreeAndMergeMore) {
 
 }  // namespace
 }  // namespace sylva::voxel
+
+namespace sylva::voxel {
+namespace {
+
+// The bitmask mesher reads a face's AO from a table indexed by the 3 x 3 opaque neighbourhood in
+// front of it (bits of three mask rows); faces on a chunk edge row read the padding blocks
+// instead. Every one of the 512 neighbourhoods, for every face direction, away from the edges and
+// on them, must give the reference AO (face_ao) and the same coverage as the other meshers.
+TEST(Mesher, BitmaskAoMatchesTheReferenceForEveryNeighbourhood) {
+  const auto& palette = testing::test_palette();
+  const BlockId stone = 1, dirt = 2;
+  for (int face = 0; face < 6; ++face) {
+    const int axis = face_axis(face);
+    const int sign = face_sign(face);
+    const int ua = (axis + 1) % 3, va = (axis + 2) % 3;
+    // 512 probes on a 4-block grid (3 x 3 neighbourhood plus a gap): 8 x 8 in the face plane,
+    // 8 deep along the axis; a 32^3 chunk puts the first and last probes of a row on its edges.
+    // The first and last probes along u and v sit on the chunk's edges (0 and 31), so their
+    // neighbourhoods reach into the padding ring (bit edges and row edges of the masks).
+    auto place = [](int i) { return i == 0 ? 0 : i == 7 ? 31 : 1 + 4 * i; };
+    auto probe = [&](int c, int pos[3]) {
+      pos[ua] = place(c & 7);
+      pos[va] = place((c >> 3) & 7);
+      pos[axis] = 1 + 4 * (c >> 6) + (sign < 0 ? 1 : 0);
+    };
+    PaddedBlocks b(32);
+    for (int c = 0; c < 512; ++c) {
+      int pos[3];
+      probe(c, pos);
+      b.set(pos[0], pos[1], pos[2], dirt);
+      for (int k = 0; k < 9; ++k) {
+        if (k == 4 || ((c >> (k < 4 ? k : k - 1)) & 1) == 0) continue;
+        int q[3] = {pos[0], pos[1], pos[2]};
+        q[axis] += sign;
+        q[ua] += k % 3 - 1;
+        q[va] += k / 3 - 1;
+        b.set(q[0], q[1], q[2], stone);
+      }
+    }
+    const FaceCoverage want = testing::reference_coverage(b, palette);
+    ChunkMesh mesh;
+    make_mesher(MesherKind::kBitmask)->mesh(b, palette, mesh);
+    expect_same_coverage(want, testing::coverage_of(mesh, 32), "neighbourhoods, face " + std::to_string(face));
+    // The probe faces themselves: each has its configuration's AO.
+    std::size_t checked = 0;
+    const auto got = testing::coverage_of(mesh, 32);
+    for (int c = 0; c < 512; ++c) {
+      int pos[3];
+      probe(c, pos);
+      std::uint8_t ao[4];
+      face_ao(b, palette, pos[0], pos[1], pos[2], face, ao);
+      const std::size_t k = got.index(pos[0], pos[1], pos[2], face);
+      ASSERT_EQ(got.count[k], 1) << "face " << face << " probe " << c;
+      EXPECT_EQ(got.ao[k], ao[0] | ao[1] << 2 | ao[2] << 4 | ao[3] << 6) << "face " << face << " probe " << c;
+      ++checked;
+    }
+    EXPECT_EQ(checked, 512u);
+  }
+}
+
+// Odd sizes and many seeds: the edge-row AO path (bits 0 and n - 1) and the run path.
+TEST(Mesher, BitmaskMatchesTheReferenceOnOddSizesAndManySeeds) {
+  const auto& palette = testing::test_palette();
+  for (int n : {2, 3, 31, 33, 63}) {
+    for (auto pattern : {Pattern::kRandom, Pattern::kTerrain, Pattern::kMixedAlpha}) {
+      for (std::uint64_t seed = 10; seed < (n > 40 ? 11u : 13u); ++seed) {
+        const PaddedBlocks blocks = testing::make_pattern(pattern, n, seed);
+        ChunkMesh mesh;
+        make_mesher(MesherKind::kBitmask)->mesh(blocks, palette, mesh);
+        expect_same_coverage(testing::reference_coverage(blocks, palette), testing::coverage_of(mesh, n),
+                             testing::to_string(pattern) + " n=" + std::to_string(n) + " seed " +
+                                 std::to_string(seed));
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sylva::voxel
