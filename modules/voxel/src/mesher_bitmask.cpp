@@ -154,18 +154,16 @@ class BitmaskMesher final : public Mesher {
     const int bit_stride = kAxis == 0 ? p * p : 1;
     // Raw pointers: stores into the output vectors would otherwise force reloads of every
     // member vector's data pointer inside the loops.
-    const std::uint64_t* ax = ax_.data();
-    const std::uint64_t* ox = ox_.data();
-    const std::uint64_t* ay = ay_.data();
-    const std::uint64_t* oy = oy_.data();
+    // Non-air masks of the slices and opaque masks of the layers in front, rows contiguous:
+    // +-X: bits y, rows z (ay_, oy_); +-Y: bits x, rows z (ax_, ox_); +-Z: bits x, rows y (az_, oz_).
+    const std::uint64_t* am = kAxis == 0 ? ay_.data() : kAxis == 1 ? ax_.data() : az_.data();
+    const std::uint64_t* lm = kAxis == 0 ? oy_.data() : kAxis == 1 ? ox_.data() : oz_.data();
     const std::uint64_t* ex = ex_.data();
     const std::uint8_t* flags = flags_.data();
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
     // AO neighbourhood table for this orientation, and the opaque masks of the layer's rows.
     const std::uint8_t* ao_table = kAxis == 1 ? kAoRowU.data() : kAoBitU.data();
-    const std::uint64_t* lm = kAxis == 0 ? oy : ox;
-    const int row_step = kAxis == 2 ? p : 1;  // between rows r - 1, r, r + 1 in the mask array
     // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
     const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
@@ -173,22 +171,17 @@ class BitmaskMesher final : public Mesher {
       int last_slot = -1;
       std::uint32_t last_key = 0;
       const int layer = s + kSign;  // the slice in front of the faces, in [-1, n]
-      for (int r = 0; r < n; ++r) {
-        std::uint64_t faces;
-        if constexpr (kAxis == 0) {
-          faces = ay[idx2(s, r, p)] & ~oy[idx2(layer, r, p)];
-        } else if constexpr (kAxis == 1) {
-          faces = ax[idx2(s, r, p)] & ~ox[idx2(layer, r, p)];
-        } else {
-          faces = ax[idx2(r, s, p)] & ~ox[idx2(r, layer, p)];
-        }
-        if (!faces) continue;
+      // Visible faces of every row of the slice, and the rows holding any (bit r), so the loop
+      // below visits only those.
+      const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
+      const std::uint64_t nonempty = face_rows(am + idx2(s, 0, p), lrows, n, face_rows_);
+      for (std::uint64_t rows_left = nonempty; rows_left; rows_left &= rows_left - 1) {
+        const int r = std::countr_zero(rows_left);
+        std::uint64_t faces = face_rows_[r];
         // The opaque rows r - 1, r, r + 1 of the layer in front. With none of them opaque and no
         // face on an edge bit, every corner of every face of the row is open (AO 3): open ground
         // takes the run path below without any AO work.
-        const std::size_t lk = static_cast<std::size_t>(kAxis == 2 ? idx2(r, layer, p) : idx2(layer, r, p));
-        const std::uint64_t l0 = lm[lk - static_cast<std::size_t>(row_step)], l1 = lm[lk],
-                            l2 = lm[lk + static_cast<std::size_t>(row_step)];
+        const std::uint64_t l0 = lrows[r - 1], l1 = lrows[r], l2 = lrows[r + 1];
         const bool occluded = ao_on && ((l0 | l1 | l2) != 0 || (faces & edges) != 0);
         int x0, y0, z0;
         origin(F, s, r, 0, x0, y0, z0);
@@ -266,6 +259,30 @@ class BitmaskMesher final : public Mesher {
     }
   }
 
+  // faces[r] = slice[r] & ~layer[r] for r in [0, n); returns the mask of rows with faces.
+  // Two rows per SSE2 operation.
+  static std::uint64_t face_rows(const std::uint64_t* slice, const std::uint64_t* layer, int n,
+                                 std::uint64_t* faces) {
+    std::uint64_t nonempty = 0;
+    int r = 0;
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    for (; r + 2 <= n; r += 2) {
+      const __m128i f = _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(layer + r)),
+                                         _mm_loadu_si128(reinterpret_cast<const __m128i*>(slice + r)));
+      _mm_store_si128(reinterpret_cast<__m128i*>(faces + r), f);
+      // Byte mask of zero bytes: 0xff per all-zero row half.
+      const auto z = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(f, zero)));
+      nonempty |= static_cast<std::uint64_t>(((z & 0xffu) != 0xffu) | ((z >> 8) != 0xffu) << 1) << r;
+    }
+#endif
+    for (; r < n; ++r) {
+      faces[r] = slice[r] & ~layer[r];
+      nonempty |= static_cast<std::uint64_t>(faces[r] != 0) << r;
+    }
+    return nonempty;
+  }
+
   // Index of padded (a, b) in [-1, n]^2 for the P x P mask arrays.
   // (p passed in: the member would be reloaded after every store into the uint64_t scratch.)
   static int idx2(int a, int b, int p) { return (a + 1) * p + (b + 1); }
@@ -275,13 +292,22 @@ class BitmaskMesher final : public Mesher {
     const int p = p_;
     const auto pp = static_cast<std::size_t>(p * p);
     // Every entry is written below (no clearing pass: it cost as much as a transpose).
-    for (auto* v : {&ax_, &ox_, &ay_, &oy_, &ex_}) v->resize(pp);
-    for (auto* v : {&xlo_, &xhi_, &ylo_, &yhi_}) v->resize(pp);
+    for (auto* v : {&ax_, &ox_, &az_, &oz_, &ay_, &oy_, &ex_}) v->resize(pp);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const BlockId* ids = blocks.ids.data();
     const BlockId first_special = palette.first_alpha_cut();
-    // Rows along x, indexed (y, z).
+    std::uint64_t* ax = ax_.data();
+    std::uint64_t* ox = ox_.data();
+    std::uint64_t* az = az_.data();
+    std::uint64_t* oz = oz_.data();
+    std::uint64_t* ex = ex_.data();
+    // The padding columns x = -1 and x = n along y (bit y), per padded z: the opaque masks of the
+    // +-X layers -1 and n, gathered here from the rows' end blocks.
+    std::uint64_t lo_col[66] = {};
+    std::uint64_t hi_col[66] = {};
+    // One pass over the ids, one padded row along x (index (y, z)) at a time.
     for (int yy = 0; yy < p; ++yy) {
+      const std::uint64_t ybit = yy >= 1 && yy <= n ? std::uint64_t{1} << (yy - 1) : 0;
       for (int zz = 0; zz < p; ++zz) {
         const BlockId* row = ids + static_cast<std::ptrdiff_t>(zz + p * yy) * p;
         const auto k = static_cast<std::size_t>(yy * p + zz);
@@ -289,75 +315,66 @@ class BitmaskMesher final : public Mesher {
         std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
         std::uint64_t same = 0;
         classify_row(row + 1, n, first_special, nonair, special, same);
-        ex_[k] = same;
         std::uint64_t alpha = 0;
         for (std::uint64_t m = special; m;) {
           const int b = std::countr_zero(m);
           m &= m - 1;
           if (!opaque[row[1 + b]]) alpha |= std::uint64_t{1} << b;
         }
-        ax_[k] = nonair;
-        ox_[k] = nonair & ~alpha;
-        xlo_[k] = opaque[row[0]];
-        xhi_[k] = opaque[row[n + 1]];
+        const std::uint64_t solid = nonair & ~alpha;
+        ex[k] = same;
+        ax[k] = nonair;
+        ox[k] = solid;
+        // The same masks indexed (z, y), so +-Z slices read their rows contiguously too.
+        const auto kz = static_cast<std::size_t>(zz * p + yy);
+        az[kz] = nonair;
+        oz[kz] = solid;
+        lo_col[zz] |= opaque[row[0]] ? ybit : 0;
+        hi_col[zz] |= opaque[row[n + 1]] ? ybit : 0;
       }
     }
     // Columns along y for interior x: transpose each z-slab of the x rows (rows y in [0, n)).
     const int width = n <= 32 ? 32 : 64;
-    std::uint64_t a[64];
-    std::uint64_t o[64];
+    alignas(16) std::uint64_t a[64];
+    alignas(16) std::uint64_t o[64];
+    std::uint64_t* ay = ay_.data();
+    std::uint64_t* oy = oy_.data();
     for (int zz = 0; zz < p; ++zz) {
-      std::fill(a, a + 64, 0);
-      std::fill(o, o + 64, 0);
+      // Rows y of slab zz are az[zz][1 .. n], contiguous.
+      const std::uint64_t* sa = az + static_cast<std::size_t>(zz * p + 1);
+      const std::uint64_t* so = oz + static_cast<std::size_t>(zz * p + 1);
       std::uint64_t any = 0;
-      bool same = true;  // opaque == non-air (no alpha-cut block in the slab): one transpose
+      std::uint64_t diff = 0;  // opaque == non-air (no alpha-cut block in the slab): one transpose
       for (int y = 0; y < n; ++y) {
-        a[y] = ax_[static_cast<std::size_t>((y + 1) * p + zz)];
-        o[y] = ox_[static_cast<std::size_t>((y + 1) * p + zz)];
-        any |= a[y];
-        same = same && a[y] == o[y];
+        any |= sa[y];
+        diff |= sa[y] ^ so[y];
       }
       if (any) {
+        std::copy(sa, sa + n, a);
+        std::fill(a + n, a + width, 0);
         transpose_bits(a, width);
-        if (same) {
-          std::copy(a, a + 64, o);
+        if (diff == 0) {
+          for (int x = 0; x < n; ++x) {
+            ay[(x + 1) * p + zz] = a[x];
+            oy[(x + 1) * p + zz] = a[x];
+          }
         } else {
+          std::copy(so, so + n, o);
+          std::fill(o + n, o + width, 0);
           transpose_bits(o, width);
-        }
-        for (int x = 0; x < n; ++x) {
-          ay_[static_cast<std::size_t>((x + 1) * p + zz)] = a[x];
-          oy_[static_cast<std::size_t>((x + 1) * p + zz)] = o[x];
+          for (int x = 0; x < n; ++x) {
+            ay[(x + 1) * p + zz] = a[x];
+            oy[(x + 1) * p + zz] = o[x];
+          }
         }
       } else {
         for (int x = 0; x < n; ++x) {
-          ay_[static_cast<std::size_t>((x + 1) * p + zz)] = 0;
-          oy_[static_cast<std::size_t>((x + 1) * p + zz)] = 0;
+          ay[(x + 1) * p + zz] = 0;
+          oy[(x + 1) * p + zz] = 0;
         }
       }
-      // Padding columns x = -1 and x = n come from the rows' end bits.
-      std::uint64_t lo = 0, hi = 0;
-      for (int y = 0; y < n; ++y) {
-        lo |= static_cast<std::uint64_t>(xlo_[static_cast<std::size_t>((y + 1) * p + zz)]) << y;
-        hi |= static_cast<std::uint64_t>(xhi_[static_cast<std::size_t>((y + 1) * p + zz)]) << y;
-      }
-      oy_[static_cast<std::size_t>(zz)] = lo;
-      oy_[static_cast<std::size_t>((n + 1) * p + zz)] = hi;
-      // Column end bits (y = -1 and y = n) for every padded x.
-      const auto bottom = static_cast<std::size_t>(zz);              // row y = -1
-      const auto top = static_cast<std::size_t>((n + 1) * p + zz);    // row y = n
-      for (int xx = 0; xx < p; ++xx) {
-        const auto c = static_cast<std::size_t>(xx * p + zz);
-        if (xx == 0) {
-          ylo_[c] = xlo_[bottom];
-          yhi_[c] = xlo_[top];
-        } else if (xx == n + 1) {
-          ylo_[c] = xhi_[bottom];
-          yhi_[c] = xhi_[top];
-        } else {
-          ylo_[c] = static_cast<std::uint8_t>((ox_[bottom] >> (xx - 1)) & 1u);
-          yhi_[c] = static_cast<std::uint8_t>((ox_[top] >> (xx - 1)) & 1u);
-        }
-      }
+      oy[zz] = lo_col[zz];
+      oy[(n + 1) * p + zz] = hi_col[zz];
     }
   }
 
@@ -452,12 +469,14 @@ class BitmaskMesher final : public Mesher {
   int n_ = 0;
   int p_ = 0;
   std::uint64_t full_ = 0;
-  std::vector<std::uint64_t> ax_, ox_, ay_, oy_;
-  std::vector<std::uint64_t> ex_;  // per x row: bit x set when block x + 1 has the same id
-  std::vector<std::uint8_t> xlo_, xhi_, ylo_, yhi_;
+  // Non-air / opaque masks over the padded P x P rows: bits along x indexed (y, z) (ax_, ox_)
+  // and the same indexed (z, y) (az_, oz_); bits along y indexed (x, z) (ay_, oy_).
+  std::vector<std::uint64_t> ax_, ox_, az_, oz_, ay_, oy_;
+  std::vector<std::uint64_t> ex_;  // per x row (y, z): bit x set when block x + 1 has the same id
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> rows_;
   std::vector<std::uint64_t> used_;
+  alignas(16) std::uint64_t face_rows_[64];
   std::vector<std::uint8_t> flags_;   // per block: kFlag* bits  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;
 };
