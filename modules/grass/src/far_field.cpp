@@ -95,13 +95,9 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
   const Rect area = maps.rect();
   if (area.empty()) return set;
   const double t = field.tile_size;
-  const auto x0 = static_cast<std::int64_t>(std::floor(area.min.x / t));
-  const auto x1 = static_cast<std::int64_t>(std::ceil(area.max.x / t));
-  const auto z0 = static_cast<std::int64_t>(std::floor(area.min.y / t));
-  const auto z1 = static_cast<std::int64_t>(std::ceil(area.max.y / t));
-  if ((x1 - x0) * (z1 - z0) > 4000000) {
-    return make_error(ErrorCode::kLimit, fmt::format("grass.field.tile_size: {} m makes more than 4 million tiles", t));
-  }
+  const Result<TileRange> range = tiles_overlapping(area, t);
+  if (!range.ok()) return range.error();
+  const auto [x0, x1, z0, z1] = *range;
   const double expected = maps.density_integral(area) * far.clumps_per_m2;
   if (expected > static_cast<double>(kMaxBlades)) {
     return make_error(ErrorCode::kLimit, fmt::format("grass.far.clumps_per_m2: {:.0f} clumps is above the limit {}", expected, kMaxBlades));

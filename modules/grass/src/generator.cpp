@@ -123,6 +123,20 @@ double BladeSet::expected_total() const {
   return sum;
 }
 
+Result<TileRange> tiles_overlapping(const Rect& area, double tile_size) {
+  TileRange r;
+  r.x0 = static_cast<std::int64_t>(std::floor(area.min.x / tile_size));
+  r.x1 = static_cast<std::int64_t>(std::ceil(area.max.x / tile_size));
+  r.z0 = static_cast<std::int64_t>(std::floor(area.min.y / tile_size));
+  r.z1 = static_cast<std::int64_t>(std::ceil(area.max.y / tile_size));
+  const std::int64_t nx = r.x1 - r.x0, nz = r.z1 - r.z0;
+  if (nx > 1000000 || nz > 1000000 || nx * nz > 4000000) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.field.tile_size: {} m makes {} x {} tiles, more than 4 million",
+                                                     tile_size, nx, nz));
+  }
+  return r;
+}
+
 double tile_expected_blades(const GrassFieldSettings& field, const GrassMaps& maps, TileKey key) {
   return maps.density_integral(tile_rect(field, key)) * static_cast<double>(field.density);
 }
@@ -234,15 +248,9 @@ Result<BladeSet> generate_blades(const GrassFieldSettings& field, const BladeSet
   BladeSet set;
   set.origin = origin;
   if (area.empty()) return set;
-  const double t = field.tile_size;
-  const auto x0 = static_cast<std::int64_t>(std::floor(area.min.x / t));
-  const auto x1 = static_cast<std::int64_t>(std::ceil(area.max.x / t));
-  const auto z0 = static_cast<std::int64_t>(std::floor(area.min.y / t));
-  const auto z1 = static_cast<std::int64_t>(std::ceil(area.max.y / t));
-  if (x1 - x0 > 1000000 || z1 - z0 > 1000000 || (x1 - x0) * (z1 - z0) > 4000000) {
-    return make_error(ErrorCode::kLimit, fmt::format("grass.field.tile_size: {} m makes {} x {} tiles, more than 4 million",
-                                                     t, x1 - x0, z1 - z0));
-  }
+  const Result<TileRange> range = tiles_overlapping(area, field.tile_size);
+  if (!range.ok()) return range.error();
+  const auto [x0, x1, z0, z1] = *range;
   // Count first so a typo in density fails fast instead of allocating gigabytes.
   double expected = 0.0;
   for (std::int64_t z = z0; z < z1; ++z) {

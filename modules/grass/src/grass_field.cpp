@@ -135,12 +135,11 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
                                             : std::span<const Blade>(&dummy, 1);  // GL wants non-empty buffers
     c.blades = render::Buffer::immutable(data, true);
     const std::size_t list_bytes = std::max<std::size_t>(c.blade_count, 1) * sizeof(std::uint32_t);
-    c.visible = render::Buffer::immutable(list_bytes, nullptr);
-    c.shadow_visible = render::Buffer::immutable(list_bytes, nullptr);
-    c.command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
-    c.shadow_command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
-    c.jobs = render::Buffer::dynamic(sizeof(TileJob));
-    c.shadow_jobs = render::Buffer::dynamic(sizeof(TileJob));
+    for (PassLists* pass : {&c.colour, &c.shadow}) {
+      pass->visible = render::Buffer::immutable(list_bytes, nullptr);
+      pass->command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
+      pass->jobs = render::Buffer::dynamic(sizeof(TileJob));
+    }
     f.chunks_.push_back(std::move(c));
   }
   f.allocate_draw_batches();
@@ -203,7 +202,7 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   ppr_ = view_.pixels_per_radian;
 
   // Tiles: frustum + near_distance on the CPU.
-  for (Chunk& c : chunks_) c.job_list.clear();
+  for (Chunk& c : chunks_) c.colour.job_list.clear();
   blades_in_culled_tiles_ = 0;
   job_count_ = 0;
   const bool sane_time = std::isfinite(time);
@@ -221,17 +220,11 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
       tile_sim_time_[i] = time;
     }
     Chunk& c = chunks_[tile_chunk_[i]];
-    c.job_list.push_back({t.first - c.first_blade, t.count, tile_dt, settings_.simulate ? 1u : 0u});
+    c.colour.job_list.push_back({t.first - c.first_blade, t.count, tile_dt, settings_.simulate ? 1u : 0u});
     ++job_count_;
   }
 
-  for (Chunk& c : chunks_) {
-    CommandBlock reset{};
-    reset.instance_count = 1;
-    reset.capacity = c.blade_count;
-    c.command.update(0, sizeof(reset), &reset);
-    if (!c.job_list.empty()) c.jobs.upload(std::span<const TileJob>(c.job_list));
-  }
+  reset_pass(&Chunk::colour);
   if (job_count_ == 0) return;
   spheres_.bind_base(GL_SHADER_STORAGE_BUFFER, kSpheresBinding);
 
@@ -252,10 +245,10 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
     sim_query_.begin(frame_);
     physics_.use();
     for (const Chunk& c : chunks_) {
-      if (c.job_list.empty()) continue;
+      if (c.colour.job_list.empty()) continue;
       c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-      c.jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
-      glDispatchCompute(static_cast<GLuint>(c.job_list.size()), 1, 1);
+      c.colour.jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
+      glDispatchCompute(static_cast<GLuint>(c.colour.job_list.size()), 1, 1);
     }
     sim_query_.end();
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
@@ -266,21 +259,60 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   cull_.set("u_forward", view_.forward);
   cull_.set("u_orientation", glm::vec2(cs.orientation_threshold, cs.orientation_max_px));
   cull_query_.begin(frame_);
+  cull_chunks(&Chunk::colour);
+  cull_query_.end();
+}
+
+void GrassField::reset_pass(PassLists Chunk::*lists) {
+  for (Chunk& c : chunks_) {
+    PassLists& pass = c.*lists;
+    CommandBlock reset{};
+    reset.instance_count = 1;
+    reset.capacity = c.blade_count;
+    pass.command.update(0, sizeof(reset), &reset);
+    pass.batch_count = 0;
+    if (!pass.job_list.empty()) pass.jobs.upload(std::span<const TileJob>(pass.job_list));
+  }
+}
+
+void GrassField::cull_chunks(PassLists Chunk::*lists) {
   cull_.use();
   for (const Chunk& c : chunks_) {
-    if (c.job_list.empty()) continue;
+    const PassLists& pass = c.*lists;
+    if (pass.job_list.empty()) continue;
     c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-    c.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-    c.jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
-    c.command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
-    glDispatchCompute(static_cast<GLuint>(c.job_list.size()), 1, 1);
+    pass.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
+    pass.jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
+    pass.command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
+    glDispatchCompute(static_cast<GLuint>(pass.job_list.size()), 1, 1);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  // Sub-draws of at most blades_per_sub_draw() blades each (culling.hpp, blades_per_draw).
+  const std::uint32_t per_draw = blades_per_sub_draw();
+  batch_.use();
+  batch_.set("u_batch", per_draw);
   for (Chunk& c : chunks_) {
-    c.batch_count = c.job_list.empty() ? 0 : write_draw_batches(c, c.command, c.batches);
+    PassLists& pass = c.*lists;
+    if (pass.job_list.empty()) continue;
+    pass.batch_count = (std::max<std::uint32_t>(c.blade_count, 1) + per_draw - 1) / per_draw;
+    batch_.set("u_batch_count", pass.batch_count);
+    pass.command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
+    pass.batches.bind_base(GL_SHADER_STORAGE_BUFFER, kBatchesBinding);
+    glDispatchCompute(1, 1, 1);
   }
-  cull_query_.end();
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+void GrassField::draw_chunks(PassLists Chunk::*lists, render::PassStats* stats) const {
+  for (const Chunk& c : chunks_) {
+    const PassLists& pass = c.*lists;
+    if (pass.batch_count == 0) continue;
+    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
+    pass.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
+    pass.batches.bind(GL_DRAW_INDIRECT_BUFFER);
+    glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(pass.batch_count), 0);
+    if (stats) stats->draw_calls += 1;
+  }
 }
 
 void GrassField::set_blades_per_draw(std::uint32_t blades) {
@@ -297,24 +329,11 @@ void GrassField::allocate_draw_batches() {
   const std::uint32_t smallest = blades_per_draw_override_ > 0 ? blades_per_draw_override_ : blades_per_draw(64.0f);
   for (Chunk& c : chunks_) {
     const std::size_t commands = (std::max<std::size_t>(c.blade_count, 1) + smallest - 1) / smallest;
-    c.batches = render::Buffer::immutable(commands * sizeof(DrawCommand), nullptr);
-    c.shadow_batches = render::Buffer::immutable(commands * sizeof(DrawCommand), nullptr);
-    c.batch_count = 0;
-    c.shadow_batch_count = 0;
+    for (PassLists* pass : {&c.colour, &c.shadow}) {
+      pass->batches = render::Buffer::immutable(commands * sizeof(DrawCommand), nullptr);
+      pass->batch_count = 0;
+    }
   }
-}
-
-std::uint32_t GrassField::write_draw_batches(const Chunk& chunk, const render::Buffer& command,
-                                             const render::Buffer& batches) const {
-  const std::uint32_t per_draw = blades_per_sub_draw();
-  const std::uint32_t count = (std::max<std::uint32_t>(chunk.blade_count, 1) + per_draw - 1) / per_draw;
-  batch_.use();
-  batch_.set("u_batch", per_draw);
-  batch_.set("u_batch_count", count);
-  command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
-  batches.bind_base(GL_SHADER_STORAGE_BUFFER, kBatchesBinding);
-  glDispatchCompute(1, 1, 1);
-  return count;
 }
 
 void GrassField::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
@@ -346,14 +365,7 @@ void GrassField::draw_blades(const render::Camera& camera, render::PassStats* st
   draw_.use();
   glPatchParameteri(GL_PATCH_VERTICES, 1);
   draw_query_.begin(frame_);
-  for (const Chunk& c : chunks_) {
-    if (c.job_list.empty()) continue;
-    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-    c.visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-    c.batches.bind(GL_DRAW_INDIRECT_BUFFER);
-    glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(c.batch_count), 0);
-    if (stats) stats->draw_calls += 1;
-  }
+  draw_chunks(&Chunk::colour, stats);
   draw_query_.end();
   glBindVertexArray(0);
 }
@@ -372,12 +384,12 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   CullSettings reach = cs;
   reach.near_distance = std::min(cs.near_distance, settings_.shadow_distance);
   std::size_t jobs = 0;
-  for (Chunk& c : chunks_) c.shadow_job_list.clear();
+  for (Chunk& c : chunks_) c.shadow.job_list.clear();
   for (std::size_t i = 0; i < tiles_.size(); ++i) {
     const GrassTile& t = tiles_[i];
     if (t.count == 0 || !tile_visible(t, light, reach)) continue;
     Chunk& c = chunks_[tile_chunk_[i]];
-    c.shadow_job_list.push_back({t.first - c.first_blade, t.count, 0.0f, 0u});
+    c.shadow.job_list.push_back({t.first - c.first_blade, t.count, 0.0f, 0u});
     shadow_stats_.considered += t.count;
     ++jobs;
   }
@@ -390,40 +402,14 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   set_cull_planes(cull_, light.planes);
   cull_.set("u_forward", glm::vec3(0.0f));
   cull_.set("u_cull", glm::vec4(cs.density_scale, cs.width_compensation, 1.0f, 0.0f));
-  cull_.use();
-  for (std::size_t k = 0; k < chunks_.size(); ++k) {
-    Chunk& c = chunks_[k];
-    CommandBlock reset{};
-    reset.instance_count = 1;
-    reset.capacity = c.blade_count;
-    c.shadow_command.update(0, sizeof(reset), &reset);
-    if (c.shadow_job_list.empty()) continue;
-    c.shadow_jobs.upload(std::span<const TileJob>(c.shadow_job_list));
-    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-    c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-    c.shadow_jobs.bind_base(GL_SHADER_STORAGE_BUFFER, kJobsBinding);
-    c.shadow_command.bind_base(GL_SHADER_STORAGE_BUFFER, kCommandBinding);
-    glDispatchCompute(static_cast<GLuint>(c.shadow_job_list.size()), 1, 1);
-  }
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-  for (Chunk& c : chunks_) {
-    c.shadow_batch_count = c.shadow_job_list.empty() ? 0 : write_draw_batches(c, c.shadow_command, c.shadow_batches);
-  }
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+  reset_pass(&Chunk::shadow);
+  cull_chunks(&Chunk::shadow);
 
   set_blade_uniforms(depth_, cascade.relative_view_projection, camera);
   vao_.bind();
   depth_.use();
   glPatchParameteri(GL_PATCH_VERTICES, 1);
-  for (std::size_t k = 0; k < chunks_.size(); ++k) {
-    if (chunks_[k].shadow_job_list.empty()) continue;
-    const Chunk& c = chunks_[k];
-    c.blades.bind_base(GL_SHADER_STORAGE_BUFFER, kBladesBinding);
-    c.shadow_visible.bind_base(GL_SHADER_STORAGE_BUFFER, kVisibleBinding);
-    c.shadow_batches.bind(GL_DRAW_INDIRECT_BUFFER);
-    glMultiDrawArraysIndirect(GL_PATCHES, nullptr, static_cast<GLsizei>(c.shadow_batch_count), 0);
-    if (stats) stats->draw_calls += 1;
-  }
+  draw_chunks(&Chunk::shadow, stats);
   glBindVertexArray(0);
 }
 
@@ -446,7 +432,7 @@ GrassFrameStats GrassField::read_frame_stats() const {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   for (const Chunk& ch : chunks_) {
     CommandBlock c{};
-    ch.command.read(0, sizeof(c), &c);
+    ch.colour.command.read(0, sizeof(c), &c);
     s.counts.considered += c.considered;
     s.counts.visible += std::min<std::uint64_t>(c.draw_count, c.capacity);
     s.counts.density += c.culled_density;

@@ -243,5 +243,22 @@ TEST(GrassGenerator, BadInputGivesClearErrors) {
   EXPECT_NE(e.error().message.find("not finite"), std::string::npos);
 }
 
+TEST(GrassGenerator, TilesOverlappingCoverTheAreaAndCapTheCount) {
+  // Tiles of 2 m over [-3, 5) x [0.5, 4]: x tiles -2..2, z tiles 0..1 (half-open ranges).
+  const TileRange r = tiles_overlapping({{-3.0, 0.5}, {5.0, 4.0}}, 2.0).value();
+  EXPECT_EQ(r.x0, -2);
+  EXPECT_EQ(r.x1, 3);
+  EXPECT_EQ(r.z0, 0);
+  EXPECT_EQ(r.z1, 2);
+  // 4 million tiles is the cap; one side alone may not pass a million (the product would
+  // overflow long before the area does).
+  EXPECT_TRUE(tiles_overlapping({{0.0, 0.0}, {2000.0, 2000.0}}, 1.0).ok());
+  const auto too_many = tiles_overlapping({{0.0, 0.0}, {2001.0, 2000.0}}, 1.0);
+  ASSERT_FALSE(too_many.ok());
+  EXPECT_EQ(too_many.error().code, ErrorCode::kLimit);
+  EXPECT_NE(too_many.error().message.find("grass.field.tile_size"), std::string::npos) << too_many.error().message;
+  EXPECT_FALSE(tiles_overlapping({{0.0, 0.0}, {1.0e7, 0.5}}, 1.0).ok());
+}
+
 }  // namespace
 }  // namespace sylva::grass

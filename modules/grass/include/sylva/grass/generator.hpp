@@ -65,6 +65,13 @@ struct BladeSet {
 // Hard cap on the blades of one field, so a typo in density cannot exhaust memory.
 inline constexpr std::size_t kMaxBlades = std::size_t{1} << 25;  // 33.5 million (3.2 GB)
 
+// The world tiles [x0, x1) x [z0, z1) of a grid of `tile_size` m that overlap `area`.
+// kLimit (naming grass.field.tile_size) for more than 4 million tiles or 1 million along a side.
+struct TileRange {
+  std::int64_t x0 = 0, x1 = 0, z0 = 0, z1 = 0;
+};
+Result<TileRange> tiles_overlapping(const Rect& area, double tile_size);
+
 // The ideal (real-valued) and the generated blade count of one height-field tile.
 double tile_expected_blades(const GrassFieldSettings& field, const GrassMaps& maps, TileKey key);
 std::uint32_t tile_blade_count(const GrassFieldSettings& field, const GrassMaps& maps, TileKey key);

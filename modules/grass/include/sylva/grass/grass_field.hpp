@@ -180,30 +180,34 @@ class GrassField : public render::Drawable {
     float dt;
     std::uint32_t flags;
   };
+  // One pass's culling state of a chunk (the colour and the shadow pass each have their own,
+  // so the colour list survives the shadow pass).
+  struct PassLists {
+    std::vector<TileJob> job_list;  // visible tiles; kept to reuse its capacity
+    render::Buffer jobs;            // job_list on the GPU
+    render::Buffer visible;         // indices of the blades that survived cull.comp
+    render::Buffer command;         // CommandBlock: cull count and statistics
+    render::Buffer batches;         // sub-draw commands (draw_batches.comp)
+    std::uint32_t batch_count = 0;  // commands written into `batches` this frame
+  };
   // One storage buffer's worth of blades: a contiguous blade range [first_blade, + blade_count)
   // holding whole tiles. Visible lists and draw commands are per chunk and per pass.
   struct Chunk {
     std::uint32_t first_blade = 0;
     std::uint32_t blade_count = 0;
     render::Buffer blades;
-    render::Buffer visible;        // colour pass
-    render::Buffer command;
-    render::Buffer batches;        // sub-draw commands (draw_batches.comp)
-    std::uint32_t batch_count = 0;  // commands written into `batches` this frame
-    render::Buffer jobs;
-    std::vector<TileJob> job_list;
-    render::Buffer shadow_visible;  // shadow pass (its own, so the colour list survives)
-    render::Buffer shadow_command;
-    render::Buffer shadow_batches;
-    std::uint32_t shadow_batch_count = 0;
-    render::Buffer shadow_jobs;
-    std::vector<TileJob> shadow_job_list;  // per cascade; kept to reuse its capacity
+    PassLists colour;
+    PassLists shadow;
   };
-  // Writes the sub-draw commands for `command`'s cull count into `batches` (after the cull
-  // pass; the caller issues the command barrier) and returns how many were written.
   std::uint32_t blades_per_sub_draw() const;
   void allocate_draw_batches();
-  std::uint32_t write_draw_batches(const Chunk& chunk, const render::Buffer& command, const render::Buffer& batches) const;
+  // Resets every chunk's command block of the pass and uploads its job list.
+  void reset_pass(PassLists Chunk::*lists);
+  // Runs cull.comp over every chunk with jobs (the caller set the cull uniforms), then
+  // draw_batches.comp, with the barriers the indirect draw needs.
+  void cull_chunks(PassLists Chunk::*lists);
+  // Draws every chunk's sub-draws with the bound blade program.
+  void draw_chunks(PassLists Chunk::*lists, render::PassStats* stats) const;
   void set_cull_uniforms(const render::Program& program, const CullView& view) const;
   void set_blade_uniforms(const render::Program& program, const glm::mat4& relative_view_projection,
                           const render::Camera& camera) const;
