@@ -152,76 +152,51 @@ float sylva_noise3(vec3 p, uint seed) { return sylva_noise3(ivec3(0), p, seed); 
 
 uint sylva_octave_seed(uint seed, int octave) { return sylva_hash(uint(octave), seed); }
 
-// fBm in [-1, 1]; the same parameters as sylva::FbmSettings (octaves clamped to [1, 16]).
-float sylva_fbm2(vec2 p, int octaves, float persistence, float lacunarity, float frequency, uint seed) {
-  vec2 q = p * frequency;
-  float sum = 0.0;
-  float amp = 1.0;
-  float norm = 0.0;
-  int n = clamp(octaves, 1, 16);
-  for (int k = 0; k < n; ++k) {
-    sum += amp * sylva_noise2(q, sylva_octave_seed(seed, k));
-    norm += abs(amp);
-    amp *= persistence;
-    q *= lacunarity;
-  }
-  return sum / norm;
-}
+// The octave loops are written once for vec2 and vec3 (GLSL has no templates): VEC is the
+// coordinate type, NOISE the gradient noise of that dimension.
 
-float sylva_fbm3(vec3 p, int octaves, float persistence, float lacunarity, float frequency, uint seed) {
-  vec3 q = p * frequency;
-  float sum = 0.0;
-  float amp = 1.0;
-  float norm = 0.0;
-  int n = clamp(octaves, 1, 16);
-  for (int k = 0; k < n; ++k) {
-    sum += amp * sylva_noise3(q, sylva_octave_seed(seed, k));
-    norm += abs(amp);
-    amp *= persistence;
-    q *= lacunarity;
+// fBm in [-1, 1]; the same parameters as sylva::FbmSettings (octaves clamped to [1, 16]).
+#define SYLVA_DEFINE_FBM(NAME, VEC, NOISE)                                                     \
+  float NAME(VEC p, int octaves, float persistence, float lacunarity, float frequency, uint seed) { \
+    VEC q = p * frequency;                                                                     \
+    float sum = 0.0;                                                                           \
+    float amp = 1.0;                                                                           \
+    float norm = 0.0;                                                                          \
+    int n = clamp(octaves, 1, 16);                                                             \
+    for (int k = 0; k < n; ++k) {                                                              \
+      sum += amp * NOISE(q, sylva_octave_seed(seed, k));                                       \
+      norm += abs(amp);                                                                        \
+      amp *= persistence;                                                                      \
+      q *= lacunarity;                                                                         \
+    }                                                                                          \
+    return sum / norm;                                                                         \
   }
-  return sum / norm;
-}
 
 // Ridged fBm in [0, 1] (see sylva::ridged2 for the weighting).
-float sylva_ridged2(vec2 p, int octaves, float persistence, float lacunarity, float frequency, uint seed,
-                    float ridge_gain) {
-  vec2 q = p * frequency;
-  float sum = 0.0;
-  float amp = 1.0;
-  float norm = 0.0;
-  float weight = 1.0;
-  int n = clamp(octaves, 1, 16);
-  for (int k = 0; k < n; ++k) {
-    float r = 1.0 - abs(sylva_noise2(q, sylva_octave_seed(seed, k)));
-    r = r * r * weight;
-    sum += amp * r;
-    norm += abs(amp);
-    weight = clamp(r * ridge_gain, 0.0, 1.0);
-    amp *= persistence;
-    q *= lacunarity;
+#define SYLVA_DEFINE_RIDGED(NAME, VEC, NOISE)                                                  \
+  float NAME(VEC p, int octaves, float persistence, float lacunarity, float frequency, uint seed, \
+             float ridge_gain) {                                                               \
+    VEC q = p * frequency;                                                                     \
+    float sum = 0.0;                                                                           \
+    float amp = 1.0;                                                                           \
+    float norm = 0.0;                                                                          \
+    float weight = 1.0;                                                                        \
+    int n = clamp(octaves, 1, 16);                                                             \
+    for (int k = 0; k < n; ++k) {                                                              \
+      float r = 1.0 - abs(NOISE(q, sylva_octave_seed(seed, k)));                               \
+      r = r * r * weight;                                                                      \
+      sum += amp * r;                                                                          \
+      norm += abs(amp);                                                                        \
+      weight = clamp(r * ridge_gain, 0.0, 1.0);                                                \
+      amp *= persistence;                                                                      \
+      q *= lacunarity;                                                                         \
+    }                                                                                          \
+    return sum / norm;                                                                         \
   }
-  return sum / norm;
-}
 
-float sylva_ridged3(vec3 p, int octaves, float persistence, float lacunarity, float frequency, uint seed,
-                    float ridge_gain) {
-  vec3 q = p * frequency;
-  float sum = 0.0;
-  float amp = 1.0;
-  float norm = 0.0;
-  float weight = 1.0;
-  int n = clamp(octaves, 1, 16);
-  for (int k = 0; k < n; ++k) {
-    float r = 1.0 - abs(sylva_noise3(q, sylva_octave_seed(seed, k)));
-    r = r * r * weight;
-    sum += amp * r;
-    norm += abs(amp);
-    weight = clamp(r * ridge_gain, 0.0, 1.0);
-    amp *= persistence;
-    q *= lacunarity;
-  }
-  return sum / norm;
-}
+SYLVA_DEFINE_FBM(sylva_fbm2, vec2, sylva_noise2)
+SYLVA_DEFINE_FBM(sylva_fbm3, vec3, sylva_noise3)
+SYLVA_DEFINE_RIDGED(sylva_ridged2, vec2, sylva_noise2)
+SYLVA_DEFINE_RIDGED(sylva_ridged3, vec3, sylva_noise3)
 
 #endif  // SYLVA_RENDER_NOISE_GLSL
