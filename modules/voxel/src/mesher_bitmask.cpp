@@ -128,20 +128,23 @@ class BitmaskMesher final : public Mesher {
                                             (alpha && palette.culls_same(id) ? kFlagCullSame : 0));
     }
     const BlockId* ids = blocks.ids.data();
+    count_[0] = count_[1] = 0;
     // Faces on the chunk's edge rows read their padding neighbours straight from the ids.
     const AoSampler edge_ao(blocks, palette.opaque_table());
-    mesh_face<0>(ids, render, edge_ao, out);
-    mesh_face<1>(ids, render, edge_ao, out);
-    mesh_face<2>(ids, render, edge_ao, out);
-    mesh_face<3>(ids, render, edge_ao, out);
-    mesh_face<4>(ids, render, edge_ao, out);
-    mesh_face<5>(ids, render, edge_ao, out);
+    mesh_face<0>(ids, render, edge_ao);
+    mesh_face<1>(ids, render, edge_ao);
+    mesh_face<2>(ids, render, edge_ao);
+    mesh_face<3>(ids, render, edge_ao);
+    mesh_face<4>(ids, render, edge_ao);
+    mesh_face<5>(ids, render, edge_ao);
+    out.opaque.assign(quads_[0].data(), quads_[0].data() + count_[0]);
+    out.alpha_cut.assign(quads_[1].data(), quads_[1].data() + count_[1]);
   }
 
  private:
   // One face direction, specialised so the axis mapping is resolved at compile time.
   template <int F>
-  void mesh_face(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao, ChunkMesh& out) {
+  void mesh_face(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao) {
     constexpr int kAxis = F >> 1;
     constexpr int kSign = (F & 1) ? -1 : 1;
     const int n = n_;
@@ -152,13 +155,13 @@ class BitmaskMesher final : public Mesher {
     // Stride between consecutive bits of a row, in the padded id array: bits run along y for
     // +-X faces and along x otherwise.
     const int bit_stride = kAxis == 0 ? p * p : 1;
+    constexpr int kBitShift = kAxis == 0 ? 6 : 0;  // PackedQuad word0 shift of the bit axis
     // Raw pointers: stores into the output vectors would otherwise force reloads of every
     // member vector's data pointer inside the loops.
     // Non-air masks of the slices and opaque masks of the layers in front, rows contiguous:
     // +-X: bits y, rows z (ay_, oy_); +-Y: bits x, rows z (ax_, ox_); +-Z: bits x, rows y (az_, oz_).
     const std::uint64_t* am = kAxis == 0 ? ay_.data() : kAxis == 1 ? ax_.data() : az_.data();
     const std::uint64_t* lm = kAxis == 0 ? oy_.data() : kAxis == 1 ? ox_.data() : oz_.data();
-    const std::uint64_t* ex = ex_.data();
     const std::uint8_t* flags = flags_.data();
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
@@ -167,6 +170,14 @@ class BitmaskMesher final : public Mesher {
     // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
     const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
+      // Quads are written through raw pointers into scratch arrays with room for a whole slice
+      // (at most n^2 quads: each covers at least one of the slice's n^2 unit faces).
+      PackedQuad* dst[2];
+      for (int list = 0; list < 2; ++list) {
+        const std::size_t need = count_[list] + static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+        if (quads_[list].size() < need) quads_[list].resize(std::max(need, 2 * quads_[list].size()));
+        dst[list] = quads_[list].data() + count_[list];
+      }
       slot_count_ = 0;
       int last_slot = -1;
       std::uint32_t last_key = 0;
@@ -186,6 +197,8 @@ class BitmaskMesher final : public Mesher {
         int x0, y0, z0;
         origin(F, s, r, 0, x0, y0, z0);
         const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
+        // word0 of the unit quad at bit 0; bit b adds b to its y (+-X) or x coordinate.
+        const std::uint32_t row_word0 = pack_word0(x0, y0, z0, 1, 1);
         std::uint64_t* slot_row = nullptr;
         // Adds the faces `bits` (one block, one uniform AO value) to the slot of `key`.
         auto add = [&](std::uint32_t key, std::uint64_t bits) __attribute__((always_inline)) {
@@ -199,8 +212,10 @@ class BitmaskMesher final : public Mesher {
           }
           *slot_row |= bits;
         };
-        // One face at bit b: special blocks, AO gathered per corner.
-        auto one = [&](int b) __attribute__((always_inline)) {
+        // One face at bit b: special blocks; AO open (kOpen), from the neighbourhood table
+        // (kTable) or, for faces on an edge bit, from the padding blocks (kEdge).
+        enum Ao { kOpen, kTable, kEdge };
+        auto one = [&](int b, Ao mode) __attribute__((always_inline)) {
           const int idx = row_base + b * bit_stride;
           const BlockId self = ids[idx];
           const std::uint8_t f = flags[self];
@@ -210,35 +225,32 @@ class BitmaskMesher final : public Mesher {
             if ((f & kFlagCullSame) && ids[idx + front] == self) return;
           }
           std::uint32_t aob = 0xffu;  // all four corners open
-          if (occluded) {
-            if (b != 0 && b != n - 1) {
-              // Bits b - 1, b, b + 1 of the three rows index the AO table.
-              const int sh = b - 1;
-              aob = ao_table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
-            } else {
-              aob = edge_ao.face_bits(idx, F);
-            }
+          if (mode == kTable) {
+            // Bits b - 1, b, b + 1 of the three rows index the AO table (b is not an edge bit).
+            const int sh = b - 1;
+            aob = ao_table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
+          } else if (mode == kEdge) {
+            aob = edge_ao.face_bits(idx, F);
           }
           if (ao_uniform(aob)) {
             add(pack_word1(self, F, aob), std::uint64_t{1} << b);
           } else {
-            int x, y, z;
-            origin(F, s, r, b, x, y, z);
-            (alpha ? out.alpha_cut : out.opaque).push_back(PackedQuad{pack_word0(x, y, z, 1, 1), pack_word1(self, F, aob)});
+            *dst[alpha]++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(self, F, aob)};
           }
         };
         if constexpr (kAxis != 0) {
           // Bits run along x here: faces with uniform AO go in runs of one block id and one AO
-          // value (ex_ bit b: the block at b + 1 has the same id as the one at b), one slot
+          // value (same_next bit b: the block at b + 1 has the same id as the one at b), one slot
           // update per run instead of per face.
-          const std::uint64_t same_next = ex[kAxis == 1 ? idx2(s, r, p) : idx2(r, s, p)];
+          // (A single face is a run of one: no need to compare the row's ids.)
+          const std::uint64_t same_next = (faces & (faces - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           std::uint64_t uni = occluded ? 0 : faces;
           faces &= ~uni;
           while (uni) {
             const int b = std::countr_zero(uni);
             const BlockId self = ids[row_base + b];
             if (flags[self] & kSpecial) {
-              one(b);
+              one(b, kOpen);
               uni &= uni - 1;
               continue;
             }
@@ -249,13 +261,31 @@ class BitmaskMesher final : public Mesher {
             add(pack_word1(self, F, aob), run);
           }
         }
-        while (faces) {
-          const int b = std::countr_zero(faces);
-          faces &= faces - 1;
-          one(b);
+        if (occluded) {
+          std::uint64_t edge_faces = faces & edges;
+          faces &= ~edges;
+          while (faces) {
+            const int b = std::countr_zero(faces);
+            faces &= faces - 1;
+            one(b, kTable);
+          }
+          while (edge_faces) {
+            const int b = std::countr_zero(edge_faces);
+            edge_faces &= edge_faces - 1;
+            one(b, kEdge);
+          }
+        } else {
+          while (faces) {
+            const int b = std::countr_zero(faces);
+            faces &= faces - 1;
+            one(b, kOpen);
+          }
         }
       }
-      for (int k = 0; k < slot_count_; ++k) merge_slot(k, F, s, render, out);
+      for (int k = 0; k < slot_count_; ++k) merge_slot(k, F, s, render, dst);
+      for (int list = 0; list < 2; ++list) {
+        count_[list] = static_cast<std::size_t>(dst[list] - quads_[list].data());
+      }
     }
   }
 
@@ -267,14 +297,18 @@ class BitmaskMesher final : public Mesher {
     int r = 0;
 #if defined(__SSE2__)
     const __m128i zero = _mm_setzero_si128();
+    std::uint64_t empty = 0;  // bit r: row r has no face
     for (; r + 2 <= n; r += 2) {
       const __m128i f = _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(layer + r)),
                                          _mm_loadu_si128(reinterpret_cast<const __m128i*>(slice + r)));
       _mm_store_si128(reinterpret_cast<__m128i*>(faces + r), f);
-      // Byte mask of zero bytes: 0xff per all-zero row half.
-      const auto z = static_cast<unsigned>(_mm_movemask_epi8(_mm_cmpeq_epi8(f, zero)));
-      nonempty |= static_cast<std::uint64_t>(((z & 0xffu) != 0xffu) | ((z >> 8) != 0xffu) << 1) << r;
+      // A 64-bit row is zero when both of its 32-bit halves are: AND the halves' compare masks,
+      // then one sign bit per row.
+      const __m128i z = _mm_cmpeq_epi32(f, zero);
+      const __m128i zz = _mm_and_si128(z, _mm_shuffle_epi32(z, _MM_SHUFFLE(2, 3, 0, 1)));
+      empty |= static_cast<std::uint64_t>(_mm_movemask_pd(_mm_castsi128_pd(zz))) << r;
     }
+    nonempty = ~empty & (r == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << r) - 1);
 #endif
     for (; r < n; ++r) {
       faces[r] = slice[r] & ~layer[r];
@@ -292,7 +326,7 @@ class BitmaskMesher final : public Mesher {
     const int p = p_;
     const auto pp = static_cast<std::size_t>(p * p);
     // Every entry is written below (no clearing pass: it cost as much as a transpose).
-    for (auto* v : {&ax_, &ox_, &az_, &oz_, &ay_, &oy_, &ex_}) v->resize(pp);
+    for (auto* v : {&ax_, &ox_, &az_, &oz_, &ay_, &oy_}) v->resize(pp);
     const std::uint8_t* opaque = palette.opaque_table().data();
     const BlockId* ids = blocks.ids.data();
     const BlockId first_special = palette.first_alpha_cut();
@@ -300,7 +334,6 @@ class BitmaskMesher final : public Mesher {
     std::uint64_t* ox = ox_.data();
     std::uint64_t* az = az_.data();
     std::uint64_t* oz = oz_.data();
-    std::uint64_t* ex = ex_.data();
     // The padding columns x = -1 and x = n along y (bit y), per padded z: the opaque masks of the
     // +-X layers -1 and n, gathered here from the rows' end blocks.
     std::uint64_t lo_col[66] = {};
@@ -313,8 +346,7 @@ class BitmaskMesher final : public Mesher {
         const auto k = static_cast<std::size_t>(yy * p + zz);
         std::uint64_t nonair = 0;
         std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
-        std::uint64_t same = 0;
-        classify_row(row + 1, n, first_special, nonair, special, same);
+        classify_row(row + 1, n, first_special, nonair, special);
         std::uint64_t alpha = 0;
         for (std::uint64_t m = special; m;) {
           const int b = std::countr_zero(m);
@@ -322,7 +354,6 @@ class BitmaskMesher final : public Mesher {
           if (!opaque[row[1 + b]]) alpha |= std::uint64_t{1} << b;
         }
         const std::uint64_t solid = nonair & ~alpha;
-        ex[k] = same;
         ax[k] = nonair;
         ox[k] = solid;
         // The same masks indexed (z, y), so +-Z slices read their rows contiguously too.
@@ -378,39 +409,51 @@ class BitmaskMesher final : public Mesher {
     }
   }
 
-  // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special;
-  // same: bit x set when row[x + 1] == row[x] (row[n] is the padding block, readable).
+  // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special.
   static void classify_row(const BlockId* row, int n, BlockId first_special, std::uint64_t& nonair,
-                           std::uint64_t& special, std::uint64_t& same) {
+                           std::uint64_t& special) {
     int x = 0;
 #if defined(__SSE2__)
     {
       const __m128i zero = _mm_setzero_si128();
-      const int limit_id = std::min<int>(first_special, 0x8000) - 1;
-      const __m128i limit = _mm_set1_epi16(static_cast<short>(limit_id));
+      // v - (first_special - 1), saturated at 0, is zero exactly for the ids below first_special.
+      const __m128i limit = _mm_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
       for (; x + 16 <= n; x += 16) {
         const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
         const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
         const int air = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero)));
-        // Ids >= 0x8000 compare as negative: they are caught as "special" through the sign.
-        const __m128i s0 = _mm_or_si128(_mm_cmpgt_epi16(v0, limit), _mm_cmplt_epi16(v0, zero));
-        const __m128i s1 = _mm_or_si128(_mm_cmpgt_epi16(v1, limit), _mm_cmplt_epi16(v1, zero));
-        const int spec = _mm_movemask_epi8(_mm_packs_epi16(s0, s1));
-        const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
-        const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
-        const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
+        const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
+        const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
+        const int ordinary = _mm_movemask_epi8(_mm_packs_epi16(s0, s1));
         nonair |= static_cast<std::uint64_t>(~air & 0xffff) << x;
-        special |= static_cast<std::uint64_t>(spec & 0xffff) << x;
-        same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
+        special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << x;
       }
     }
 #endif
     for (; x < n; ++x) {
       nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
       special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
-      same |= static_cast<std::uint64_t>(row[x + 1] == row[x]) << x;
     }
   }
+
+  // Bit x set when row[x + 1] == row[x], x in [0, n) (row[n] is the padding block, readable).
+  static std::uint64_t same_next_mask(const BlockId* row, int n) {
+    std::uint64_t same = 0;
+    int x = 0;
+#if defined(__SSE2__)
+    for (; x + 16 <= n; x += 16) {
+      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
+      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
+      const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
+      const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
+      const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
+      same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
+    }
+#endif
+    for (; x < n; ++x) same |= static_cast<std::uint64_t>(row[x + 1] == row[x]) << x;
+    return same;
+  }
+
 
   // Block coordinates of bit b in row r of slice s for face f.
   static void origin(int f, int s, int r, int b, int& x, int& y, int& z) {
@@ -435,13 +478,13 @@ class BitmaskMesher final : public Mesher {
     return k;
   }
 
-  void merge_slot(int k, int f, int s, const std::uint8_t* render, ChunkMesh& out) {
+  void merge_slot(int k, int f, int s, const std::uint8_t* render, PackedQuad* (&dst)[2]) {
     const int n = n_;
     std::uint64_t* rows = rows_.data() + static_cast<std::size_t>(k) * 64;
     const std::uint32_t key = keys_[static_cast<std::size_t>(k)];
     const std::uint64_t used_rows = std::exchange(used_[static_cast<std::size_t>(k)], 0);
     const auto block = static_cast<BlockId>(key & 0xffffu);
-    auto& list = render[block] == static_cast<std::uint8_t>(RenderClass::kAlphaCut) ? out.alpha_cut : out.opaque;
+    PackedQuad*& list = dst[render[block] == static_cast<std::uint8_t>(RenderClass::kAlphaCut) ? 1 : 0];
     const bool rows_are_u = (f >> 1) == 1;  // +-Y: rows run along u (z), bits along v (x)
     // Only the rows that received a face (a slot of a slice usually touches a few).
     for (std::uint64_t used = used_rows; used; used &= used - 1) {
@@ -460,7 +503,7 @@ class BitmaskMesher final : public Mesher {
         origin(f, s, r, b, x, y, z);
         const int du = rows_are_u ? h : w;
         const int dv = rows_are_u ? w : h;
-        list.push_back(PackedQuad{pack_word0(x, y, z, du, dv), key});
+        *list++ = PackedQuad{pack_word0(x, y, z, du, dv), key};
       }
     }
   }
@@ -472,11 +515,13 @@ class BitmaskMesher final : public Mesher {
   // Non-air / opaque masks over the padded P x P rows: bits along x indexed (y, z) (ax_, ox_)
   // and the same indexed (z, y) (az_, oz_); bits along y indexed (x, z) (ay_, oy_).
   std::vector<std::uint64_t> ax_, ox_, az_, oz_, ay_, oy_;
-  std::vector<std::uint64_t> ex_;  // per x row (y, z): bit x set when block x + 1 has the same id
   std::vector<std::uint32_t> keys_;
   std::vector<std::uint64_t> rows_;
   std::vector<std::uint64_t> used_;
   alignas(16) std::uint64_t face_rows_[64];
+  // Output scratch (opaque, alpha-cut), copied into the ChunkMesh at the end of mesh().
+  std::vector<PackedQuad> quads_[2];
+  std::size_t count_[2] = {0, 0};
   std::vector<std::uint8_t> flags_;   // per block: kFlag* bits  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;
 };
