@@ -1,5 +1,7 @@
 #include "ground_target.hpp"
 
+#include "frame_finish.hpp"
+
 #include <sylva/core/timer.hpp>
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/camera.hpp>
@@ -159,18 +161,7 @@ class GroundTarget final : public BenchTarget {
     ground.triangles = index_count_ / 3;
     profiler_.add_cpu_counts("opaque", ground);
 
-    profiler_.begin("sky");
-    sky_.draw(camera, lighting, input.time);
-    profiler_.end("sky");
-    profiler_.add_cpu_counts("sky", render::PassStats{.draw_calls = 1});
-    profiler_.end_frame();
-    out.cpu_ms = cpu.elapsed_ms();
-
-    const std::optional<render::FrameStats> stats = profiler_.flush();
-    if (!stats) return make_error(ErrorCode::kGl, "builtin:ground: the frame's GPU queries returned no result");
-    out.gpu_ms = stats->gpu_ms;
-    out.counts = sum_pass_counts(stats->passes);
-    return {};
+    return finish_sky_frame(profiler_, sky_, camera, lighting, input.time, cpu, "builtin:ground", out);
   }
 
   std::vector<std::string> modules() const override { return {"render"}; }

@@ -159,6 +159,22 @@ TEST_F(SceneGl, FrameLoopMeasuresEveryModulePerPass) {
   EXPECT_GT(rmse(*image, *debug_image).value(), 0.01);
 }
 
+TEST_F(SceneGl, FlatGroundIsNotSnow) {
+  // A flat floor (the "on flat ground" scenes) has no relief for a snow line: it renders as the
+  // grass material, not the half-snow blend a zero height range used to give.
+  auto scene = make_scene(R"({"ground": {"resolution": 33, "size": 200, "generator": "flat"},
+                              "camera": {"position": [0, 10, 0], "pitch_deg": -60}})");
+  ASSERT_TRUE(scene);
+  Target t = make_target(64, 36);
+  run_frames(*scene, t, scene->make_camera(scene->document().camera, t.size), 1);
+  auto image = render::read_color(t.fb);
+  ASSERT_TRUE(image.ok());
+  const float r = image->at(32, 30, 0), g = image->at(32, 30, 1), b = image->at(32, 30, 2);
+  EXPECT_GT(g, r) << "grass green, not snow white";
+  EXPECT_GT(g, b);
+  EXPECT_LT(b, 0.5f * g);
+}
+
 // Invariant: a map edit rebuilds exactly the chunks whose samples or normals it changes.
 TEST_F(SceneGl, GroundEditRebuildsOnlyTouchedChunks) {
   auto scene = make_scene(kGround);

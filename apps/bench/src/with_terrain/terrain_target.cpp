@@ -1,5 +1,7 @@
 #include "with_terrain/terrain_target.hpp"
 
+#include "frame_finish.hpp"
+
 #include <sylva/core/params_json.hpp>
 #include <sylva/core/timer.hpp>
 #include <sylva/render/buffer.hpp>
@@ -232,17 +234,7 @@ class TerrainTarget final : public BenchTarget {
     profiler_.add_cpu_counts("opaque", render::PassStats{.triangles = mesh.triangles(),
                                                          .draw_calls = mesh.positions.empty() ? 0u : 1u,
                                                          .instances = selection.stats.chunks});
-    profiler_.begin("sky");
-    sky_.draw(camera, lighting, input.time);
-    profiler_.end("sky");
-    profiler_.add_cpu_counts("sky", render::PassStats{.draw_calls = 1});
-    profiler_.end_frame();
-    out.cpu_ms = cpu.elapsed_ms();
-
-    const std::optional<render::FrameStats> stats = profiler_.flush();
-    if (!stats) return make_error(ErrorCode::kGl, "builtin:terrain: the frame's GPU queries returned no result");
-    out.gpu_ms = stats->gpu_ms;
-    out.counts = sum_pass_counts(stats->passes);
+    SYLVA_TRY(finish_sky_frame(profiler_, sky_, camera, lighting, input.time, cpu, "builtin:terrain", out));
     for (std::size_t level = 0; level < selection.stats.chunks_per_level.size(); ++level) {
       out.counts.lod_instances[fmt::format("terrain.level{}", level)] = selection.stats.chunks_per_level[level];
     }

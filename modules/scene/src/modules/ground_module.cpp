@@ -22,6 +22,17 @@ void register_scene_shaders();  // generated from modules/scene/shaders
 namespace sylva::scene::detail {
 namespace {
 
+// The height where ground.frag starts blending to snow. It blends over +-kSnowBlend metres
+// around the line, so a ground with less relief than the blend band (a flat floor) would be
+// half snow everywhere: it gets none (unless snow_fraction is 0, snow everywhere).
+float snow_line(float lowest, float highest, float snow_fraction) {
+  constexpr float kSnowBlend = 10.0f;  // ground.frag's smoothstep half-width [m]
+  constexpr float kNever = 1.0e9f;
+  if (snow_fraction <= 0.0f) return -kNever;
+  if (snow_fraction >= 1.0f || highest - lowest < 2.0f * kSnowBlend) return kNever;
+  return lowest + snow_fraction * (highest - lowest);
+}
+
 struct GroundModuleSettings {
   HeightSourceSettings source;
   int chunk_quads = 32;        // quads per chunk side: the unit of culling and of rebuilds
@@ -121,7 +132,7 @@ class GroundDrawable final : public render::Drawable {
     program_.set("u_view_projection", frame.camera.view_projection());
     program_.set("u_model", frame.camera.relative_model(glm::dvec3(field_->origin().x, 0.0, field_->origin().y)));
     program_.set("u_origin_height", 0.0f);
-    program_.set("u_snow_line", lo + settings_->snow_fraction * (hi - lo) + (settings_->snow_fraction >= 1.0f ? 1e9f : 0.0f));
+    program_.set("u_snow_line", snow_line(lo, hi, settings_->snow_fraction));
     vao_.bind();
     glEnable(GL_CULL_FACE);
     const bool tint = debug_ && debug_->lod_colors;
