@@ -156,6 +156,9 @@ class BitmaskMesher final : public Mesher {
     // +-X faces and along x otherwise.
     const int bit_stride = kAxis == 0 ? p * p : 1;
     constexpr int kBitShift = kAxis == 0 ? 6 : 0;  // PackedQuad word0 shift of the bit axis
+    // Rows run along z (+-X, +-Y faces) or y (+-Z faces): their id stride and word0 shift.
+    const int row_ids = kAxis == 2 ? p * p : p;
+    constexpr int kRowShift = kAxis == 2 ? 6 : 12;
     // Raw pointers: stores into the output vectors would otherwise force reloads of every
     // member vector's data pointer inside the loops.
     // Non-air masks of the slices and opaque masks of the layers in front, rows contiguous:
@@ -186,6 +189,11 @@ class BitmaskMesher final : public Mesher {
       // below visits only those.
       const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
       const std::uint64_t nonempty = face_rows(am + idx2(s, 0, p), lrows, n, face_rows_);
+      // Padded id index and word0 of bit 0 of row 0; rows step by row_ids / 1 << kRowShift.
+      int x0, y0, z0;
+      origin(F, s, 0, 0, x0, y0, z0);
+      const int slice_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
+      const std::uint32_t slice_word0 = pack_word0(x0, y0, z0, 1, 1);
       for (std::uint64_t rows_left = nonempty; rows_left; rows_left &= rows_left - 1) {
         const int r = std::countr_zero(rows_left);
         std::uint64_t faces = face_rows_[r];
@@ -194,11 +202,9 @@ class BitmaskMesher final : public Mesher {
         // takes the run path below without any AO work.
         const std::uint64_t l0 = lrows[r - 1], l1 = lrows[r], l2 = lrows[r + 1];
         const bool occluded = ao_on && ((l0 | l1 | l2) != 0 || (faces & edges) != 0);
-        int x0, y0, z0;
-        origin(F, s, r, 0, x0, y0, z0);
-        const int row_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
+        const int row_base = slice_base + r * row_ids;
         // word0 of the unit quad at bit 0; bit b adds b to its y (+-X) or x coordinate.
-        const std::uint32_t row_word0 = pack_word0(x0, y0, z0, 1, 1);
+        const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << kRowShift);
         std::uint64_t* slot_row = nullptr;
         // Adds the faces `bits` (one block, one uniform AO value) to the slot of `key`.
         auto add = [&](std::uint32_t key, std::uint64_t bits) __attribute__((always_inline)) {
@@ -336,11 +342,13 @@ class BitmaskMesher final : public Mesher {
     std::uint64_t* oz = oz_.data();
     // The padding columns x = -1 and x = n along y (bit y), per padded z: the opaque masks of the
     // +-X layers -1 and n, gathered here from the rows' end blocks.
-    std::uint64_t lo_col[66] = {};
-    std::uint64_t hi_col[66] = {};
+    // Stored as bytes (index z * P + y) and packed into bit columns after the pass: a byte store
+    // per row instead of a read-modify-write of the column mask.
+    ends_.resize(2 * (pp + 64));
+    std::uint8_t* lo_end = ends_.data();
+    std::uint8_t* hi_end = ends_.data() + pp + 64;
     // One pass over the ids, one padded row along x (index (y, z)) at a time.
     for (int yy = 0; yy < p; ++yy) {
-      const std::uint64_t ybit = yy >= 1 && yy <= n ? std::uint64_t{1} << (yy - 1) : 0;
       for (int zz = 0; zz < p; ++zz) {
         const BlockId* row = ids + static_cast<std::ptrdiff_t>(zz + p * yy) * p;
         const auto k = static_cast<std::size_t>(yy * p + zz);
@@ -360,8 +368,8 @@ class BitmaskMesher final : public Mesher {
         const auto kz = static_cast<std::size_t>(zz * p + yy);
         az[kz] = nonair;
         oz[kz] = solid;
-        lo_col[zz] |= opaque[row[0]] ? ybit : 0;
-        hi_col[zz] |= opaque[row[n + 1]] ? ybit : 0;
+        lo_end[kz] = opaque[row[0]];
+        hi_end[kz] = opaque[row[n + 1]];
       }
     }
     // Columns along y for interior x: transpose each z-slab of the x rows (rows y in [0, n)).
@@ -404,8 +412,8 @@ class BitmaskMesher final : public Mesher {
           oy[(x + 1) * p + zz] = 0;
         }
       }
-      oy[zz] = lo_col[zz];
-      oy[(n + 1) * p + zz] = hi_col[zz];
+      oy[zz] = bytes_to_bits(lo_end + zz * p + 1, n);
+      oy[(n + 1) * p + zz] = bytes_to_bits(hi_end + zz * p + 1, n);
     }
   }
 
@@ -434,6 +442,23 @@ class BitmaskMesher final : public Mesher {
       nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
       special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
     }
+  }
+
+  // Bit i set when b[i] != 0, i in [0, n) (b readable up to 15 bytes past n).
+  static std::uint64_t bytes_to_bits(const std::uint8_t* b, int n) {
+    std::uint64_t bits = 0;
+    int i = 0;
+#if defined(__SSE2__)
+    const __m128i zero = _mm_setzero_si128();
+    for (; i < n; i += 16) {
+      const int z = _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(b + i)), zero));
+      bits |= static_cast<std::uint64_t>(~z & 0xffff) << i;
+    }
+    return n == 64 ? bits : bits & ((std::uint64_t{1} << n) - 1);
+#else
+    for (; i < n; ++i) bits |= static_cast<std::uint64_t>(b[i] != 0) << i;
+    return bits;
+#endif
   }
 
   // Bit x set when row[x + 1] == row[x], x in [0, n) (row[n] is the padding block, readable).
@@ -519,6 +544,7 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint64_t> rows_;
   std::vector<std::uint64_t> used_;
   alignas(16) std::uint64_t face_rows_[64];
+  std::vector<std::uint8_t> ends_;  // opaque bytes of the x = -1 and x = n padding blocks, per (z, y)
   // Output scratch (opaque, alpha-cut), copied into the ChunkMesh at the end of mesh().
   std::vector<PackedQuad> quads_[2];
   std::size_t count_[2] = {0, 0};
