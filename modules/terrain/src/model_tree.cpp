@@ -153,7 +153,7 @@ Result<ModelTree> ModelTree::build(const TriangleMesh& mesh, const ModelTreeSett
       const double keep = std::pow(static_cast<double>(settings.keep_per_level), depth);
       const std::size_t target = static_cast<std::size_t>(std::ceil(keep * static_cast<double>(members[si].size())));
       seg.indices = settings.reducer == Reducer::kQem
-                        ? simplify_qem(tree.positions_, original, flags, target)
+                        ? simplify_qem_passes(tree.positions_, original, flags, target)
                         : simplify_shortest_edge(tree.positions_, original, flags, target);
     }
     const double reduce_ms = watch.lap_ms();

@@ -3,8 +3,9 @@
 #include "quadric.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
+#include <cstring>
+#include <utility>
 
 namespace sylva::terrain {
 
@@ -12,144 +13,236 @@ namespace {
 
 using detail::Quadric;
 
-struct Candidate {
-  float cost;
-  std::uint32_t v, u;  // collapse v into u
+constexpr std::uint32_t kNone = 0xFFFFFFFFu;
+constexpr double kCosLimit = 0.35;  // refuse normals turning by more than ~70 degrees (as simplify_qem)
+
+// Work arrays reused by every call on a thread (a model tree reduces thousands of segments; the
+// benchmark 16 per iteration), so a call allocates only its result once they have grown.
+struct Scratch {
+  std::vector<std::uint32_t> local_of;  // global vertex -> local id, kNone outside a call
+  std::vector<std::uint32_t> global;    // local -> global
+  std::vector<std::uint32_t> tris;      // current triangles, 3 local ids each
+  std::vector<std::uint32_t> offset;    // CSR vertex -> triangles of the pass-start mesh
+  std::vector<std::uint32_t> adj;
+  std::vector<std::uint32_t> remap;     // collapses of the current pass: v -> u, else v
+  std::vector<std::uint32_t> mark;      // link-condition stamps
+  std::vector<std::uint32_t> target;    // best collapse target of each free vertex
+  std::vector<std::uint8_t> locked;     // caller's locks + open boundary
+  std::vector<std::uint8_t> busy;       // source or target of a collapse this pass
+  std::vector<Quadric> q;
+  std::vector<double> self_error;       // q[v] at pos[v]
+  std::vector<glm::dvec3> pos;
+  std::vector<glm::dvec3> normal;       // area-weighted original surface normal
+  std::vector<std::uint64_t> keys, keys_tmp;  // (cost bits << 32) | vertex
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> fan;  // (next, previous) of a vertex's triangles
 };
+
+Scratch& scratch() {
+  thread_local Scratch s;
+  return s;
+}
+
+// LSD radix sort of 64-bit keys by their upper 31 bits (non-negative float costs): three passes
+// of 11 bits. Ties keep vertex order, so the result is deterministic.
+void sort_by_cost(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp) {
+  tmp.resize(keys.size());
+  std::uint32_t count[2048];
+  for (int shift = 32; shift < 64; shift += 11) {
+    std::memset(count, 0, sizeof(count));
+    for (std::uint64_t k : keys) ++count[(k >> shift) & 2047u];
+    std::uint32_t sum = 0;
+    for (std::uint32_t& c : count) {
+      const std::uint32_t n = c;
+      c = sum;
+      sum += n;
+    }
+    for (std::uint64_t k : keys) tmp[count[(k >> shift) & 2047u]++] = k;
+    keys.swap(tmp);
+  }
+}
+
+std::uint64_t cost_key(double cost, std::uint32_t v) {
+  const float f = static_cast<float>(std::max(cost, 0.0));
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof(bits));
+  return (static_cast<std::uint64_t>(bits) << 32) | v;
+}
+
+float key_cost(std::uint64_t key) {
+  const std::uint32_t bits = static_cast<std::uint32_t>(key >> 32);
+  float f;
+  std::memcpy(&f, &bits, sizeof(f));
+  return f;
+}
+
+// Vertex -> triangle lists of the current triangles (counting sort into CSR).
+void build_adjacency(Scratch& s, std::size_t nv) {
+  s.offset.assign(nv + 1, 0u);
+  for (std::uint32_t v : s.tris) ++s.offset[v + 1];
+  for (std::size_t i = 0; i < nv; ++i) s.offset[i + 1] += s.offset[i];
+  s.adj.resize(s.tris.size());
+  // Fill from the back using the end offsets, which leaves offset[] as the starts again.
+  for (std::size_t t = s.tris.size() / 3; t-- > 0;)
+    for (std::size_t k = 3; k-- > 0;) s.adj[--s.offset[s.tris[3 * t + k] + 1]] = static_cast<std::uint32_t>(t);
+  // offset[v + 1] was decremented once per triangle of v: it now holds v's start; shift back.
+  for (std::size_t i = 0; i < nv; ++i) s.offset[i] = s.offset[i + 1];
+  s.offset[nv] = static_cast<std::uint32_t>(s.tris.size());
+}
 
 }  // namespace
 
-// Same collapse rules as simplify_qem (simplify_qem.cpp), organised in passes like the seed's
-// reduction (§4.3) instead of a priority queue: each pass computes the best collapse of every
-// edge, keeps the cheapest as many as are still needed, and walks them in cost order accepting
-// every valid collapse whose neighbourhood no earlier collapse of the pass touched (so all the
-// checks of a pass see the pass-start mesh, as the seed's flags do). Vertices on an open
-// boundary are treated as locked.
+// The collapse rules of simplify_qem (simplify_qem.cpp) organised in passes, in the spirit of the
+// seed's reduction (§4.3) and of meshoptimizer's simplifier, but with every validity test exact:
+//  * each free vertex proposes its cheapest half-edge collapse (cost (Q_v + Q_u)(p_u));
+//  * the proposals are radix-sorted by cost and walked in order; a collapse is skipped when its
+//    source or target already took part in a collapse of this pass, and the walk stops at the
+//    triangle target, or once past 1.5x the cost of the goal-th proposal (with at least a sixth
+//    of the goal done, so odd topology cannot stall a pass);
+//  * the link condition and the geometric tests (degenerate, flip / 70 degree turn, facing against
+//    the original surface) are evaluated on the *current* mesh: the pass-start adjacency seen
+//    through this pass's remap table. Since sources and targets are never reused within a pass,
+//    a vertex's triangles in the current mesh are exactly its pass-start triangles remapped, minus
+//    the ones that became degenerate, so every accepted collapse is valid on the mesh it applies
+//    to, exactly as in the queue reducer.
+// Vertices on an open boundary are treated as locked (computed once: with locked boundary
+// vertices and the link condition, collapses never create or remove boundary edges).
 std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positions,
                                                std::span<const std::uint32_t> indices,
                                                std::span<const std::uint8_t> locked_in,
                                                std::size_t target_triangles, SimplifyStats* stats) {
-  // Compact the used vertices (a reused global-size map, reset after).
-  thread_local std::vector<std::uint32_t> local_of;
-  if (local_of.size() < positions.size()) local_of.assign(positions.size(), 0xFFFFFFFFu);
-  std::vector<std::uint32_t> global;
-  global.reserve(indices.size() / 2);
-  std::vector<std::array<std::uint32_t, 3>> tris(indices.size() / 3);
-  for (std::size_t t = 0; t < tris.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t g = indices[3 * t + static_cast<std::size_t>(k)];
-      if (local_of[g] == 0xFFFFFFFFu) {
-        local_of[g] = static_cast<std::uint32_t>(global.size());
-        global.push_back(g);
-      }
-      tris[t][static_cast<std::size_t>(k)] = local_of[g];
+  Scratch& s = scratch();
+  // Compact the used vertices (the global-size map is reset after use).
+  if (s.local_of.size() < positions.size()) s.local_of.assign(positions.size(), kNone);
+  s.global.clear();
+  s.tris.resize(indices.size() - indices.size() % 3);
+  for (std::size_t i = 0; i < s.tris.size(); ++i) {
+    const std::uint32_t g = indices[i];
+    std::uint32_t& l = s.local_of[g];
+    if (l == kNone) {
+      l = static_cast<std::uint32_t>(s.global.size());
+      s.global.push_back(g);
     }
+    s.tris[i] = l;
   }
-  for (std::uint32_t g : global) local_of[g] = 0xFFFFFFFFu;
-  const std::size_t nv = global.size();
-  std::vector<glm::dvec3> pos(nv);
-  std::vector<std::uint8_t> locked(nv);
+  for (std::uint32_t g : s.global) s.local_of[g] = kNone;
+  const std::size_t nv = s.global.size();
+  s.pos.resize(nv);
+  s.locked.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) {
-    pos[i] = glm::dvec3(positions[global[i]]);
-    locked[i] = locked_in[global[i]];
+    s.pos[i] = glm::dvec3(positions[s.global[i]]);
+    s.locked[i] = locked_in[s.global[i]] != 0;
   }
-  std::vector<Quadric> q(nv);
-  std::vector<glm::dvec3> surface_normal(nv, glm::dvec3(0.0));
-  for (const auto& tr : tris) {
-    const glm::dvec3 n = glm::cross(pos[tr[1]] - pos[tr[0]], pos[tr[2]] - pos[tr[0]]);
+  s.q.assign(nv, Quadric{});
+  s.normal.assign(nv, glm::dvec3(0.0));
+  for (std::size_t t = 0; t < s.tris.size(); t += 3) {
+    const std::uint32_t a = s.tris[t], b = s.tris[t + 1], c = s.tris[t + 2];
+    const glm::dvec3 n = glm::cross(s.pos[b] - s.pos[a], s.pos[c] - s.pos[a]);
     const double len = glm::length(n);
     if (len > 0.0) {
       const glm::dvec3 nn = n / len;
-      const double d = -glm::dot(nn, pos[tr[0]]);
-      for (std::uint32_t v : tr) q[v].add_plane(nn, d, 0.5 * len);
+      const double d = -glm::dot(nn, s.pos[a]);
+      for (std::uint32_t v : {a, b, c}) s.q[v].add_plane(nn, d, 0.5 * len);
     }
-    for (std::uint32_t v : tr) surface_normal[v] += n;
+    for (std::uint32_t v : {a, b, c}) s.normal[v] += n;
+  }
+  s.self_error.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) s.self_error[i] = s.q[i].error(s.pos[i]);
+
+  build_adjacency(s, nv);
+  // Open boundary: a vertex is interior when its fan is closed, i.e. the vertices following it in
+  // its triangles are the vertices preceding it (an edge a->b without b->a leaves b unmatched in
+  // a's fan). Locked vertices need no test: an open edge locks both its ends, and each end sees
+  // the edge in its own fan.
+  for (std::uint32_t a = 0; a < nv; ++a) {
+    if (s.locked[a]) continue;
+    const std::uint32_t begin = s.offset[a], end = s.offset[a + 1];
+    s.fan.clear();
+    for (std::uint32_t i = begin; i < end; ++i) {
+      const std::uint32_t* o = &s.tris[3 * static_cast<std::size_t>(s.adj[i])];
+      const std::size_t k = o[0] == a ? 0 : o[1] == a ? 1 : 2;
+      s.fan.push_back({o[(k + 1) % 3], o[(k + 2) % 3]});
+    }
+    bool closed = true;
+    for (std::size_t i = 0; i < s.fan.size() && closed; ++i) {
+      bool next_found = false, prev_found = false;
+      for (const auto& [next, prev] : s.fan) {
+        next_found |= prev == s.fan[i].first;
+        prev_found |= next == s.fan[i].second;
+      }
+      closed = next_found && prev_found;
+    }
+    if (!closed) s.locked[a] = 1;
   }
 
   SimplifyStats st;
-  std::vector<std::uint32_t> offset(nv + 1), adj, fill(nv), mark(nv, 0), remap(nv);
-  std::vector<std::uint8_t> touched(nv);
-  std::vector<Candidate> cand;
+  s.remap.resize(nv);
+  s.busy.resize(nv);
+  s.target.resize(nv);
+  s.mark.assign(nv, 0u);
   std::uint32_t mark_id = 0;
-  const double cos_limit = 0.35;
-  // Open-boundary vertices (an edge used once) are locked. Computed once: with locked boundary
-  // vertices and the link condition, collapses never create or remove boundary edges.
-  {
-    std::vector<std::uint64_t> half(3 * tris.size()), twin(3 * tris.size());
-    for (std::size_t t = 0; t < tris.size(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint64_t a = tris[t][static_cast<std::size_t>(k)], b = tris[t][static_cast<std::size_t>((k + 1) % 3)];
-        half[3 * t + static_cast<std::size_t>(k)] = (a << 32) | b;
-        twin[3 * t + static_cast<std::size_t>(k)] = (b << 32) | a;
-      }
-    std::sort(half.begin(), half.end());
-    for (std::uint64_t e : twin) {
-      if (std::binary_search(half.begin(), half.end(), e)) continue;
-      locked[static_cast<std::size_t>(e >> 32)] = 1;  // e is b->a of an unmatched a->b
-      locked[static_cast<std::size_t>(e & 0xFFFFFFFFu)] = 1;
-    }
-  }
-  while (tris.size() > target_triangles) {
+  const std::uint32_t* tr = nullptr;
+  std::size_t triangles = s.tris.size() / 3;
+  bool first = true;
+  while (triangles > target_triangles) {
     ++st.passes;
-    // Vertex -> triangle adjacency of the current mesh (CSR).
-    std::fill(offset.begin(), offset.end(), 0u);
-    for (const auto& tr : tris)
-      for (std::uint32_t v : tr) ++offset[v + 1];
-    for (std::size_t i = 0; i < nv; ++i) offset[i + 1] += offset[i];
-    adj.resize(offset[nv]);
-    std::copy(offset.begin(), offset.end() - 1, fill.begin());
-    for (std::uint32_t t = 0; t < tris.size(); ++t)
-      for (std::uint32_t v : tris[t]) adj[fill[v]++] = t;
-    // Best collapse of every edge (each interior edge once: from the half-edge with a < b).
-    cand.clear();
-    for (const auto& tr : tris) {
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = tr[static_cast<std::size_t>(k)], b = tr[static_cast<std::size_t>((k + 1) % 3)];
-        if (a > b) continue;
-        const bool free_a = !locked[a], free_b = !locked[b];
-        if (!free_a && !free_b) continue;
-        const double ca = free_a ? q[a].error_sum(q[b], pos[b]) : 1e300;  // a into b
-        const double cb = free_b ? q[b].error_sum(q[a], pos[a]) : 1e300;  // b into a
-        if (ca <= cb) {
-          cand.push_back({static_cast<float>(std::max(ca, 0.0)), a, b});
-        } else {
-          cand.push_back({static_cast<float>(std::max(cb, 0.0)), b, a});
+    if (!first) build_adjacency(s, nv);
+    first = false;
+    tr = s.tris.data();
+    // Every free vertex proposes its cheapest collapse. Boundary vertices are locked, so a free
+    // vertex has a closed fan and each neighbour is the successor of v in exactly one triangle.
+    s.keys.clear();
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      s.remap[v] = v;
+      s.busy[v] = 0;
+      if (s.locked[v] || s.offset[v] == s.offset[v + 1]) continue;
+      double best = 1e300;
+      std::uint32_t best_u = kNone;
+      const Quadric& qv = s.q[v];
+      for (std::uint32_t i = s.offset[v]; i < s.offset[v + 1]; ++i) {
+        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
+        const std::uint32_t u = o[0] == v ? o[1] : o[1] == v ? o[2] : o[0];
+        const double c = qv.error(s.pos[u]) + s.self_error[u];
+        if (c < best) {
+          best = c;
+          best_u = u;
         }
       }
+      s.target[v] = best_u;
+      s.keys.push_back(cost_key(best, v));
     }
-    if (cand.empty()) break;
-    // Only the cheapest candidates compete in this pass (a collapse removes about two triangles).
-    const std::size_t needed = (tris.size() - target_triangles + 1) / 2;
-    // Three times as many candidates as collapses still needed: the touched rule blocks many, so
-    // this fills a pass with the next cheapest independent collapses and halves the pass count.
-    const std::size_t keep = std::min(cand.size(), std::max<std::size_t>(3 * needed, 64));
-    auto by_cost = [](const Candidate& x, const Candidate& y) { return x.cost < y.cost; };
-    if (keep < cand.size()) std::nth_element(cand.begin(), cand.begin() + static_cast<std::ptrdiff_t>(keep), cand.end(), by_cost);
-    cand.resize(keep);
-    std::sort(cand.begin(), cand.end(), by_cost);
+    if (s.keys.empty()) break;
+    sort_by_cost(s.keys, s.keys_tmp);
+    const std::size_t goal_triangles = triangles - target_triangles;
+    const std::size_t goal_collapses = std::max<std::size_t>(1, goal_triangles / 2);
+    const float error_goal =
+        goal_collapses < s.keys.size() ? 1.5f * key_cost(s.keys[goal_collapses]) : std::numeric_limits<float>::max();
 
-    std::fill(touched.begin(), touched.end(), std::uint8_t{0});
-    for (std::size_t i = 0; i < nv; ++i) remap[i] = static_cast<std::uint32_t>(i);
     std::size_t removed = 0, accepted = 0;
-    for (const Candidate& c : cand) {
-      if (tris.size() - removed <= target_triangles) break;
-      const std::uint32_t v = c.v, u = c.u;
-      if (touched[v] || touched[u]) continue;
-      // Link condition: common neighbours == triangles on the edge.
-      ++mark_id;
+    for (std::uint64_t key : s.keys) {
+      if (removed >= goal_triangles) break;
+      if (key_cost(key) > error_goal && removed > goal_triangles / 6) break;
+      const std::uint32_t v = static_cast<std::uint32_t>(key & 0xFFFFFFFFu), u = s.target[v];
+      if (s.busy[v] || s.busy[u]) continue;
+      const std::uint32_t* rm = s.remap.data();
+      // Link condition on the current mesh: the common neighbours of v and u are exactly the
+      // apexes of the triangles on the edge.
+      mark_id += 2;
       std::size_t shared = 0;
-      for (std::uint32_t i = offset[v]; i < offset[v + 1]; ++i) {
-        const auto& tr = tris[adj[i]];
-        if (tr[0] == u || tr[1] == u || tr[2] == u) ++shared;
-        for (std::uint32_t w : tr)
-          if (w != v) mark[w] = mark_id;
+      for (std::uint32_t i = s.offset[v]; i < s.offset[v + 1]; ++i) {
+        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
+        const std::uint32_t a = rm[o[0]], b = rm[o[1]], c = rm[o[2]];
+        if (a == b || b == c || a == c) continue;  // collapsed this pass
+        shared += (a == u) | (b == u) | (c == u);
+        s.mark[a] = s.mark[b] = s.mark[c] = mark_id;
       }
       std::size_t common = 0;
-      ++mark_id;  // count each common neighbour once
-      for (std::uint32_t i = offset[u]; i < offset[u + 1]; ++i) {
-        for (std::uint32_t w : tris[adj[i]]) {
-          if (w == u || mark[w] != mark_id - 1) continue;
-          mark[w] = mark_id;
+      for (std::uint32_t i = s.offset[u]; i < s.offset[u + 1]; ++i) {
+        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
+        const std::uint32_t w3[3] = {rm[o[0]], rm[o[1]], rm[o[2]]};
+        if (w3[0] == w3[1] || w3[1] == w3[2] || w3[0] == w3[2]) continue;
+        for (std::uint32_t w : w3) {
+          if (w == u || w == v || s.mark[w] != mark_id) continue;
+          s.mark[w] = mark_id + 1;
           ++common;
         }
       }
@@ -157,53 +250,56 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
         ++st.rejected;
         continue;
       }
+      // Geometry of v's other triangles after moving v onto u.
       bool ok = true;
-      for (std::uint32_t i = offset[v]; i < offset[v + 1] && ok; ++i) {
-        const auto& tr = tris[adj[i]];
-        if (tr[0] == u || tr[1] == u || tr[2] == u) continue;
-        glm::dvec3 p[3], r[3];
-        glm::dvec3 ref(0.0);
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t w = tr[static_cast<std::size_t>(k)];
-          p[k] = pos[w];
-          r[k] = w == v ? pos[u] : p[k];
-          ref += surface_normal[w == v ? u : w];
-        }
-        const glm::dvec3 n0 = glm::cross(p[1] - p[0], p[2] - p[0]);
-        const glm::dvec3 e1 = r[1] - r[0], e2 = r[2] - r[0];
+      const glm::dvec3 pu = s.pos[u];
+      for (std::uint32_t i = s.offset[v]; i < s.offset[v + 1] && ok; ++i) {
+        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
+        const std::uint32_t w3[3] = {rm[o[0]], rm[o[1]], rm[o[2]]};
+        if (w3[0] == w3[1] || w3[1] == w3[2] || w3[0] == w3[2]) continue;
+        if (w3[0] == u || w3[1] == u || w3[2] == u) continue;
+        const std::size_t k = w3[0] == v ? 0 : w3[1] == v ? 1 : 2;
+        const std::uint32_t b = w3[(k + 1) % 3], c = w3[(k + 2) % 3];
+        const glm::dvec3 pb = s.pos[b], pc = s.pos[c];
+        const glm::dvec3 n0 = glm::cross(pb - s.pos[v], pc - s.pos[v]);
+        const glm::dvec3 e1 = pb - pu, e2 = pc - pu, e3 = pc - pb;
         const glm::dvec3 n1 = glm::cross(e1, e2);
         const double l1 = glm::dot(n1, n1);
-        if (l1 <= 1e-10 * glm::dot(e1, e1) * glm::dot(e2, e2)) ok = false;
-        else if (glm::dot(n0, n1) <= cos_limit * std::sqrt(glm::dot(n0, n0) * l1)) ok = false;
-        else if (glm::dot(n1, ref) <= 0.0) ok = false;
+        // Degenerate: the smallest angle (between the two longest edges) has sin^2 <= 1e-10, which
+        // is stricter than check_mesh's 1e-12 whichever corner it measures from.
+        const double d1 = glm::dot(e1, e1), d2 = glm::dot(e2, e2), d3 = glm::dot(e3, e3);
+        if (l1 <= 1e-10 * std::max({d1 * d2, d1 * d3, d2 * d3})) ok = false;
+        else if (glm::dot(n0, n1) <= kCosLimit * std::sqrt(glm::dot(n0, n0) * l1)) ok = false;
+        else if (glm::dot(n1, s.normal[u] + s.normal[b] + s.normal[c]) <= 0.0) ok = false;
       }
       if (!ok) {
         ++st.rejected;
         continue;
       }
-      touched[v] = touched[u] = 1;
-      for (std::uint32_t i = offset[v]; i < offset[v + 1]; ++i)
-        for (std::uint32_t w : tris[adj[i]]) touched[w] = 1;
-      remap[v] = u;
-      q[u] += q[v];
+      s.busy[v] = s.busy[u] = 1;
+      s.remap[v] = u;
+      s.q[u] += s.q[v];
+      s.self_error[u] = s.q[u].error(pu);
       removed += shared;
       ++accepted;
     }
     if (accepted == 0) break;
     st.collapses += accepted;
     std::size_t out = 0;
-    for (std::size_t t = 0; t < tris.size(); ++t) {
-      std::array<std::uint32_t, 3> tr{remap[tris[t][0]], remap[tris[t][1]], remap[tris[t][2]]};
-      if (tr[0] == tr[1] || tr[1] == tr[2] || tr[0] == tr[2]) continue;
-      tris[out++] = tr;
+    for (std::size_t t = 0; t < s.tris.size(); t += 3) {
+      const std::uint32_t a = s.remap[s.tris[t]], b = s.remap[s.tris[t + 1]], c = s.remap[s.tris[t + 2]];
+      if (a == b || b == c || a == c) continue;
+      s.tris[out] = a;
+      s.tris[out + 1] = b;
+      s.tris[out + 2] = c;
+      out += 3;
     }
-    tris.resize(out);
+    s.tris.resize(out);
+    triangles = out / 3;
   }
   if (stats) *stats = st;
-  std::vector<std::uint32_t> result;
-  result.reserve(tris.size() * 3);
-  for (const auto& tr : tris)
-    for (std::uint32_t v : tr) result.push_back(global[v]);
+  std::vector<std::uint32_t> result(s.tris.size());
+  for (std::size_t i = 0; i < s.tris.size(); ++i) result[i] = s.global[s.tris[i]];
   return result;
 }
 
