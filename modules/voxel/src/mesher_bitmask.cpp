@@ -249,8 +249,8 @@ class BitmaskMesher final : public Mesher {
           // value (same_next bit b: the block at b + 1 has the same id as the one at b), one slot
           // update per run instead of per face.
           // (A single face is a run of one: no need to compare the row's ids.)
-          const std::uint64_t same_next = (faces & (faces - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           std::uint64_t uni = occluded ? 0 : faces;
+          const std::uint64_t same_next = (uni & (uni - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           faces &= ~uni;
           while (uni) {
             const int b = std::countr_zero(uni);
