@@ -175,12 +175,13 @@ class BitmaskMesher final : public Mesher {
     for (int s = 0; s < n; ++s) {
       // Quads are written through raw pointers into scratch arrays with room for a whole slice
       // (at most n^2 quads: each covers at least one of the slice's n^2 unit faces).
-      PackedQuad* dst[2];
+      // (Two plain locals, never address-taken, so they stay in registers across calls.)
       for (int list = 0; list < 2; ++list) {
         const std::size_t need = count_[list] + static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
         if (quads_[list].size() < need) quads_[list].resize(std::max(need, 2 * quads_[list].size()));
-        dst[list] = quads_[list].data() + count_[list];
       }
+      PackedQuad* dst_opaque = quads_[0].data() + count_[0];
+      PackedQuad* dst_alpha = quads_[1].data() + count_[1];
       slot_count_ = 0;
       int last_slot = -1;
       std::uint32_t last_key = 0;
@@ -241,7 +242,12 @@ class BitmaskMesher final : public Mesher {
           if (ao_uniform(aob)) {
             add(pack_word1(self, F, aob), std::uint64_t{1} << b);
           } else {
-            *dst[alpha]++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(self, F, aob)};
+            const PackedQuad q{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(self, F, aob)};
+            if (alpha) {
+              *dst_alpha++ = q;
+            } else {
+              *dst_opaque++ = q;
+            }
           }
         };
         if constexpr (kAxis != 0) {
@@ -288,9 +294,16 @@ class BitmaskMesher final : public Mesher {
           }
         }
       }
-      for (int k = 0; k < slot_count_; ++k) merge_slot(k, F, s, render, dst);
+      for (int k = 0; k < slot_count_; ++k) {
+        const auto block = static_cast<BlockId>(keys_[static_cast<std::size_t>(k)] & 0xffffu);
+        if (render[block] == static_cast<std::uint8_t>(RenderClass::kAlphaCut)) {
+          dst_alpha = merge_slot(k, F, s, dst_alpha);
+        } else {
+          dst_opaque = merge_slot(k, F, s, dst_opaque);
+        }
+      }
       for (int list = 0; list < 2; ++list) {
-        count_[list] = static_cast<std::size_t>(dst[list] - quads_[list].data());
+        count_[list] = static_cast<std::size_t>((list == 0 ? dst_opaque : dst_alpha) - quads_[list].data());
       }
     }
   }
@@ -503,13 +516,12 @@ class BitmaskMesher final : public Mesher {
     return k;
   }
 
-  void merge_slot(int k, int f, int s, const std::uint8_t* render, PackedQuad* (&dst)[2]) {
+  // Emits slot k's rectangles at `list`; returns the end of what it wrote.
+  PackedQuad* merge_slot(int k, int f, int s, PackedQuad* list) {
     const int n = n_;
     std::uint64_t* rows = rows_.data() + static_cast<std::size_t>(k) * 64;
     const std::uint32_t key = keys_[static_cast<std::size_t>(k)];
     const std::uint64_t used_rows = std::exchange(used_[static_cast<std::size_t>(k)], 0);
-    const auto block = static_cast<BlockId>(key & 0xffffu);
-    PackedQuad*& list = dst[render[block] == static_cast<std::uint8_t>(RenderClass::kAlphaCut) ? 1 : 0];
     const bool rows_are_u = (f >> 1) == 1;  // +-Y: rows run along u (z), bits along v (x)
     // Only the rows that received a face (a slot of a slice usually touches a few).
     for (std::uint64_t used = used_rows; used; used &= used - 1) {
@@ -531,6 +543,7 @@ class BitmaskMesher final : public Mesher {
         *list++ = PackedQuad{pack_word0(x, y, z, du, dv), key};
       }
     }
+    return list;
   }
 
   MesherOptions options_;
