@@ -132,9 +132,13 @@ ActiveRule make_rule(const ErrorGrid& errors, int levels, std::uint32_t n, const
   rule.levels = levels;
   rule.leaf_n = static_cast<std::int32_t>(n);
   rule.eps.resize(static_cast<std::size_t>(levels));
+  // Leaves keep every vertex that is not exactly interpolated (eps 0): nothing finer can be
+  // selected when a leaf's projected error passes tau, so a reduced leaf would break the bound
+  // for a camera close to the ground (README, "Meshes").
   for (int l = 0; l < levels; ++l) {
+    const bool leaf = l + 1 == levels;
     rule.eps[static_cast<std::size_t>(l)] =
-        static_cast<float>(settings.flat_tolerance * spacing * static_cast<double>(rule.step(l)));
+        leaf ? 0.0f : static_cast<float>(settings.flat_tolerance * spacing * static_cast<double>(rule.step(l)));
   }
   return rule;
 }

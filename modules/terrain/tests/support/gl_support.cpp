@@ -119,8 +119,9 @@ std::vector<std::uint8_t> erode(const std::vector<std::uint8_t>& mask, int width
       for (int dy = -radius; dy <= radius && all; ++dy) {
         for (int dx = -radius; dx <= radius && all; ++dx) {
           const int xx = x + dx, yy = y + dy;
-          if (xx < 0 || yy < 0 || xx >= width || yy >= height) continue;
-          all = mask[static_cast<std::size_t>(yy) * width + xx] != 0;
+          // Outside the frame counts as outside the mask: the reference silhouette may pass just
+          // beyond the border, so the frame's outer `radius` pixels are not known to be inside.
+          all = xx >= 0 && yy >= 0 && xx < width && yy < height && mask[static_cast<std::size_t>(yy) * width + xx] != 0;
         }
       }
       out[static_cast<std::size_t>(y) * width + x] = all ? 1 : 0;

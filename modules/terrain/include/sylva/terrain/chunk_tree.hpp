@@ -13,7 +13,10 @@
 //
 // Meshes. Every level's mesh is a right-triangulated irregular network (RTIN, longest-edge
 // bisection) of that level's grid with the vertices dropped whose removal changes the surface by
-// at most flat_tolerance * spacing ("reduced where flat"). Because the vertex set of a level is
+// at most flat_tolerance * spacing ("reduced where flat"). The leaf level drops only vertices
+// whose removal changes nothing (exactly interpolated ones): leaves cannot be refined, so their
+// error would escape the screen-space bound when the camera comes close; with exact leaves the
+// bound holds at any distance. Because the vertex set of a level is
 // a single global set (a point is in it or not, whichever chunk asks), chunks of the same level
 // share identical edge vertices, and every level's triangulation refines the coarser level's.
 // The error delta of a chunk is MEASURED: the largest vertical distance between its mesh and the

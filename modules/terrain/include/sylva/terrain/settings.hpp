@@ -18,7 +18,8 @@ struct ChunkTreeSettings {
   int leaf_dimension = 33;
   // Flat-ground reduction: a vertex is dropped from a level's mesh when removing it changes the
   // surface by at most flat_tolerance * (that level's sample spacing in metres). 0 keeps every
-  // vertex of the level's grid. The resulting error is measured, never assumed.
+  // vertex of the level's grid. The leaf level always uses 0 (exact leaves: nothing finer can
+  // take over when the camera comes close). The resulting error is measured, never assumed.
   float flat_tolerance = 0.02f;
   // The error bound of a parent is raised to at least child_bound / (1 - max_morph_fraction), so
   // a morph over up to this share of a LOD range keeps the screen-space bound (README, "Morphing").
