@@ -111,7 +111,11 @@ class BitmaskMesher final : public Mesher {
 
   void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) override {
     SYLVA_ASSERT(blocks.n >= 1 && blocks.n <= 64, "chunk size {}", blocks.n);
-    out.clear();
+    // The output lists double as the write buffers: their current elements are treated as
+    // already-constructed room (so re-meshing into the same ChunkMesh does not construct every
+    // quad twice) and they are cut to the quads written at the end.
+    lists_[0] = &out.opaque;
+    lists_[1] = &out.alpha_cut;
     n_ = blocks.n;
     p_ = n_ + 2;
     full_ = n_ == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n_) - 1;
@@ -137,8 +141,8 @@ class BitmaskMesher final : public Mesher {
     mesh_face<3>(ids, render, edge_ao);
     mesh_face<4>(ids, render, edge_ao);
     mesh_face<5>(ids, render, edge_ao);
-    out.opaque.assign(quads_[0].data(), quads_[0].data() + count_[0]);
-    out.alpha_cut.assign(quads_[1].data(), quads_[1].data() + count_[1]);
+    out.opaque.resize(count_[0]);
+    out.alpha_cut.resize(count_[1]);
   }
 
  private:
@@ -173,15 +177,17 @@ class BitmaskMesher final : public Mesher {
     // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
     const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
-      // Quads are written through raw pointers into scratch arrays with room for a whole slice
-      // (at most n^2 quads: each covers at least one of the slice's n^2 unit faces).
+      // Quads are written through raw pointers into the output lists, grown to leave room for a
+      // whole slice (at most n^2 quads: each covers at least one of its n^2 unit faces).
       // (Two plain locals, never address-taken, so they stay in registers across calls.)
       for (int list = 0; list < 2; ++list) {
         const std::size_t need = count_[list] + static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
-        if (quads_[list].size() < need) quads_[list].resize(std::max(need, 2 * quads_[list].size()));
+        std::vector<PackedQuad>& q = *lists_[list];
+        // Within the capacity only up to `need` (every new element is zeroed), beyond it doubling.
+        if (q.size() < need) q.resize(need > q.capacity() ? std::max(need, 2 * q.capacity()) : need);
       }
-      PackedQuad* dst_opaque = quads_[0].data() + count_[0];
-      PackedQuad* dst_alpha = quads_[1].data() + count_[1];
+      PackedQuad* dst_opaque = lists_[0]->data() + count_[0];
+      PackedQuad* dst_alpha = lists_[1]->data() + count_[1];
       slot_count_ = 0;
       int last_slot = -1;
       std::uint32_t last_key = 0;
@@ -303,7 +309,7 @@ class BitmaskMesher final : public Mesher {
         }
       }
       for (int list = 0; list < 2; ++list) {
-        count_[list] = static_cast<std::size_t>((list == 0 ? dst_opaque : dst_alpha) - quads_[list].data());
+        count_[list] = static_cast<std::size_t>((list == 0 ? dst_opaque : dst_alpha) - lists_[list]->data());
       }
     }
   }
@@ -558,8 +564,8 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint64_t> used_;
   alignas(16) std::uint64_t face_rows_[64];
   std::vector<std::uint8_t> ends_;  // opaque bytes of the x = -1 and x = n padding blocks, per (z, y)
-  // Output scratch (opaque, alpha-cut), copied into the ChunkMesh at the end of mesh().
-  std::vector<PackedQuad> quads_[2];
+  // The ChunkMesh lists being written (opaque, alpha-cut) and the quads written so far.
+  std::vector<PackedQuad>* lists_[2] = {nullptr, nullptr};
   std::size_t count_[2] = {0, 0};
   std::vector<std::uint8_t> flags_;   // per block: kFlag* bits  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;
