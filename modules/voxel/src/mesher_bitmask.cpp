@@ -1,21 +1,24 @@
 // Binary greedy meshing.
 //
-// 1. Occupancy as 64-bit masks. Every padded row along x (one per padded (y, z)) becomes a
-//    "non-air" and an "opaque" mask of its n interior bits, plus the opaque bits of its two
-//    padding ends (x = -1, x = n) kept apart, so chunks of 64 work although 66 bits do not fit.
-//    Rows are classified 16 blocks at a time with SSE2 compares; only ids at or above the
-//    palette's first alpha-cut id need a table lookup. Masks along y come from the x masks by
-//    64x64 bit-matrix transposes (Hacker's Delight §7-3) instead of per-block scatter.
+// 1. Occupancy as 64-bit masks, in one pass over the ids. Every padded row along x (one per
+//    padded (y, z)) becomes a "non-air" and an "opaque" mask of its n interior bits, stored twice
+//    (indexed (y, z) and (z, y)) so the +-Y and +-Z slices both read their rows contiguously; the
+//    opaque bytes of the padding ends (x = -1, x = n) are kept apart (66 bits do not fit), so 64^3
+//    chunks work too. Rows are classified 16 blocks at a time with SSE2 compares; only ids at or
+//    above the palette's first alpha-cut id need a table lookup. Masks along y (for +-X faces)
+//    come from 32x32 / 64x64 bit-matrix transposes (Hacker's Delight §7-3).
 // 2. Visible faces of a whole row in one expression, e.g. +Y at height s, row z:
 //        faces = nonair_x[s][z] & ~opaque_x[s + 1][z]
-// 3. Ambient occlusion without per-face neighbour lookups: the eight opaque neighbours in front of
-//    a row of faces are the three neighbouring rows shifted by -1, 0, +1 bit; the AO of every
-//    face's four corners is then computed for the whole row at once as 2-bit values in bit planes
-//    (a full adder: ao = 3 - (s1 + s2 + c), 0 when both sides are set), and so is the mask of
-//    faces with uniform AO. A row with nothing in front skips all of it (open ground).
-// 4. Faces are bucketed by key (block, face, uniform AO) into per-slice bit planes and merged into
-//    rectangles with count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs
-//    between corners stay unit quads, so every mesher shades identically.
+//    two rows per SSE2 operation for a whole slice, with a mask of the rows holding faces, so
+//    only those are visited (bit scan).
+// 3. Ambient occlusion per face from a 512-entry table: bits b - 1, b, b + 1 of the three opaque
+//    rows r - 1, r, r + 1 of the layer in front are the face's 3 x 3 neighbourhood. A row with
+//    nothing opaque in front (open ground) skips all AO work; faces on the chunk's edge bits read
+//    the padding blocks instead (AoSampler).
+// 4. Faces with uniform AO are bucketed by key (block, face, AO) into per-slice bit planes (open
+//    rows in runs of one block id, one update per run) and merged into rectangles with
+//    count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs between
+//    corners stay unit quads, so every mesher shades identically.
 //
 // The public binary greedy mesher (cgerikj/binary-greedy-meshing) pads 62^3 chunks into 64-bit
 // columns and has no AO merging rule; this one also handles 64^3 chunks.

@@ -283,3 +283,29 @@ TEST(Mesher, BitmaskMatchesTheReferenceOnOddSizesAndManySeeds) {
 
 }  // namespace
 }  // namespace sylva::voxel
+
+namespace sylva::voxel {
+namespace {
+
+// The bitmask mesher writes into the ChunkMesh's own lists and cuts them at the end: meshing
+// into a mesh that still holds a larger (or any) previous result must give exactly the fresh one.
+TEST(Mesher, BitmaskReusedOutputEqualsFreshOutput) {
+  const auto& palette = testing::test_palette();
+  auto mesher = make_mesher(MesherKind::kBitmask);
+  ChunkMesh reused;
+  mesher->mesh(testing::make_pattern(Pattern::kCheckerboard, 32, 1), palette, reused);
+  ASSERT_GT(reused.quad_count(), 10000u);
+  for (auto pattern : {Pattern::kTerrain, Pattern::kMixedAlpha, Pattern::kEmpty, Pattern::kRandom}) {
+    const PaddedBlocks blocks = testing::make_pattern(pattern, 32, 5);
+    ChunkMesh fresh;
+    make_mesher(MesherKind::kBitmask)->mesh(blocks, palette, fresh);
+    mesher->mesh(blocks, palette, reused);
+    EXPECT_EQ(reused.opaque, fresh.opaque) << testing::to_string(pattern);
+    EXPECT_EQ(reused.alpha_cut, fresh.alpha_cut) << testing::to_string(pattern);
+  }
+  mesher->mesh(testing::make_pattern(Pattern::kEmpty, 32, 1), palette, reused);
+  EXPECT_TRUE(reused.empty());
+}
+
+}  // namespace
+}  // namespace sylva::voxel
