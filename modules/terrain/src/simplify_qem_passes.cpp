@@ -16,14 +16,20 @@ using detail::Quadric;
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
 constexpr double kCosLimit = 0.35;  // refuse normals turning by more than ~70 degrees (as simplify_qem)
 
+// One corner of a vertex's fan: triangle (v, next, prev) in the triangle's winding. Storing the
+// two other vertices directly (not the triangle index) saves an indirection in the hot loops.
+struct Corner {
+  std::uint32_t next, prev;
+};
+
 // Work arrays reused by every call on a thread (a model tree reduces thousands of segments; the
 // benchmark 16 per iteration), so a call allocates only its result once they have grown.
 struct Scratch {
   std::vector<std::uint32_t> local_of;  // global vertex -> local id, kNone outside a call
   std::vector<std::uint32_t> global;    // local -> global
   std::vector<std::uint32_t> tris;      // current triangles, 3 local ids each
-  std::vector<std::uint32_t> offset;    // CSR vertex -> triangles of the pass-start mesh
-  std::vector<std::uint32_t> adj;
+  std::vector<std::uint32_t> offset;    // CSR vertex -> corners of the pass-start mesh
+  std::vector<Corner> fans;
   std::vector<std::uint32_t> remap;     // collapses of the current pass: v -> u, else v
   std::vector<std::uint32_t> mark;      // link-condition stamps
   std::vector<std::uint32_t> target;    // best collapse target of each free vertex
@@ -31,10 +37,12 @@ struct Scratch {
   std::vector<std::uint8_t> busy;       // source or target of a collapse this pass
   std::vector<Quadric> q;
   std::vector<double> self_error;       // q[v] at pos[v]
-  std::vector<glm::dvec3> pos;
-  std::vector<glm::dvec3> normal;       // area-weighted original surface normal
+  // Positions and normals in float (the input is float; geometry is evaluated in double): small
+  // per-vertex records keep the cost-ordered walk, which visits vertices randomly, in cache.
+  std::vector<glm::vec3> pos;
+  std::vector<glm::vec3> normal;        // area-weighted original surface normal (rounded sum)
+  std::vector<glm::dvec3> normal_sum;   // its exact accumulation
   std::vector<std::uint64_t> keys, keys_tmp;  // (cost bits << 32) | vertex
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> fan;  // (next, previous) of a vertex's triangles
 };
 
 Scratch& scratch() {
@@ -75,16 +83,21 @@ float key_cost(std::uint64_t key) {
   return f;
 }
 
-// Vertex -> triangle lists of the current triangles (counting sort into CSR).
-void build_adjacency(Scratch& s, std::size_t nv) {
+// Vertex -> fan corners of the current triangles (counting sort into CSR).
+void build_fans(Scratch& s, std::size_t nv) {
   s.offset.assign(nv + 1, 0u);
   for (std::uint32_t v : s.tris) ++s.offset[v + 1];
   for (std::size_t i = 0; i < nv; ++i) s.offset[i + 1] += s.offset[i];
-  s.adj.resize(s.tris.size());
-  // Fill from the back using the end offsets, which leaves offset[] as the starts again.
-  for (std::size_t t = s.tris.size() / 3; t-- > 0;)
-    for (std::size_t k = 3; k-- > 0;) s.adj[--s.offset[s.tris[3 * t + k] + 1]] = static_cast<std::uint32_t>(t);
-  // offset[v + 1] was decremented once per triangle of v: it now holds v's start; shift back.
+  s.fans.resize(s.tris.size());
+  // Fill from the back using the end offsets; offset[v + 1] is decremented once per corner of v,
+  // ending at v's start, and is shifted back below.
+  for (std::size_t t = s.tris.size(); t > 0;) {
+    t -= 3;
+    const std::uint32_t a = s.tris[t], b = s.tris[t + 1], c = s.tris[t + 2];
+    s.fans[--s.offset[c + 1]] = {a, b};
+    s.fans[--s.offset[b + 1]] = {c, a};
+    s.fans[--s.offset[a + 1]] = {b, c};
+  }
   for (std::size_t i = 0; i < nv; ++i) s.offset[i] = s.offset[i + 1];
   s.offset[nv] = static_cast<std::uint32_t>(s.tris.size());
 }
@@ -129,45 +142,45 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   s.pos.resize(nv);
   s.locked.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) {
-    s.pos[i] = glm::dvec3(positions[s.global[i]]);
+    s.pos[i] = positions[s.global[i]];
     s.locked[i] = locked_in[s.global[i]] != 0;
   }
   s.q.assign(nv, Quadric{});
-  s.normal.assign(nv, glm::dvec3(0.0));
+  s.normal_sum.assign(nv, glm::dvec3(0.0));
   for (std::size_t t = 0; t < s.tris.size(); t += 3) {
     const std::uint32_t a = s.tris[t], b = s.tris[t + 1], c = s.tris[t + 2];
-    const glm::dvec3 n = glm::cross(s.pos[b] - s.pos[a], s.pos[c] - s.pos[a]);
+    const glm::dvec3 pa(s.pos[a]);
+    const glm::dvec3 n = glm::cross(glm::dvec3(s.pos[b]) - pa, glm::dvec3(s.pos[c]) - pa);
     const double len = glm::length(n);
     if (len > 0.0) {
       const glm::dvec3 nn = n / len;
-      const double d = -glm::dot(nn, s.pos[a]);
+      const double d = -glm::dot(nn, pa);
       for (std::uint32_t v : {a, b, c}) s.q[v].add_plane(nn, d, 0.5 * len);
     }
-    for (std::uint32_t v : {a, b, c}) s.normal[v] += n;
+    for (std::uint32_t v : {a, b, c}) s.normal_sum[v] += n;
   }
+  s.normal.resize(nv);
   s.self_error.resize(nv);
-  for (std::size_t i = 0; i < nv; ++i) s.self_error[i] = s.q[i].error(s.pos[i]);
+  for (std::size_t i = 0; i < nv; ++i) {
+    s.normal[i] = glm::vec3(s.normal_sum[i]);
+    s.self_error[i] = s.q[i].error(glm::dvec3(s.pos[i]));
+  }
 
-  build_adjacency(s, nv);
+  build_fans(s, nv);
   // Open boundary: a vertex is interior when its fan is closed, i.e. the vertices following it in
   // its triangles are the vertices preceding it (an edge a->b without b->a leaves b unmatched in
   // a's fan). Locked vertices need no test: an open edge locks both its ends, and each end sees
   // the edge in its own fan.
   for (std::uint32_t a = 0; a < nv; ++a) {
     if (s.locked[a]) continue;
-    const std::uint32_t begin = s.offset[a], end = s.offset[a + 1];
-    s.fan.clear();
-    for (std::uint32_t i = begin; i < end; ++i) {
-      const std::uint32_t* o = &s.tris[3 * static_cast<std::size_t>(s.adj[i])];
-      const std::size_t k = o[0] == a ? 0 : o[1] == a ? 1 : 2;
-      s.fan.push_back({o[(k + 1) % 3], o[(k + 2) % 3]});
-    }
+    const Corner* f = s.fans.data() + s.offset[a];
+    const std::size_t n = s.offset[a + 1] - s.offset[a];
     bool closed = true;
-    for (std::size_t i = 0; i < s.fan.size() && closed; ++i) {
+    for (std::size_t i = 0; i < n && closed; ++i) {
       bool next_found = false, prev_found = false;
-      for (const auto& [next, prev] : s.fan) {
-        next_found |= prev == s.fan[i].first;
-        prev_found |= next == s.fan[i].second;
+      for (std::size_t j = 0; j < n; ++j) {
+        next_found |= f[j].prev == f[i].next;
+        prev_found |= f[j].next == f[i].prev;
       }
       closed = next_found && prev_found;
     }
@@ -180,14 +193,13 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   s.target.resize(nv);
   s.mark.assign(nv, 0u);
   std::uint32_t mark_id = 0;
-  const std::uint32_t* tr = nullptr;
   std::size_t triangles = s.tris.size() / 3;
   bool first = true;
   while (triangles > target_triangles) {
     ++st.passes;
-    if (!first) build_adjacency(s, nv);
+    if (!first) build_fans(s, nv);
     first = false;
-    tr = s.tris.data();
+    const Corner* fans = s.fans.data();
     // Every free vertex proposes its cheapest collapse. Boundary vertices are locked, so a free
     // vertex has a closed fan and each neighbour is the successor of v in exactly one triangle.
     s.keys.clear();
@@ -199,9 +211,8 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       std::uint32_t best_u = kNone;
       const Quadric& qv = s.q[v];
       for (std::uint32_t i = s.offset[v]; i < s.offset[v + 1]; ++i) {
-        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
-        const std::uint32_t u = o[0] == v ? o[1] : o[1] == v ? o[2] : o[0];
-        const double c = qv.error(s.pos[u]) + s.self_error[u];
+        const std::uint32_t u = fans[i].next;
+        const double c = qv.error(glm::dvec3(s.pos[u])) + s.self_error[u];
         if (c < best) {
           best = c;
           best_u = u;
@@ -225,23 +236,22 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       if (s.busy[v] || s.busy[u]) continue;
       const std::uint32_t* rm = s.remap.data();
       // Link condition on the current mesh: the common neighbours of v and u are exactly the
-      // apexes of the triangles on the edge.
+      // apexes of the triangles on the edge. A corner is dead when its triangle collapsed this
+      // pass (v and u are no source or target yet, so only next and prev can have moved).
       mark_id += 2;
       std::size_t shared = 0;
       for (std::uint32_t i = s.offset[v]; i < s.offset[v + 1]; ++i) {
-        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
-        const std::uint32_t a = rm[o[0]], b = rm[o[1]], c = rm[o[2]];
-        if (a == b || b == c || a == c) continue;  // collapsed this pass
-        shared += (a == u) | (b == u) | (c == u);
-        s.mark[a] = s.mark[b] = s.mark[c] = mark_id;
+        const std::uint32_t b = rm[fans[i].next], c = rm[fans[i].prev];
+        if (b == c) continue;
+        shared += (b == u) | (c == u);
+        s.mark[b] = s.mark[c] = mark_id;
       }
       std::size_t common = 0;
       for (std::uint32_t i = s.offset[u]; i < s.offset[u + 1]; ++i) {
-        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
-        const std::uint32_t w3[3] = {rm[o[0]], rm[o[1]], rm[o[2]]};
-        if (w3[0] == w3[1] || w3[1] == w3[2] || w3[0] == w3[2]) continue;
-        for (std::uint32_t w : w3) {
-          if (w == u || w == v || s.mark[w] != mark_id) continue;
+        const std::uint32_t b = rm[fans[i].next], c = rm[fans[i].prev];
+        if (b == c) continue;
+        for (std::uint32_t w : {b, c}) {
+          if (w == v || s.mark[w] != mark_id) continue;
           s.mark[w] = mark_id + 1;
           ++common;
         }
@@ -252,16 +262,12 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       }
       // Geometry of v's other triangles after moving v onto u.
       bool ok = true;
-      const glm::dvec3 pu = s.pos[u];
+      const glm::dvec3 pu(s.pos[u]), pv(s.pos[v]);
       for (std::uint32_t i = s.offset[v]; i < s.offset[v + 1] && ok; ++i) {
-        const std::uint32_t* o = tr + 3 * static_cast<std::size_t>(s.adj[i]);
-        const std::uint32_t w3[3] = {rm[o[0]], rm[o[1]], rm[o[2]]};
-        if (w3[0] == w3[1] || w3[1] == w3[2] || w3[0] == w3[2]) continue;
-        if (w3[0] == u || w3[1] == u || w3[2] == u) continue;
-        const std::size_t k = w3[0] == v ? 0 : w3[1] == v ? 1 : 2;
-        const std::uint32_t b = w3[(k + 1) % 3], c = w3[(k + 2) % 3];
-        const glm::dvec3 pb = s.pos[b], pc = s.pos[c];
-        const glm::dvec3 n0 = glm::cross(pb - s.pos[v], pc - s.pos[v]);
+        const std::uint32_t b = rm[fans[i].next], c = rm[fans[i].prev];
+        if (b == c || b == u || c == u) continue;
+        const glm::dvec3 pb(s.pos[b]), pc(s.pos[c]);
+        const glm::dvec3 n0 = glm::cross(pb - pv, pc - pv);
         const glm::dvec3 e1 = pb - pu, e2 = pc - pu, e3 = pc - pb;
         const glm::dvec3 n1 = glm::cross(e1, e2);
         const double l1 = glm::dot(n1, n1);
@@ -270,7 +276,12 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
         const double d1 = glm::dot(e1, e1), d2 = glm::dot(e2, e2), d3 = glm::dot(e3, e3);
         if (l1 <= 1e-10 * std::max({d1 * d2, d1 * d3, d2 * d3})) ok = false;
         else if (glm::dot(n0, n1) <= kCosLimit * std::sqrt(glm::dot(n0, n0) * l1)) ok = false;
-        else if (glm::dot(n1, s.normal[u] + s.normal[b] + s.normal[c]) <= 0.0) ok = false;
+        else {
+          // Facing the original surface, with a margin covering the float rounding of the normals.
+          const glm::dvec3 ref = glm::dvec3(s.normal[u]) + glm::dvec3(s.normal[b]) + glm::dvec3(s.normal[c]);
+          const double f = glm::dot(n1, ref);
+          if (f <= 0.0 || f * f <= 1e-12 * l1 * glm::dot(ref, ref)) ok = false;
+        }
       }
       if (!ok) {
         ++st.rejected;
@@ -278,13 +289,19 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       }
       s.busy[v] = s.busy[u] = 1;
       s.remap[v] = u;
-      s.q[u] += s.q[v];
-      s.self_error[u] = s.q[u].error(pu);
       removed += shared;
       ++accepted;
     }
     if (accepted == 0) break;
     st.collapses += accepted;
+    // Quadrics merge after the walk, in vertex order (a target receives one source per pass and
+    // is never a source itself, and the walk's costs were fixed at the pass start).
+    for (std::uint32_t v = 0; v < nv; ++v) {
+      const std::uint32_t u = s.remap[v];
+      if (u == v) continue;
+      s.q[u] += s.q[v];
+      s.self_error[u] = s.q[u].error(glm::dvec3(s.pos[u]));
+    }
     std::size_t out = 0;
     for (std::size_t t = 0; t < s.tris.size(); t += 3) {
       const std::uint32_t a = s.remap[s.tris[t]], b = s.remap[s.tris[t + 1]], c = s.remap[s.tris[t + 2]];
