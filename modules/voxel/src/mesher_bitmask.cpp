@@ -82,9 +82,10 @@ void transpose_bits(std::uint64_t* a, int width) {
 // (Lysenko's rule, see mesher.hpp): bit 3 * (dr + 1) + (db + 1) of the index is the opaque
 // neighbour at row offset dr and bit offset db. kUIsRow: the face's u axis runs along rows (+-Y
 // faces), otherwise along bits. Built at compile time from the same vertex formula as AoSampler.
+// Entry: the AO byte, plus 0x100 when all four corners are equal (the face may merge).
 template <bool kUIsRow>
-constexpr std::array<std::uint8_t, 512> make_ao_table() {
-  std::array<std::uint8_t, 512> t{};
+constexpr std::array<std::uint16_t, 512> make_ao_table() {
+  std::array<std::uint16_t, 512> t{};
   for (int nb = 0; nb < 512; ++nb) {
     auto occ = [nb](int du, int dv) {
       const int dr = kUIsRow ? du : dv;
@@ -96,12 +97,13 @@ constexpr std::array<std::uint8_t, 512> make_ao_table() {
     const int a1 = vertex(occ(1, 0), occ(0, -1), occ(1, -1));    // (u1, v0)
     const int a2 = vertex(occ(1, 0), occ(0, 1), occ(1, 1));      // (u1, v1)
     const int a3 = vertex(occ(-1, 0), occ(0, 1), occ(-1, 1));    // (u0, v1)
-    t[static_cast<std::size_t>(nb)] = static_cast<std::uint8_t>(a0 | a1 << 2 | a2 << 4 | a3 << 6);
+    const bool uniform = a0 == a1 && a0 == a2 && a0 == a3;
+    t[static_cast<std::size_t>(nb)] = static_cast<std::uint16_t>(a0 | a1 << 2 | a2 << 4 | a3 << 6 | (uniform ? 0x100 : 0));
   }
   return t;
 }
-constexpr std::array<std::uint8_t, 512> kAoRowU = make_ao_table<true>();
-constexpr std::array<std::uint8_t, 512> kAoBitU = make_ao_table<false>();
+constexpr std::array<std::uint16_t, 512> kAoRowU = make_ao_table<true>();
+constexpr std::array<std::uint16_t, 512> kAoBitU = make_ao_table<false>();
 
 constexpr std::uint8_t kFlagAlpha = 1;     // alpha-cut block
 constexpr std::uint8_t kFlagSidesOnly = 2;  // no faces along y
@@ -176,7 +178,7 @@ class BitmaskMesher final : public Mesher {
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
     // AO neighbourhood table for this orientation, and the opaque masks of the layer's rows.
-    const std::uint8_t* ao_table = kAxis == 1 ? kAoRowU.data() : kAoBitU.data();
+    const std::uint16_t* ao_table = kAxis == 1 ? kAoRowU.data() : kAoBitU.data();
     // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
     const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
@@ -241,14 +243,18 @@ class BitmaskMesher final : public Mesher {
             if ((f & kFlagCullSame) && ids[idx + front] == self) return;
           }
           std::uint32_t aob = 0xffu;  // all four corners open
+          bool uniform = true;
           if (mode == kTable) {
             // Bits b - 1, b, b + 1 of the three rows index the AO table (b is not an edge bit).
             const int sh = b - 1;
-            aob = ao_table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
+            const std::uint32_t e = ao_table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
+            aob = e & 0xffu;
+            uniform = (e & 0x100u) != 0;
           } else if (mode == kEdge) {
             aob = edge_ao.face_bits(idx, F);
+            uniform = ao_uniform(aob);
           }
-          if (ao_uniform(aob)) {
+          if (uniform) {
             add(pack_word1(self, F, aob), std::uint64_t{1} << b);
           } else {
             const PackedQuad q{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(self, F, aob)};
@@ -395,37 +401,48 @@ class BitmaskMesher final : public Mesher {
       }
     }
     // Columns along y for interior x: transpose each z-slab of the x rows (rows y in [0, n)).
+    // For n <= 32 two slabs share one transpose: slab zz in the low and zz + 1 in the high 32
+    // bits of every word (the 32-wide transpose never moves bits across the halves).
     const int width = n <= 32 ? 32 : 64;
+    const int lanes = n <= 32 ? 2 : 1;
+    const std::uint64_t low_lane = lanes == 2 ? 0xffffffffULL : ~std::uint64_t{0};
+    static constexpr std::uint64_t kNoSlab[64] = {};
     alignas(16) std::uint64_t a[64];
     alignas(16) std::uint64_t o[64];
     std::uint64_t* ay = ay_.data();
     std::uint64_t* oy = oy_.data();
-    for (int zz = 0; zz < p; ++zz) {
+    for (int zz = 0; zz < p; zz += lanes) {
+      const bool second = lanes == 2 && zz + 1 < p;
       // Rows y of slab zz are az[zz][1 .. n], contiguous.
-      const std::uint64_t* sa = az + static_cast<std::size_t>(zz * p + 1);
-      const std::uint64_t* so = oz + static_cast<std::size_t>(zz * p + 1);
+      const std::uint64_t* sa0 = az + static_cast<std::size_t>(zz * p + 1);
+      const std::uint64_t* so0 = oz + static_cast<std::size_t>(zz * p + 1);
+      const std::uint64_t* sa1 = second ? sa0 + p : kNoSlab;
+      const std::uint64_t* so1 = second ? so0 + p : kNoSlab;
       std::uint64_t any = 0;
-      std::uint64_t diff = 0;  // opaque == non-air (no alpha-cut block in the slab): one transpose
+      std::uint64_t diff = 0;  // opaque == non-air (no alpha-cut block in the slabs): one transpose
       for (int y = 0; y < n; ++y) {
-        any |= sa[y];
-        diff |= sa[y] ^ so[y];
+        a[y] = sa0[y] | sa1[y] << 32;
+        any |= a[y];
+        diff |= (sa0[y] ^ so0[y]) | (sa1[y] ^ so1[y]);
       }
       if (any) {
-        std::copy(sa, sa + n, a);
         std::fill(a + n, a + width, 0);
         transpose_bits(a, width);
-        if (diff == 0) {
-          for (int x = 0; x < n; ++x) {
-            ay[(x + 1) * p + zz] = a[x];
-            oy[(x + 1) * p + zz] = a[x];
-          }
-        } else {
-          std::copy(so, so + n, o);
+        const std::uint64_t* oc = a;
+        if (diff != 0) {
+          for (int y = 0; y < n; ++y) o[y] = so0[y] | so1[y] << 32;
           std::fill(o + n, o + width, 0);
           transpose_bits(o, width);
+          oc = o;
+        }
+        for (int x = 0; x < n; ++x) {
+          ay[(x + 1) * p + zz] = a[x] & low_lane;
+          oy[(x + 1) * p + zz] = oc[x] & low_lane;
+        }
+        if (second) {
           for (int x = 0; x < n; ++x) {
-            ay[(x + 1) * p + zz] = a[x];
-            oy[(x + 1) * p + zz] = o[x];
+            ay[(x + 1) * p + zz + 1] = a[x] >> 32;
+            oy[(x + 1) * p + zz + 1] = oc[x] >> 32;
           }
         }
       } else {
@@ -433,9 +450,17 @@ class BitmaskMesher final : public Mesher {
           ay[(x + 1) * p + zz] = 0;
           oy[(x + 1) * p + zz] = 0;
         }
+        if (second) {
+          for (int x = 0; x < n; ++x) {
+            ay[(x + 1) * p + zz + 1] = 0;
+            oy[(x + 1) * p + zz + 1] = 0;
+          }
+        }
       }
-      oy[zz] = bytes_to_bits(lo_end + zz * p + 1, n);
-      oy[(n + 1) * p + zz] = bytes_to_bits(hi_end + zz * p + 1, n);
+      for (int z = zz; z < zz + (second ? 2 : 1); ++z) {
+        oy[z] = bytes_to_bits(lo_end + z * p + 1, n);
+        oy[(n + 1) * p + z] = bytes_to_bits(hi_end + z * p + 1, n);
+      }
     }
   }
 
