@@ -229,9 +229,26 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
         goal_collapses < s.keys.size() ? 1.5f * key_cost(s.keys[goal_collapses]) : std::numeric_limits<float>::max();
 
     std::size_t removed = 0, accepted = 0;
-    for (std::uint64_t key : s.keys) {
+    const std::size_t n_keys = s.keys.size();
+    for (std::size_t k = 0; k < n_keys; ++k) {
+      const std::uint64_t key = s.keys[k];
       if (removed >= goal_triangles) break;
       if (key_cost(key) > error_goal && removed > goal_triangles / 6) break;
+      // The walk visits vertices in cost order, i.e. at random: fetch the records of the
+      // candidates a few steps ahead (their CSR offsets first, then their corners).
+      if (k + 16 < n_keys) {
+        const std::uint32_t w = static_cast<std::uint32_t>(s.keys[k + 16] & 0xFFFFFFFFu);
+        __builtin_prefetch(&s.offset[w]);
+        __builtin_prefetch(&s.target[w]);
+        __builtin_prefetch(&s.busy[w]);
+      }
+      if (k + 8 < n_keys) {
+        const std::uint32_t w = static_cast<std::uint32_t>(s.keys[k + 8] & 0xFFFFFFFFu);
+        __builtin_prefetch(&fans[s.offset[w]]);
+        __builtin_prefetch(&s.remap[w]);
+        __builtin_prefetch(&s.busy[s.target[w]]);
+        __builtin_prefetch(&s.offset[s.target[w]]);
+      }
       const std::uint32_t v = static_cast<std::uint32_t>(key & 0xFFFFFFFFu), u = s.target[v];
       if (s.busy[v] || s.busy[u]) continue;
       const std::uint32_t* rm = s.remap.data();
