@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <utility>
+#include <cstdlib>
 
 namespace sylva::terrain {
 
@@ -224,9 +225,11 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
     if (s.keys.empty()) break;
     sort_by_cost(s.keys, s.keys_tmp);
     const std::size_t goal_triangles = triangles - target_triangles;
-    const std::size_t goal_collapses = std::max<std::size_t>(1, goal_triangles / 2);
+    static const double C = std::getenv("SQP_C") ? std::atof(std::getenv("SQP_C")) : 10.0;
+    static const float F = std::getenv("SQP_F") ? static_cast<float>(std::atof(std::getenv("SQP_F"))) : 1.5f;
+    const std::size_t goal_collapses = std::min<std::size_t>(std::max<std::size_t>(1, goal_triangles / 2), static_cast<std::size_t>(C * static_cast<double>(s.keys.size())));
     const float error_goal =
-        goal_collapses < s.keys.size() ? 1.5f * key_cost(s.keys[goal_collapses]) : std::numeric_limits<float>::max();
+        goal_collapses < s.keys.size() ? F * key_cost(s.keys[goal_collapses]) : std::numeric_limits<float>::max();
 
     std::size_t removed = 0, accepted = 0;
     const std::size_t n_keys = s.keys.size();
