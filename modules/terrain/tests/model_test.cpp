@@ -237,23 +237,28 @@ TEST(Reduction, ReportedErrorMatchesAnIndependentMeasurement) {
   const TriangleMesh m = triangulate(subdivide(overhang_cage(6, 50.0, 0.8f), s).value());
   std::vector<std::uint8_t> locked(m.positions.size(), 0);
   for (const auto& [a, b] : boundary_edges(m.indices)) locked[a] = locked[b] = 1;
-  const auto out = simplify_qem(m.positions, m.indices, locked, m.triangle_count() / 8);
-  const HausdorffDistance h = hausdorff_distance(m.positions, m.indices, out);
-  EXPECT_GT(h.max(), 0.0);
-  // The accelerated measure samples every original vertex (plus centroids), so it is at least the
-  // exact vertex-only distance, and at most that plus one original edge length (the distance to
-  // a surface changes by at most the distance moved).
-  const double brute = brute_vertices_to(m.positions, m.indices, out);
-  double longest = 0.0;
-  for (std::size_t t = 0; t < m.indices.size(); t += 3)
-    for (int k = 0; k < 3; ++k)
-      longest = std::max(longest, static_cast<double>(glm::length(m.positions[m.indices[t + k]] - m.positions[m.indices[t + (k + 1) % 3]])));
-  EXPECT_GE(h.original_to_reduced, brute - 1e-9);
-  EXPECT_LE(h.original_to_reduced, brute + longest);
-  // The reduced vertices are original vertices: their part of the other direction is 0, and the
-  // sampled interior points give a positive, finite distance.
-  EXPECT_GT(h.reduced_to_original, 0.0);
-  EXPECT_LT(h.reduced_to_original, 1e6);
+  // Both QEM reducers (the passes variant is the model tree's default).
+  for (const bool passes : {false, true}) {
+    SCOPED_TRACE(passes ? "simplify_qem_passes" : "simplify_qem");
+    const auto out = passes ? simplify_qem_passes(m.positions, m.indices, locked, m.triangle_count() / 8)
+                            : simplify_qem(m.positions, m.indices, locked, m.triangle_count() / 8);
+    const HausdorffDistance h = hausdorff_distance(m.positions, m.indices, out);
+    EXPECT_GT(h.max(), 0.0);
+    // The accelerated measure samples every original vertex (plus centroids), so it is at least the
+    // exact vertex-only distance, and at most that plus one original edge length (the distance to
+    // a surface changes by at most the distance moved).
+    const double brute = brute_vertices_to(m.positions, m.indices, out);
+    double longest = 0.0;
+    for (std::size_t t = 0; t < m.indices.size(); t += 3)
+      for (int k = 0; k < 3; ++k)
+        longest = std::max(longest, static_cast<double>(glm::length(m.positions[m.indices[t + k]] - m.positions[m.indices[t + (k + 1) % 3]])));
+    EXPECT_GE(h.original_to_reduced, brute - 1e-9);
+    EXPECT_LE(h.original_to_reduced, brute + longest);
+    // The reduced vertices are original vertices: their part of the other direction is 0, and the
+    // sampled interior points give a positive, finite distance.
+    EXPECT_GT(h.reduced_to_original, 0.0);
+    EXPECT_LT(h.reduced_to_original, 1e6);
+  }
   // Identical meshes have (numerically) zero distance.
   EXPECT_LT(hausdorff_distance(m.positions, m.indices, m.indices).max(), 1e-9);
 }
