@@ -116,11 +116,18 @@ class BitmaskMesher final : public Mesher {
 
   void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) override {
     SYLVA_ASSERT(blocks.n >= 1 && blocks.n <= 64, "chunk size {}", blocks.n);
-    // The output lists double as the write buffers: their current elements are treated as
-    // already-constructed room (so re-meshing into the same ChunkMesh does not construct every
-    // quad twice) and they are cut to the quads written at the end.
-    lists_[0] = &out.opaque;
-    lists_[1] = &out.alpha_cut;
+    // Write buffers: chunks up to 32^3 start in the mesher's own scratch lists, which only ever
+    // grow, and copy the quads into the ChunkMesh at the end (a memcpy). Growing the ChunkMesh
+    // lists slice by slice instead costs a resize per slice and zeroes the room past the last
+    // quad on every call (std::vector value-initialises what it grows): ~3 % of a terrain 32^3
+    // mesh. Larger chunks, and any list passing kScratchQuads, write straight into the ChunkMesh
+    // lists (their current elements treated as already-constructed room, cut at the end), so
+    // large outputs are not copied.
+    out_[0] = &out.opaque;
+    out_[1] = &out.alpha_cut;
+    const bool small = blocks.n <= 32;
+    lists_[0] = small ? &scratch_[0] : out_[0];
+    lists_[1] = small ? &scratch_[1] : out_[1];
     n_ = blocks.n;
     p_ = n_ + 2;
     full_ = n_ == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n_) - 1;
@@ -146,8 +153,13 @@ class BitmaskMesher final : public Mesher {
     mesh_face<3>(ids, render, edge_ao);
     mesh_face<4>(ids, render, edge_ao);
     mesh_face<5>(ids, render, edge_ao);
-    out.opaque.resize(count_[0]);
-    out.alpha_cut.resize(count_[1]);
+    for (int list = 0; list < 2; ++list) {
+      if (lists_[list] == out_[list]) {
+        out_[list]->resize(count_[list]);
+      } else {
+        out_[list]->assign(lists_[list]->data(), lists_[list]->data() + count_[list]);
+      }
+    }
   }
 
  private:
@@ -182,11 +194,27 @@ class BitmaskMesher final : public Mesher {
     // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
     const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
-      // Quads are written through raw pointers into the output lists, grown to leave room for a
-      // whole slice (at most n^2 quads: each covers at least one of its n^2 unit faces).
+      const int layer = s + kSign;  // the slice in front of the faces, in [-1, n]
+      // Visible faces of every row of the slice, and the rows holding any (bit r), so the loop
+      // below visits only those.
+      const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
+      const std::uint64_t nonempty = face_rows(am + idx2(s, 0, p), lrows, n, face_rows_);
+      if (nonempty == 0) continue;  // no face in this slice: nothing to write or merge
+      // Quads are written through raw pointers into the output lists, grown to leave room for
+      // the slice: each quad covers at least one unit face, and the faces lie in the rows
+      // between the first and the last non-empty one, at most n per row. The bound is tight so
+      // that the room beyond the last quad, which std::vector zeroes when it grows the list and
+      // which is cut again at the end of mesh(), stays small (a flat n^2 per slice cost ~2 n^2
+      // zeroed quads per call: 2 % of a terrain 32^3 mesh).
       // (Two plain locals, never address-taken, so they stay in registers across calls.)
+      const int span = 64 - std::countl_zero(nonempty) - std::countr_zero(nonempty);
       for (int list = 0; list < 2; ++list) {
-        const std::size_t need = count_[list] + static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+        const std::size_t need = count_[list] + static_cast<std::size_t>(span) * static_cast<std::size_t>(n);
+        if (need > kScratchQuads && lists_[list] != out_[list]) {
+          // Too large for the scratch list: move what is written to the ChunkMesh and go on there.
+          out_[list]->assign(lists_[list]->data(), lists_[list]->data() + count_[list]);
+          lists_[list] = out_[list];
+        }
         std::vector<PackedQuad>& q = *lists_[list];
         // Within the capacity only up to `need` (every new element is zeroed), beyond it doubling.
         if (q.size() < need) q.resize(need > q.capacity() ? std::max(need, 2 * q.capacity()) : need);
@@ -196,11 +224,6 @@ class BitmaskMesher final : public Mesher {
       slot_count_ = 0;
       int last_slot = -1;
       std::uint32_t last_key = 0;
-      const int layer = s + kSign;  // the slice in front of the faces, in [-1, n]
-      // Visible faces of every row of the slice, and the rows holding any (bit r), so the loop
-      // below visits only those.
-      const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
-      const std::uint64_t nonempty = face_rows(am + idx2(s, 0, p), lrows, n, face_rows_);
       // Padded id index and word0 of bit 0 of row 0; rows step by row_ids / 1 << kRowShift.
       int x0, y0, z0;
       origin(F, s, 0, 0, x0, y0, z0);
@@ -332,6 +355,20 @@ class BitmaskMesher final : public Mesher {
 #if defined(__SSE2__)
     const __m128i zero = _mm_setzero_si128();
     std::uint64_t empty = 0;  // bit r: row r has no face
+    if (n <= 32) {
+      // Rows of at most 32 bits: four rows' low halves share one compare (the high halves are 0).
+      for (; r + 4 <= n; r += 4) {
+        const __m128i f0 = _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(layer + r)),
+                                            _mm_loadu_si128(reinterpret_cast<const __m128i*>(slice + r)));
+        const __m128i f1 = _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(layer + r + 2)),
+                                            _mm_loadu_si128(reinterpret_cast<const __m128i*>(slice + r + 2)));
+        _mm_store_si128(reinterpret_cast<__m128i*>(faces + r), f0);
+        _mm_store_si128(reinterpret_cast<__m128i*>(faces + r + 2), f1);
+        const __m128 lows = _mm_shuffle_ps(_mm_castsi128_ps(f0), _mm_castsi128_ps(f1), _MM_SHUFFLE(2, 0, 2, 0));
+        const __m128i z = _mm_cmpeq_epi32(_mm_castps_si128(lows), zero);
+        empty |= static_cast<std::uint64_t>(_mm_movemask_ps(_mm_castsi128_ps(z))) << r;
+      }
+    }
     for (; r + 2 <= n; r += 2) {
       const __m128i f = _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(layer + r)),
                                          _mm_loadu_si128(reinterpret_cast<const __m128i*>(slice + r)));
@@ -594,6 +631,9 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint8_t> ends_;  // opaque bytes of the x = -1 and x = n padding blocks, per (z, y)
   // The ChunkMesh lists being written (opaque, alpha-cut) and the quads written so far.
   std::vector<PackedQuad>* lists_[2] = {nullptr, nullptr};
+  std::vector<PackedQuad>* out_[2] = {nullptr, nullptr};  // the ChunkMesh lists
+  std::vector<PackedQuad> scratch_[2];
+  static constexpr std::size_t kScratchQuads = 8192;  // 64 KB per list
   std::size_t count_[2] = {0, 0};
   std::vector<std::uint8_t> flags_;   // per block: kFlag* bits  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;
