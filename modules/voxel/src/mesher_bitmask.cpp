@@ -131,7 +131,15 @@ class BitmaskMesher final : public Mesher {
     n_ = blocks.n;
     p_ = n_ + 2;
     full_ = n_ == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n_) - 1;
-    build_masks(blocks, palette);
+    // The common chunk sizes get the mask pass with n known at compile time: the per-row
+    // classification unrolls completely and every index step is a constant.
+    if (n_ == 32) {
+      build_masks<32>(blocks, palette);
+    } else if (n_ == 64) {
+      build_masks<64>(blocks, palette);
+    } else {
+      build_masks<0>(blocks, palette);
+    }
     // One flag byte per block for the face loop: most faces are of plain opaque blocks and pass
     // with a single load and test.
     const std::uint8_t* render = palette.render_table().data();
@@ -147,12 +155,11 @@ class BitmaskMesher final : public Mesher {
     count_[0] = count_[1] = 0;
     // Faces on the chunk's edge rows read their padding neighbours straight from the ids.
     const AoSampler edge_ao(blocks, palette.opaque_table());
-    mesh_face<0>(ids, render, edge_ao);
-    mesh_face<1>(ids, render, edge_ao);
-    mesh_face<2>(ids, render, edge_ao);
-    mesh_face<3>(ids, render, edge_ao);
-    mesh_face<4>(ids, render, edge_ao);
-    mesh_face<5>(ids, render, edge_ao);
+    if (n_ == 32) {
+      mesh_faces<32>(ids, render, edge_ao);
+    } else {
+      mesh_faces<0>(ids, render, edge_ao);
+    }
     for (int list = 0; list < 2; ++list) {
       if (lists_[list] == out_[list]) {
         out_[list]->resize(count_[list]);
@@ -163,13 +170,24 @@ class BitmaskMesher final : public Mesher {
   }
 
  private:
-  // One face direction, specialised so the axis mapping is resolved at compile time.
-  template <int F>
+  template <int kN>
+  void mesh_faces(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao) {
+    mesh_face<0, kN>(ids, render, edge_ao);
+    mesh_face<1, kN>(ids, render, edge_ao);
+    mesh_face<2, kN>(ids, render, edge_ao);
+    mesh_face<3, kN>(ids, render, edge_ao);
+    mesh_face<4, kN>(ids, render, edge_ao);
+    mesh_face<5, kN>(ids, render, edge_ao);
+  }
+
+  // One face direction, specialised so the axis mapping is resolved at compile time; kN as for
+  // build_masks (32: strides and the face-row pass are constants).
+  template <int F, int kN>
   void mesh_face(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao) {
     constexpr int kAxis = F >> 1;
     constexpr int kSign = (F & 1) ? -1 : 1;
-    const int n = n_;
-    const int p = p_;
+    const int n = kN > 0 ? kN : n_;
+    const int p = n + 2;
     const int stride[3] = {1, p * p, p};
     const bool ao_on = options_.ambient_occlusion;
     const int front = kSign * stride[kAxis];
@@ -198,7 +216,7 @@ class BitmaskMesher final : public Mesher {
       // Visible faces of every row of the slice, and the rows holding any (bit r), so the loop
       // below visits only those.
       const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
-      const std::uint64_t nonempty = face_rows(am + idx2(s, 0, p), lrows, n, face_rows_);
+      const std::uint64_t nonempty = face_rows<kN>(am + idx2(s, 0, p), lrows, n, face_rows_);
       if (nonempty == 0) continue;  // no face in this slice: nothing to write or merge
       // Quads are written through raw pointers into the output lists, grown to leave room for
       // the slice: each quad covers at least one unit face, and the faces lie in the rows
@@ -348,8 +366,10 @@ class BitmaskMesher final : public Mesher {
 
   // faces[r] = slice[r] & ~layer[r] for r in [0, n); returns the mask of rows with faces.
   // Two rows per SSE2 operation.
-  static std::uint64_t face_rows(const std::uint64_t* slice, const std::uint64_t* layer, int n,
+  template <int kN>
+  static std::uint64_t face_rows(const std::uint64_t* slice, const std::uint64_t* layer, int n_run,
                                  std::uint64_t* faces) {
+    const int n = kN > 0 ? kN : n_run;
     std::uint64_t nonempty = 0;
     int r = 0;
 #if defined(__SSE2__)
@@ -392,9 +412,11 @@ class BitmaskMesher final : public Mesher {
   // (p passed in: the member would be reloaded after every store into the uint64_t scratch.)
   static int idx2(int a, int b, int p) { return (a + 1) * p + (b + 1); }
 
+  // kN: the chunk size when known at compile time, else 0 (n_ at run time).
+  template <int kN>
   void build_masks(const PaddedBlocks& blocks, const BlockPalette& palette) {
-    const int n = n_;
-    const int p = p_;
+    const int n = kN > 0 ? kN : n_;
+    const int p = n + 2;
     const auto pp = static_cast<std::size_t>(p * p);
     // Every entry is written below (no clearing pass: it cost as much as a transpose).
     for (auto* v : {&ax_, &ox_, &az_, &oz_, &ay_, &oy_}) v->resize(pp);
@@ -419,7 +441,7 @@ class BitmaskMesher final : public Mesher {
         const auto k = static_cast<std::size_t>(yy * p + zz);
         std::uint64_t nonair = 0;
         std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
-        classify_row(row + 1, n, first_special, nonair, special);
+        classify_row<kN>(row + 1, n, first_special, nonair, special);
         std::uint64_t alpha = 0;
         for (std::uint64_t m = special; m;) {
           const int b = std::countr_zero(m);
@@ -502,14 +524,36 @@ class BitmaskMesher final : public Mesher {
   }
 
   // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special.
-  static void classify_row(const BlockId* row, int n, BlockId first_special, std::uint64_t& nonair,
+  template <int kN>
+  static void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
                            std::uint64_t& special) {
+    const int n = kN > 0 ? kN : n_run;
     int x = 0;
 #if defined(__SSE2__)
     {
       const __m128i zero = _mm_setzero_si128();
       // v - (first_special - 1), saturated at 0, is zero exactly for the ids below first_special.
       const __m128i limit = _mm_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
+      // 32 ids per step (one step for a 32^3 chunk's row): one movemask pair and one
+      // complement per mask instead of a loop iteration per 16.
+      for (; x + 32 <= n; x += 32) {
+        const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
+        const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
+        const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 16));
+        const __m128i v3 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 24));
+        const auto air =
+            static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero)))) |
+            static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v2, zero), _mm_cmpeq_epi16(v3, zero))))
+                << 16;
+        const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
+        const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
+        const __m128i s2 = _mm_cmpeq_epi16(_mm_subs_epu16(v2, limit), zero);
+        const __m128i s3 = _mm_cmpeq_epi16(_mm_subs_epu16(v3, limit), zero);
+        const auto ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1))) |
+                              static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s2, s3))) << 16;
+        nonair |= static_cast<std::uint64_t>(~air) << x;
+        special |= static_cast<std::uint64_t>(~ordinary) << x;
+      }
       for (; x + 16 <= n; x += 16) {
         const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
         const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
