@@ -377,6 +377,7 @@ class BitmaskMesher final : public Mesher {
     std::uint64_t empty = 0;  // bit r: row r has no face
     if (n <= 32) {
       // Rows of at most 32 bits: four rows' low halves share one compare (the high halves are 0).
+#pragma GCC unroll 8
       for (; r + 4 <= n; r += 4) {
         const __m128i f0 = _mm_andnot_si128(_mm_loadu_si128(reinterpret_cast<const __m128i*>(layer + r)),
                                             _mm_loadu_si128(reinterpret_cast<const __m128i*>(slice + r)));
