@@ -120,9 +120,9 @@ class BitmaskMesher final : public Mesher {
     // grow, and copy the quads into the ChunkMesh at the end (a memcpy). Growing the ChunkMesh
     // lists slice by slice instead costs a resize per slice and zeroes the room past the last
     // quad on every call (std::vector value-initialises what it grows): ~3 % of a terrain 32^3
-    // mesh. Larger chunks, and any list passing kScratchQuads, write straight into the ChunkMesh
-    // lists (their current elements treated as already-constructed room, cut at the end), so
-    // large outputs are not copied.
+    // mesh. Larger chunks, and any list passing kScratchQuads (4096), write straight into the
+    // ChunkMesh lists (their current elements treated as already-constructed room, cut at the
+    // end), so large outputs are not copied.
     out_[0] = &out.opaque;
     out_[1] = &out.alpha_cut;
     const bool small = blocks.n <= 32;
@@ -230,7 +230,11 @@ class BitmaskMesher final : public Mesher {
         const std::size_t need = count_[list] + static_cast<std::size_t>(span) * static_cast<std::size_t>(n);
         if (need > kScratchQuads && lists_[list] != out_[list]) {
           // Too large for the scratch list: move what is written to the ChunkMesh and go on there.
-          out_[list]->assign(lists_[list]->data(), lists_[list]->data() + count_[list]);
+          // (Copied over its current elements, not assigned: a cut would make the growth below
+          // zero again what the ChunkMesh already holds, e.g. the previous mesh of this chunk.)
+          std::vector<PackedQuad>& o = *out_[list];
+          if (o.size() < count_[list]) o.resize(count_[list]);
+          std::copy_n(lists_[list]->data(), count_[list], o.data());
           lists_[list] = out_[list];
         }
         std::vector<PackedQuad>& q = *lists_[list];
@@ -678,7 +682,7 @@ class BitmaskMesher final : public Mesher {
   std::vector<PackedQuad>* lists_[2] = {nullptr, nullptr};
   std::vector<PackedQuad>* out_[2] = {nullptr, nullptr};  // the ChunkMesh lists
   std::vector<PackedQuad> scratch_[2];
-  static constexpr std::size_t kScratchQuads = 8192;  // 64 KB per list
+  static constexpr std::size_t kScratchQuads = 4096;  // 32 KB per list (terrain 32^3: ~3 000 quads)
   std::size_t count_[2] = {0, 0};
   std::vector<std::uint8_t> flags_;   // per block: kFlag* bits  // per slot: rows holding faces (bit r)
   int slot_count_ = 0;

@@ -1,5 +1,5 @@
 // The bitmask mesher's output buffers: chunks up to 32^3 are written into the mesher's own
-// scratch lists and copied into the ChunkMesh at the end; a list passing 8192 quads moves to the
+// scratch lists and copied into the ChunkMesh at the end; a list passing 4096 quads moves to the
 // ChunkMesh mid-way; 64^3 chunks write into the ChunkMesh directly. Invariant checked here: one
 // mesher object reused across sizes, contents and ChunkMeshes gives exactly what a fresh mesher
 // gives into a fresh ChunkMesh, and covers the reference surface, whichever path each list took.
@@ -36,7 +36,7 @@ TEST(MesherBitmaskBuffers, ReusedMesherEqualsFreshMesherOnEveryBufferPath) {
   };
   std::vector<Case> cases;
   cases.push_back({"terrain 32", testing::make_pattern(Pattern::kTerrain, 32, 7)});
-  // 3 * 32^3 = 98304 alpha-cut quads: the alpha-cut list passes 8192 and moves mid-chunk.
+  // 3 * 32^3 = 98304 alpha-cut quads: the alpha-cut list passes 4096 and moves mid-chunk.
   cases.push_back({"leaf checkerboard 32", checkerboard_of(leaves, 32)});
   cases.push_back({"mixed alpha 31", testing::make_pattern(Pattern::kMixedAlpha, 31, 3)});
   // 3 * 32^3 opaque quads: the opaque list moves mid-chunk.
