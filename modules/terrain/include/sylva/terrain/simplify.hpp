@@ -18,7 +18,7 @@ namespace sylva::terrain {
 struct SimplifyStats {
   std::size_t collapses = 0;
   std::size_t rejected = 0;  // collapses refused by the validity tests (QEM)
-  std::size_t passes = 0;    // seed reducer: passes of the edge array
+  std::size_t passes = 0;    // seed and pass-wise QEM reducers: passes over the mesh
 };
 
 // Garland-Heckbert quadric error metric (area-weighted plane quadrics), cheapest collapse first.
@@ -30,10 +30,14 @@ std::vector<std::uint32_t> simplify_qem(std::span<const glm::vec3> positions, st
                                         std::span<const std::uint8_t> locked, std::size_t target_triangles,
                                         SimplifyStats* stats = nullptr);
 
-// The same collapse rules evaluated in passes (seed §4.3's structure with QEM costs): every pass
-// takes the cheapest still-needed edge collapses in cost order and accepts each valid one whose
-// neighbourhood no earlier collapse of the pass touched. Much faster than the queue, close in
-// error (bench/simplify_bench.cpp). Vertices on an open boundary are treated as locked.
+// The same collapse rules evaluated in passes (seed §4.3's structure with QEM costs), the model
+// tree's default: every free vertex proposes its cheapest collapse, the proposals are walked in
+// cost order and each valid one whose source and target took no part in an earlier collapse of
+// the pass is applied; validity is tested on the current mesh, so the guarantees are the queue's.
+// Faster than meshoptimizer 0.18's meshopt_simplify on the benchmark segments, at a lower
+// error than the queue (bench/simplify_bench.cpp, README Results). Vertices on an open boundary
+// are treated as locked. Reuses per-thread work arrays (no allocation but the result once they
+// have grown); deterministic.
 std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positions,
                                                std::span<const std::uint32_t> indices,
                                                std::span<const std::uint8_t> locked, std::size_t target_triangles,
