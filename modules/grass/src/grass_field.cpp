@@ -173,14 +173,6 @@ void GrassField::update(const render::FrameContext& frame) {
   update(frame.camera, frame.viewport, frame.time, frame.dt, frame.wind);
 }
 
-namespace {
-// The cull shader's side planes, set without formatting their names every frame.
-void set_cull_planes(const render::Program& p, const glm::vec4 (&planes)[4]) {
-  static constexpr const char* kNames[4] = {"u_planes[0]", "u_planes[1]", "u_planes[2]", "u_planes[3]"};
-  for (int i = 0; i < 4; ++i) p.set(kNames[i], planes[i]);
-}
-}  // namespace
-
 void GrassField::set_cull_uniforms(const render::Program& p, const CullView& view) const {
   const CullSettings& c = settings_.cull;
   p.set("u_camera", view.camera);
@@ -255,7 +247,7 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   }
 
   set_cull_uniforms(cull_, view_);
-  set_cull_planes(cull_, view_.planes);
+  cull_.set("u_planes", std::span<const glm::vec4>(view_.planes));
   cull_.set("u_forward", view_.forward);
   cull_.set("u_orientation", glm::vec2(cs.orientation_threshold, cs.orientation_max_px));
   cull_query_.begin(frame_);
@@ -399,7 +391,7 @@ void GrassField::draw_shadow(const render::ShadowCasterContext& cascade, render:
   // Cull against the light frustum: same density and distance thinning (camera distance, as in
   // the colour pass), no orientation test, no behind-the-camera test (forward = 0).
   set_cull_uniforms(cull_, view_);
-  set_cull_planes(cull_, light.planes);
+  cull_.set("u_planes", std::span<const glm::vec4>(light.planes));
   cull_.set("u_forward", glm::vec3(0.0f));
   cull_.set("u_cull", glm::vec4(cs.density_scale, cs.width_compensation, 1.0f, 0.0f));
   reset_pass(&Chunk::shadow);
