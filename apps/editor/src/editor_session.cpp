@@ -305,6 +305,7 @@ Status EditorSession::write_section(const std::string& module, const nlohmann::j
   auto doc = scene::SceneDocument::from_json(j, "scene", warnings);
   if (!doc.ok()) return doc.error();
   doc->set_directory(scene_->document().directory());
+  if (!scene_->document().file().empty()) doc->set_file(scene_->document().file());
   return scene_->replace_document(std::move(*doc));
 }
 

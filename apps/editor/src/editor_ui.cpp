@@ -128,9 +128,23 @@ void EditorUi::handle_shortcuts() {
   if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Z))) apply(io.KeyShift ? session_.redo() : session_.undo());
   if (io.KeyCtrl && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Y))) apply(session_.redo());
   if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_S)) {
-    if (session_.path()) apply(session_.save());
+    if (session_.path()) save_in_place();
     else save_as_dialog_ = true;
   }
+}
+
+bool EditorUi::save_in_place() {
+  Status s = session_.save();
+  apply(s);
+  if (!s.ok() && s.error().message.find("read-only") != std::string::npos) {
+    // The file is protected: offer to save elsewhere instead of replacing it (never forced).
+    const std::filesystem::path& p = *session_.path();
+    const std::filesystem::path other = p.parent_path() / (p.stem().string() + "_copy" + p.extension().string());
+    std::snprintf(path_buffer_, sizeof(path_buffer_), "%s", other.string().c_str());
+    save_as_dialog_ = true;
+    message("the scene file is read-only: choose another name to save your changes");
+  }
+  return s.ok();
 }
 
 void EditorUi::menu_bar() {
@@ -151,7 +165,7 @@ void EditorUi::menu_bar() {
       if (session_.unsaved()) unsaved_dialog_ = true;
       else continue_pending();
     }
-    if (ImGui::MenuItem("Save", "Ctrl+S", false, session_.path().has_value())) apply(session_.save());
+    if (ImGui::MenuItem("Save", "Ctrl+S", false, session_.path().has_value())) save_in_place();
     if (ImGui::MenuItem("Save as...")) {
       save_as_dialog_ = true;
       std::snprintf(path_buffer_, sizeof(path_buffer_), "%s", session_.path() ? session_.path()->string().c_str() : "untitled.json");
@@ -513,9 +527,7 @@ void EditorUi::dialogs() {
     ImGui::TextUnformatted("The scene has unsaved changes.");
     if (ImGui::Button("Save")) {
       if (session_.path()) {
-        Status s = session_.save();
-        apply(s);
-        if (s.ok()) continue_pending();
+        if (save_in_place()) continue_pending();
       } else {
         save_as_dialog_ = true;
         std::snprintf(path_buffer_, sizeof(path_buffer_), "untitled.json");

@@ -43,6 +43,9 @@ class EditorUi {
   void dialogs();
   void handle_shortcuts();
   void apply(Status status);
+  // Saves to the current file; a read-only file opens "save as" with "<stem>_copy.json" instead.
+  // Returns whether the save succeeded.
+  bool save_in_place();
   void continue_pending();
 
   EditorSession& session_;

@@ -285,3 +285,38 @@ TEST_F(EditorSessionGl, UndoRestoresTheSceneBitExactly) {
   EXPECT_NEAR(hit->y, s.scene().ground_height(hit->x, hit->z), 1e-3);
   EXPECT_LT(glm::length(glm::dvec2(hit->x, hit->z)), 2.0);
 }
+
+// The saves that lost work: "save as" in the same folder rewrote the original's maps, and a
+// read-only scene file was silently replaced. Through the shipped editor.
+TEST(EditorScript, SaveAsKeepsTheOriginalAndReadOnlyScenesAreRefused) {
+  const fs::path dir = temp_dir("save_as");
+  write(dir / "in.json", kSmallGround);
+  const std::string paint = "brush op=raise radius=10 strength=2 falloff=constant\nstroke ground.height 0,0\n";
+  write(dir / "first.sylva", "load in.json\n" + paint + "save a.json\nquit\n");
+  RunResult run = run_editor("--headless --size 32x32 --script " + (dir / "first.sylva").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string a_scene = read_file(dir / "a.json").value_or("");
+  const std::string a_map = read_file(dir / "a_maps" / "ground_height.exr").value_or("");
+  ASSERT_FALSE(a_map.empty());
+
+  write(dir / "second.sylva", "load a.json\n" + paint + "save b.json\nquit\n");
+  run = run_editor("--headless --size 32x32 --script " + (dir / "second.sylva").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(read_file(dir / "a_maps" / "ground_height.exr").value_or(""), a_map) << "save as changed the original's map";
+  EXPECT_EQ(read_file(dir / "a.json").value_or(""), a_scene);
+  std::vector<std::string> warnings;
+  auto b = scene::SceneDocument::load(dir / "b.json", warnings);
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_EQ(b->module("ground")->maps.at("height"), "b_maps/ground_height.exr");
+
+  fs::permissions(dir / "a.json", fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  write(dir / "third.sylva", "load a.json\n" + paint + "save\nquit\n");
+  run = run_editor("--headless --size 32x32 --script " + (dir / "third.sylva").string());
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("read-only"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("a.json"), std::string::npos) << run.output;
+  EXPECT_EQ(read_file(dir / "a.json").value_or(""), a_scene);
+  EXPECT_EQ(read_file(dir / "a_maps" / "ground_height.exr").value_or(""), a_map);
+  EXPECT_EQ(fs::status(dir / "a.json").permissions() & fs::perms::owner_write, fs::perms::none);
+  fs::permissions(dir / "a.json", fs::perms::owner_all);
+}

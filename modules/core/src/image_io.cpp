@@ -102,31 +102,39 @@ Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) 
 
 Status write_image(const fs::path& path, const Image& image) { return write_image(path, image, image.format()); }
 
-Status write_image(const fs::path& path, const Image& image, PixelFormat format) {
-  const std::string name = path.string();
+Status write_image_file(const fs::path& file, const Image& image, PixelFormat format, const fs::path& display) {
+  const std::string name = display.string();
   if (image.empty()) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: refusing to write an empty image", name));
   }
-  const fs::path temp = temp_path_beside(path);  // keeps the extension, so OIIO picks the plugin
-  auto out = OIIO::ImageOutput::create(name);
+  auto out = OIIO::ImageOutput::create(file.string());
   if (!out) {
+    const std::string ext = display.extension().string();
     return make_error(ErrorCode::kUnsupported,
-                      fmt::format("{}: no image writer for this file type ({})", name, oiio_error(nullptr)));
+                      fmt::format("{}: no image format is known for the extension \"{}\" (use .png, .exr, .tif, .jpg)",
+                                  name, ext));
   }
   OIIO::ImageSpec spec(image.width(), image.height(), image.channels(), type_from(format));
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  if (!out->open(temp.string(), spec)) {
+  if (!out->open(file.string(), spec)) {
     std::string why = out->geterror();
-    return make_error(ErrorCode::kIo, fmt::format("{}: cannot create {} ({})", name, temp.string(), why));
+    return make_error(ErrorCode::kIo, fmt::format("{}: cannot create the file ({})", name, why));
   }
   const bool written = out->write_image(OIIO::TypeDesc::FLOAT, image.data().data());
   const bool closed = out->close();
-  std::error_code ec;
   if (!written || !closed) {
     std::string why = out->geterror();
-    fs::remove(temp, ec);
+    std::error_code ec;
+    fs::remove(file, ec);
     return make_error(ErrorCode::kIo, fmt::format("{}: write failed ({}); the old file is untouched", name, why));
   }
+  return ok_status();
+}
+
+Status write_image(const fs::path& path, const Image& image, PixelFormat format) {
+  SYLVA_TRY(check_replaceable(path));
+  const fs::path temp = temp_path_beside(path);  // keeps the extension, so OIIO picks the plugin
+  SYLVA_TRY(write_image_file(temp, image, format, path));
   return replace_with_temp(temp, path);
 }
 

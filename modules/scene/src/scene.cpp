@@ -17,7 +17,6 @@
 
 #include <algorithm>
 #include <optional>
-#include <system_error>
 
 namespace sylva::render::embedded {
 void register_scene_shaders();
@@ -53,7 +52,6 @@ glm::vec4 module_color(std::string_view module) {
 
 std::string_view first_segment(std::string_view path) { return path.substr(0, path.find('.')); }
 
-std::string map_extension(MapKind kind) { return kind == MapKind::kHeight ? ".exr" : ".png"; }
 
 }  // namespace
 
@@ -486,52 +484,6 @@ Status Scene::map_changed(std::string_view id, const TexelRect& rect) {
 
 bool Scene::maps_unsaved() const {
   return std::any_of(maps_.begin(), maps_.end(), [](const auto& kv) { return kv.second.unsaved(); });
-}
-
-Status Scene::save(const std::filesystem::path& file) {
-  namespace fs = std::filesystem;
-  const fs::path new_dir = file.parent_path();
-  const fs::path old_dir = document_->directory();
-  std::error_code ec;
-  if (!new_dir.empty()) {
-    fs::create_directories(new_dir, ec);
-    if (ec) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create the folder: {}", new_dir.string(), ec.message()));
-  }
-  // Keep unedited relative map paths pointing at the same files from the new folder.
-  auto rebase = [&](const std::string& path) -> std::string {
-    const fs::path p(path);
-    if (p.is_absolute() || fs::absolute(old_dir, ec) == fs::absolute(new_dir, ec)) return path;
-    const fs::path target = fs::absolute(old_dir.empty() ? fs::path(".") : old_dir, ec) / p;
-    const fs::path rel = target.lexically_normal().lexically_relative(fs::absolute(new_dir.empty() ? fs::path(".") : new_dir, ec));
-    return rel.empty() ? target.lexically_normal().string() : rel.string();
-  };
-  for (auto& [id, map] : maps_) {
-    ModuleSection* section = document_->module(map.module);
-    if (!section) continue;
-    if (!map.unsaved()) {
-      if (!map.path.empty()) {
-        map.path = rebase(map.path);
-        section->maps[map.slot] = map.path;
-      }
-      continue;
-    }
-    if (map.path.empty()) {
-      map.path = fmt::format("{}_maps/{}_{}{}", file.stem().string(), map.module, map.slot, map_extension(map.kind));
-    }
-    const fs::path target = (new_dir.empty() ? fs::path(".") : new_dir) / map.path;
-    fs::create_directories(target.parent_path(), ec);
-    if (ec) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create the folder: {}", target.parent_path().string(), ec.message()));
-    SYLVA_TRY(write_map_image(target, map.grid, map.file_scale, map.file_offset));
-    map.saved_revision = map.revision;
-    section->maps[map.slot] = map.path;
-  }
-  for (ModuleSection& section : document_->modules()) {
-    for (auto& [slot, path] : section.maps) {
-      if (maps_.count(section.name + "." + slot) == 0) path = rebase(path);
-    }
-  }
-  document_->set_directory(new_dir);
-  return document_->save(file);
 }
 
 nlohmann::json Scene::module_stats() const {

@@ -130,6 +130,7 @@ SceneDocument::SceneDocument(const SceneDocument& other)
       bookmarks(other.bookmarks),
       camera_paths(other.camera_paths),
       directory_(other.directory_),
+      file_(other.file_),
       unknown_(other.unknown_) {
   for (const ModuleSection& s : other.modules_) modules_.push_back({s.name, s.settings->clone(), s.maps});
 }
@@ -237,7 +238,7 @@ Result<SceneDocument> SceneDocument::load(const std::filesystem::path& file, std
   if (!text.ok()) return text.error();
   auto doc = from_text(*text, file.string(), warnings);
   if (!doc.ok()) return doc.error();
-  doc->set_directory(file.parent_path());
+  doc->set_file(file);
   return doc;
 }
 

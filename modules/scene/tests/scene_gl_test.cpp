@@ -294,10 +294,11 @@ TEST_F(SceneGl, SavedMapsLoadBackBitExactly) {
   EXPECT_EQ(std::memcmp(back->grid.values.data(), map->grid.values.data(), map->grid.values.size() * sizeof(float)), 0);
   EXPECT_EQ(back->grid.texel_origin, map->grid.texel_origin);
 
-  // Save-as into another folder keeps pointing at the same map file.
+  // Save-as into another folder copies the map into the new scene's own map folder.
   const fs::path other = temp_dir("other");
   ASSERT_TRUE((*loaded)->save(other / "copy.json").ok());
   const std::string rel = (*loaded)->document().module("ground")->maps.at("height");
+  EXPECT_EQ(rel, "copy_maps/ground_height.exr");
   EXPECT_TRUE(fs::exists(other / rel)) << rel;
 }
 

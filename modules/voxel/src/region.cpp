@@ -1,17 +1,16 @@
 #include <sylva/voxel/region.hpp>
 
 #include <sylva/core/assert.hpp>
+#include <sylva/core/atomic_file.hpp>
 #include <sylva/core/log.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <bit>
 #include <cstring>
 #include <fstream>
-#include <unistd.h>
 
 namespace sylva::voxel {
 
@@ -287,29 +286,11 @@ Result<RegionContents> read_region_file(const std::filesystem::path& path, const
 
 Status write_region_file(const std::filesystem::path& path, const RegionCoord& r, const BlockPalette& palette,
                          std::span<const std::pair<ChunkCoord, const Chunk*>> chunks) {
-  static std::atomic<std::uint64_t> counter{0};
   const std::vector<std::uint8_t> bytes = encode_region(r, palette, chunks);
   std::error_code ec;
   if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path(), ec);
-  const std::filesystem::path tmp =
-      path.string() + fmt::format(".tmp-{}-{}", static_cast<long>(::getpid()), counter.fetch_add(1));
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) return make_error(ErrorCode::kIo, fmt::format("region file {}: cannot create {}", path.string(), tmp.string()));
-    f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    f.flush();
-    if (!f) {
-      f.close();
-      std::filesystem::remove(tmp, ec);
-      return make_error(ErrorCode::kIo, fmt::format("region file {}: write failed", path.string()));
-    }
-  }
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::error_code ec2;
-    std::filesystem::remove(tmp, ec2);
-    return make_error(ErrorCode::kIo, fmt::format("region file {}: rename failed: {}", path.string(), ec.message()));
-  }
+  Status written = write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  if (!written.ok()) return make_error(written.error().code, "region file " + written.error().message);
   return ok_status();
 }
 

@@ -72,6 +72,10 @@ Result<Image> read_image(const std::filesystem::path& path, const ImageReadOptio
 // write never destroys an existing file. Float values are clamped to [0, 1] for integer formats.
 Status write_image(const std::filesystem::path& path, const Image& image);
 Status write_image(const std::filesystem::path& path, const Image& image, PixelFormat format);
+// Writes straight to `file` (no temporary, no rename): for a temporary that a FileTransaction
+// renames later. The format follows `file`'s extension; errors name `display`, the user's path.
+Status write_image_file(const std::filesystem::path& file, const Image& image, PixelFormat format,
+                        const std::filesystem::path& display);
 
 // Counts NaN/Inf values; first_x/first_y give the first one in row-major order (-1 if none).
 struct NonFiniteReport {

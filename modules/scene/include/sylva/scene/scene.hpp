@@ -139,10 +139,14 @@ class Scene {
   // Maps edited since they were loaded or saved.
   bool maps_unsaved() const;
 
-  // Saves the edited maps and then the scene file, every file atomically. A map without a file
-  // gets "<scene stem>_maps/<module>_<slot>.<exr|png>" beside the scene (height maps float EXR,
-  // others 16-bit PNG), recorded in the document. The document's directory() becomes the file's
-  // folder (relative map paths are rewritten to stay correct). Errors name the file.
+  // Saves the scene file and its maps as one transaction: every file is written and flushed to a
+  // temporary first, then all are renamed into place (the scene last); any failure leaves every
+  // old file as it was and this scene unchanged. Edited maps go to the saved scene's own map
+  // folder "<stem>_maps/<module>_<slot>.<exr|png>" (height maps float EXR, others 16-bit PNG),
+  // never over a source image; a save to another file than document().file() ("save as") also
+  // copies the unedited maps there, so two scenes never share a map file. A read-only scene or
+  // map file is refused, not replaced. The document's file() becomes `file` (relative map paths
+  // are rewritten to stay correct). Errors name the file (src/scene_save.cpp).
   Status save(const std::filesystem::path& file);
 
   // --- statistics ---

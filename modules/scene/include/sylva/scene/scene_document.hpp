@@ -85,6 +85,14 @@ class SceneDocument {
   // The folder map paths are relative to ("" = the working directory).
   const std::filesystem::path& directory() const { return directory_; }
   void set_directory(std::filesystem::path directory) { directory_ = std::move(directory); }
+  // The file this document was loaded from or last saved to ("" = none yet, e.g. the embedded
+  // default). set_file() also makes its folder the directory(). Scene::save tells a "save as"
+  // (another file: maps are copied to the new scene's own map folder) from a save by it.
+  const std::filesystem::path& file() const { return file_; }
+  void set_file(std::filesystem::path file) {
+    directory_ = file.parent_path();
+    file_ = std::move(file);
+  }
   // directory() / relative, or `relative` itself when it is absolute.
   std::filesystem::path resolve(const std::string& relative) const;
 
@@ -124,6 +132,7 @@ class SceneDocument {
 
   std::vector<ModuleSection> modules_;
   std::filesystem::path directory_;
+  std::filesystem::path file_;
   nlohmann::json unknown_ = nlohmann::json::object();
 };
 
