@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -287,27 +288,63 @@ json params_schema_json(std::span<const ParamDescriptor> params) {
   return out;
 }
 
+namespace {
+
+// "<line>:<column>" (1-based) of byte `at` of `text`.
+std::string line_column(std::string_view text, std::size_t at) {
+  std::size_t line = 1;
+  std::size_t column = 1;
+  for (std::size_t i = 0; i < std::min(at, text.size()); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return fmt::format("{}:{}", line, column);
+}
+
+// Nesting deeper than kMaxJsonDepth, found before parsing: the parsed value and every walk over
+// it recurse, so a hostile file of a few hundred KB would overflow the stack. Strings are skipped
+// (brackets inside them do not nest). Returns the offset of the first too-deep bracket.
+std::optional<std::size_t> too_deep_at(std::string_view text) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\') ++i;
+      else if (c == '"') in_string = false;
+      continue;
+    }
+    if (c == '"') in_string = true;
+    else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonDepth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 Result<json> parse_json_text(std::string_view text, std::string_view source) {
+  if (const auto at = too_deep_at(text)) {
+    return make_error(ErrorCode::kLimit, fmt::format("{}:{}: nested deeper than {} levels", source,
+                                                     line_column(text, *at), kMaxJsonDepth));
+  }
   try {
     return json::parse(text.begin(), text.end());
   } catch (const json::parse_error& e) {
     // Line and column of the byte where parsing stopped (e.byte is 1-based).
-    std::size_t line = 1;
-    std::size_t column = 1;
-    const std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
+    const std::string where = line_column(text, e.byte > 0 ? e.byte - 1 : 0);
     std::string reason = e.what();
     if (const auto at = reason.find("column "); at != std::string::npos) {
       if (const auto colon = reason.find(": ", at); colon != std::string::npos) reason = reason.substr(colon + 2);
     }
-    return make_error(ErrorCode::kParse, fmt::format("{}:{}:{}: {}", source, line, column, reason));
+    return make_error(ErrorCode::kParse, fmt::format("{}:{}: {}", source, where, reason));
   } catch (const json::exception& e) {
     // Not a syntax error but a value JSON cannot hold (number overflow such as 1e400).
     std::string reason = e.what();

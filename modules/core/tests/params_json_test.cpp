@@ -305,3 +305,23 @@ TEST(ParamsJson, SchemaDescribesEveryParameter) {
 }
 
 }  // namespace
+
+// A 70,000-deep file (140 KB) overflowed the stack; the bound refuses it before parsing, naming
+// where the nesting goes too deep. Brackets inside strings do not nest.
+TEST(ParamsJson, NestingDeeperThanTheBoundIsAClearError) {
+  const std::string deep = std::string(70000, '[') + std::string(70000, ']');
+  auto r = sylva::parse_json_text(deep, "deep.json");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, sylva::ErrorCode::kLimit);
+  EXPECT_EQ(r.error().message, "deep.json:1:129: nested deeper than 128 levels");
+  const std::string objects = "{\"a\":\n" + std::string(200, '{') + std::string(200, '}') + "}";
+  auto o = sylva::parse_json_text(objects, "o.json");
+  ASSERT_FALSE(o.ok());
+  EXPECT_EQ(o.error().message, "o.json:2:128: nested deeper than 128 levels");
+  const std::string at_bound = std::string(sylva::kMaxJsonDepth, '[') + std::string(sylva::kMaxJsonDepth, ']');
+  EXPECT_TRUE(sylva::parse_json_text(at_bound, "ok.json").ok());
+  const std::string in_string = "{\"name\": \"" + std::string(1000, '[') + "\\\"{{{\"}";
+  auto s = sylva::parse_json_text(in_string, "s.json");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_EQ((*s)["name"].get<std::string>().size(), 1004u);
+}

@@ -59,8 +59,13 @@ Status params_from_json(const ParamRegistry& registry, const nlohmann::json& obj
 //  "rebuild", "log_scale", "values" (enum names)}.
 nlohmann::json params_schema_json(std::span<const ParamDescriptor> params);
 
+// Deepest nesting of arrays and objects that parse_json_text accepts. A scene needs about 6; the
+// bound keeps a hostile file from overflowing the stack in the parser and in every walk over it.
+inline constexpr int kMaxJsonDepth = 128;
+
 // Parses JSON text without exceptions: kParse with "<source>:<line>:<column>: <reason>" for
-// malformed text (including numbers JSON cannot hold, such as 1e400).
+// malformed text (including numbers JSON cannot hold, such as 1e400); kLimit with
+// "<source>:<line>:<column>: nested deeper than 128 levels" before parsing a too-deep text.
 Result<nlohmann::json> parse_json_text(std::string_view text, std::string_view source = "<json>");
 
 }  // namespace sylva
