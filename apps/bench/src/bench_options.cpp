@@ -1,5 +1,7 @@
 #include "bench_options.hpp"
 
+#include <sylva/core/render_size.hpp>
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -32,18 +34,6 @@ Result<double> parse_real(const std::string& text, const std::string& what, doub
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {} is outside {}..{}", what, text, lo, hi));
   }
   return value;
-}
-
-Result<glm::ivec2> parse_size(const std::string& text) {
-  const auto x = text.find_first_of("xX");
-  if (x == std::string::npos) {
-    return make_error(ErrorCode::kInvalidArgument, fmt::format("--size: expected WxH such as 256x144, got \"{}\"", text));
-  }
-  auto w = parse_integer(text.substr(0, x), "--size width", 16, 8192);
-  if (!w.ok()) return w.error();
-  auto h = parse_integer(text.substr(x + 1), "--size height", 16, 8192);
-  if (!h.ok()) return h.error();
-  return glm::ivec2(static_cast<int>(*w), static_cast<int>(*h));
 }
 
 Result<Assignment> parse_assignment(const std::string& text, const std::string& option) {
@@ -122,7 +112,7 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
       o.warmup = static_cast<int>(*n);
     } else if (name == "--size") {
       SYLVA_BENCH_VALUE(v, "WxH such as 256x144");
-      auto s = parse_size(*v);
+      auto s = parse_render_size(*v, "--size");
       if (!s.ok()) return s.error();
       o.size = *s;
     } else if (name == "--dt") {

@@ -7,6 +7,7 @@
 #include <sylva/core/image_metrics.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/core/timer.hpp>
+#include <sylva/render/gl_debug.hpp>
 #include <sylva/render/readback.hpp>
 
 #include <fmt/format.h>
@@ -69,14 +70,18 @@ Status render_path(BenchTarget& target, const RunSpec& spec, const std::string& 
   for (int w = 0; w < spec.warmup; ++w) {
     FrameInput in{-1 - w, w * spec.dt, static_cast<float>(spec.dt), poses.front()};
     FrameOutput out;
+    const std::size_t mark = render::gl_error_mark();
     SYLVA_TRY(target.render(in, fb, out));
+    SYLVA_TRY(render::check_frame_gl_errors(mark, fmt::format("warm-up frame {}", w)));
   }
   for (int i = 0; i < spec.frames; ++i) {
     FrameInput in{i, (spec.warmup + i) * spec.dt, static_cast<float>(spec.dt), poses[static_cast<std::size_t>(i)]};
     FrameOutput out;
     Stopwatch wall;
+    const std::size_t mark = render::gl_error_mark();
     SYLVA_TRY(target.render(in, fb, out));
     glFinish();
+    SYLVA_TRY(render::check_frame_gl_errors(mark, fmt::format("frame {}", i)));
     const double frame_ms = wall.elapsed_ms();
     auto color = render::read_color(fb);
     if (!color.ok()) return color.error();

@@ -50,7 +50,7 @@ TEST(BenchOptions, ErrorsNameTheArgument) {
       {{"s.json", "--frames", "0", "--out", "x"}, "--frames"},
       {{"s.json", "--frames", "ten", "--out", "x"}, "ten"},
       {{"s.json", "--size", "128", "--out", "x"}, "--size"},
-      {{"s.json", "--size", "8x8", "--out", "x"}, "--size width"},
+      {{"s.json", "--size", "8x8", "--out", "x"}, "outside 16..16384"},
       {{"s.json", "--threshold", "2", "--out", "x"}, "--threshold"},
       {{"s.json", "--cost", "wall", "--out", "x"}, "wall"},
       {{"s.json", "--error-metric", "mse", "--out", "x"}, "mse"},

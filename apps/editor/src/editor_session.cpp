@@ -1,5 +1,7 @@
 #include "editor_session.hpp"
 
+#include <sylva/render/gl_debug.hpp>
+
 #include <sylva/core/log.hpp>
 #include <sylva/render/readback.hpp>
 #include <sylva/scene/module_registry.hpp>
@@ -226,23 +228,27 @@ Status EditorSession::set_viewport(glm::ivec2 size) {
   return {};
 }
 
-void EditorSession::render_frame(double dt) {
+Status EditorSession::render_frame(double dt) {
+  const std::size_t mark = render::gl_error_mark();
   time_ += std::max(dt, 0.0);
   scene_->update(camera_, time_, static_cast<float>(std::max(dt, 0.0)), viewport_);
   scene_->render(framebuffer_, profiler_);
+  return render::check_frame_gl_errors(mark, "the frame");
 }
 
 Status EditorSession::screenshot(const std::filesystem::path& file, std::optional<glm::ivec2> size) {
   if (!size || *size == viewport_) {
-    render_frame(0.0);
+    SYLVA_TRY(render_frame(0.0));
     return render::save_screenshot(framebuffer_, file);
   }
   auto fb = render::Framebuffer::create({.width = size->x, .height = size->y, .color_formats = {GL_RGBA8}});
   if (!fb.ok()) return fb.error();
   render::Camera camera = camera_;
   camera.set_aspect(size->x, size->y);
+  const std::size_t mark = render::gl_error_mark();
   scene_->update(camera, time_, 0.0f, *size);
   scene_->render(*fb, profiler_);
+  SYLVA_TRY(render::check_frame_gl_errors(mark, "the screenshot frame"));
   return render::save_screenshot(*fb, file);
 }
 

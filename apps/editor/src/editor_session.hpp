@@ -78,8 +78,9 @@ class EditorSession final : public EditTarget {
   Status go_to_bookmark(const std::string& name);
   glm::ivec2 viewport() const { return viewport_; }
   Status set_viewport(glm::ivec2 size);
-  // update + render into framebuffer(); the scene clock advances by dt seconds.
-  void render_frame(double dt);
+  // update + render into framebuffer(); the scene clock advances by dt seconds. kGl when the
+  // frame raised a GL error (out of memory included): its picture cannot be trusted.
+  Status render_frame(double dt);
   const render::Framebuffer& framebuffer() const { return framebuffer_; }
   render::FrameProfiler& profiler() { return profiler_; }
   // Renders one frame at `size` (default: the viewport) and saves it. Errors name the file.

@@ -357,7 +357,12 @@ void EditorUi::viewport_panel(double dt) {
     else playing_path_.clear();
   }
 
-  session_.render_frame(dt);
+  // A GL error is shown once per kind of message, not every frame: the user keeps working and
+  // can save; the viewport may be wrong until the cause (a size, a map) is undone.
+  if (Status frame = session_.render_frame(dt); !frame.ok() && frame.error().message != last_frame_error_) {
+    last_frame_error_ = frame.error().message;
+    apply(frame);
+  }
   const GLuint tex = session_.framebuffer().color_texture().id();
   ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(tex)), ImVec2(static_cast<float>(size.x), static_cast<float>(size.y)),
                ImVec2(0, 1), ImVec2(1, 0));

@@ -59,6 +59,7 @@ class EditorUi {
   bool quit_confirmed_ = false;
   bool open_dialog_ = false, save_as_dialog_ = false, screenshot_dialog_ = false, unsaved_dialog_ = false;
   char path_buffer_[512] = {};
+  std::string last_frame_error_;  // the viewport's last GL error, shown once
   char bookmark_buffer_[64] = "view";
   std::deque<std::string> messages_;
   std::optional<glm::dvec3> brush_hit_;

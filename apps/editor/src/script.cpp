@@ -1,5 +1,7 @@
 #include "script.hpp"
 
+#include <sylva/core/render_size.hpp>
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -110,12 +112,9 @@ Result<glm::dvec2> parse_point(std::string_view text) {
 }
 
 Result<glm::ivec2> parse_size(std::string_view text) {
-  const auto x = text.find_first_of("xX");
-  if (x == std::string_view::npos) return make_error(ErrorCode::kParse, fmt::format("expected WxH, got \"{}\"", text));
-  auto w = parse_count(text.substr(0, x), 16, 16384);
-  auto h = parse_count(text.substr(x + 1), 16, 16384);
-  if (!w.ok() || !h.ok()) return make_error(ErrorCode::kParse, fmt::format("expected WxH with sides in 16..16384, got \"{}\"", text));
-  return glm::ivec2(*w, *h);
+  auto size = parse_render_size(text, "size");
+  if (!size.ok()) return make_error(ErrorCode::kParse, size.error().message);
+  return size;
 }
 
 Result<std::vector<ScriptCommand>> parse_script(std::string_view text, std::string_view source) {

@@ -61,7 +61,7 @@ Result<std::vector<std::string>> split_words(std::string_view line);
 
 // "12.5,-3" -> (12.5, -3). Errors name the text.
 Result<glm::dvec2> parse_point(std::string_view text);
-// "256x144" -> (256, 144), each side in [16, 16384].
+// "256x144" -> (256, 144): core/render_size.hpp bounds (sides 16..16384, at most 8192x8192 pixels).
 Result<glm::ivec2> parse_size(std::string_view text);
 
 }  // namespace sylva::editor

@@ -60,7 +60,7 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
   }
   if (c.name == "bookmark") return s.add_bookmark(a[0]);
   if (c.name == "frames") {
-    for (int k = 0; k < c.count; ++k) s.render_frame(1.0 / 30.0);
+    for (int k = 0; k < c.count; ++k) SYLVA_TRY(s.render_frame(1.0 / 30.0));
     return {};
   }
   if (c.name == "debug") {

@@ -7,6 +7,7 @@
 #include <sylva/render/camera.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/gl_context.hpp>
+#include <sylva/render/gl_debug.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
 #include <sylva/scene/module_registry.hpp>
@@ -90,10 +91,15 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
   }
 
   const std::string scene_name = loaded->document.name;
+  const std::size_t load_mark = render::gl_error_mark();
   auto created = scene::Scene::create(std::move(loaded->document));
   if (!created.ok()) {
     err << "sylva-player: " << created.error().message << "\n";
     return created.error().code == ErrorCode::kGl ? 1 : 2;
+  }
+  if (Status gl = render::check_frame_gl_errors(load_mark, "loading the scene"); !gl.ok()) {
+    err << "sylva-player: " << gl.error().message << "\n";
+    return 1;
   }
   scene::Scene& scene = **created;
 
@@ -118,6 +124,7 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
   Stopwatch frame_clock;
   double time = 0.0;
   while (frame_limit == 0 || frames < frame_limit) {
+    const std::size_t frame_mark = render::gl_error_mark();
     Stopwatch cpu;
     const double dt = headless ? kHeadlessStep : frame_clock.lap_ms() * 1e-3;
     if (!headless) {
@@ -145,6 +152,11 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
       glBlitNamedFramebuffer(target->read_id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
                              GL_NEAREST);
       context->swap_buffers();
+    }
+    // A GL error (out of memory included) means the picture is wrong: fail, write nothing.
+    if (Status gl = render::check_frame_gl_errors(frame_mark, fmt::format("frame {}", frames)); !gl.ok()) {
+      err << "sylva-player: " << gl.error().message << "\n";
+      return 1;
     }
     recorder.add_cpu_ms(cpu.elapsed_ms());
     recorder.add_update_ms(scene.update_ms());

@@ -1,13 +1,13 @@
 #include "player_options.hpp"
 
+#include <sylva/core/render_size.hpp>
+
 #include <fmt/format.h>
 
 #include <charconv>
 
 namespace sylva::player {
 namespace {
-
-constexpr int kMaxSide = 16384;
 
 Result<int> parse_int(const std::string& text, const std::string& what) {
   int value = 0;
@@ -17,22 +17,6 @@ Result<int> parse_int(const std::string& text, const std::string& what) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: expected a whole number, got \"{}\"", what, text));
   }
   return value;
-}
-
-Result<glm::ivec2> parse_size(const std::string& text) {
-  const auto x = text.find_first_of("xX");
-  if (x == std::string::npos) {
-    return make_error(ErrorCode::kInvalidArgument, fmt::format("--size: expected WxH such as 256x144, got \"{}\"", text));
-  }
-  auto w = parse_int(text.substr(0, x), "--size width");
-  if (!w.ok()) return w.error();
-  auto h = parse_int(text.substr(x + 1), "--size height");
-  if (!h.ok()) return h.error();
-  if (*w < 16 || *h < 16 || *w > kMaxSide || *h > kMaxSide) {
-    return make_error(ErrorCode::kInvalidArgument,
-                      fmt::format("--size: {}x{} is outside 16..{} per side", *w, *h, kMaxSide));
-  }
-  return glm::ivec2(*w, *h);
 }
 
 }  // namespace
@@ -67,7 +51,7 @@ Result<PlayerOptions> parse_player_options(const std::vector<std::string>& args)
     } else if (name == "--size") {
       auto v = value("WxH, e.g. 256x144");
       if (!v.ok()) return v.error();
-      auto size = parse_size(*v);
+      auto size = parse_render_size(*v, "--size");
       if (!size.ok()) return size.error();
       options.size = *size;
     } else if (name == "--frames") {

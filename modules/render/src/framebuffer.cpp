@@ -2,6 +2,11 @@
 #include <sylva/render/framebuffer.hpp>
 
 #include <sylva/core/assert.hpp>
+#include <sylva/render/gl_debug.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
 
 namespace sylva::render {
 namespace {
@@ -49,7 +54,28 @@ Status attach(GLuint fbo, const std::vector<Texture>& color, const Texture& dept
   return ok_status();
 }
 
+// Bytes per texel of the formats render targets use; unknown formats count as the widest.
+std::uint64_t texel_bytes(GLenum format) {
+  switch (format) {
+    case GL_R8: return 1;
+    case GL_RG8: case GL_R16F: return 2;
+    case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_RG16F: case GL_R11F_G11F_B10F:
+    case GL_RGB10_A2: case GL_DEPTH_COMPONENT32F: case GL_DEPTH_COMPONENT24: case GL_DEPTH24_STENCIL8: return 4;
+    case GL_RGBA16F: case GL_RG32F: return 8;
+    default: return 16;
+  }
+}
+
 }  // namespace
+
+std::uint64_t Framebuffer::estimated_bytes(const FramebufferDesc& desc) {
+  std::uint64_t per_pixel = desc.depth_format != GL_NONE ? texel_bytes(desc.depth_format) : 0;
+  for (GLenum format : desc.color_formats) per_pixel += texel_bytes(format);
+  const std::uint64_t samples = static_cast<std::uint64_t>(std::max(desc.samples, 1));
+  const std::uint64_t resolve = desc.samples > 1 ? per_pixel : 0;
+  return static_cast<std::uint64_t>(std::max(desc.width, 0)) * static_cast<std::uint64_t>(std::max(desc.height, 0)) *
+         (per_pixel * samples + resolve);
+}
 
 Result<Framebuffer> Framebuffer::create(const FramebufferDesc& desc) {
   GLint max_w = 0;
@@ -75,6 +101,15 @@ Result<Framebuffer> Framebuffer::create(const FramebufferDesc& desc) {
     return make_error(ErrorCode::kLimit, fmt::format("{} colour attachments exceed GL_MAX_COLOR_ATTACHMENTS {}",
                                                      desc.color_formats.size(), max_attachments));
   }
+  const std::uint64_t bytes = estimated_bytes(desc);
+  if (bytes > kMaxFramebufferBytes) {
+    return make_error(ErrorCode::kLimit,
+                      fmt::format("render target {}x{} ({} samples) would take {} MiB of GPU memory, above the limit of "
+                                  "{} MiB; use a smaller size",
+                                  desc.width, desc.height, std::max(desc.samples, 1), bytes >> 20,
+                                  kMaxFramebufferBytes >> 20));
+  }
+  const std::size_t mark = gl_error_mark();
   Framebuffer fb;
   fb.desc_ = desc;
   fb.fbo_ = GlHandle<FramebufferDeleter>(create_fbo());
@@ -96,6 +131,9 @@ Result<Framebuffer> Framebuffer::create(const FramebufferDesc& desc) {
     if (desc.depth_format != GL_NONE) fb.resolve_depth_ = Texture::create_2d(desc.width, desc.height, desc.depth_format);
     SYLVA_TRY(attach(fb.resolve_fbo_.get(), fb.resolve_color_, fb.resolve_depth_, "MSAA resolve"));
   }
+  // Storage is allocated by the calls above; an implementation out of memory says so only
+  // through a GL error, which must not turn into a black picture later.
+  SYLVA_TRY(check_frame_gl_errors(mark, fmt::format("the allocation of a {}x{} render target", desc.width, desc.height)));
   return fb;
 }
 

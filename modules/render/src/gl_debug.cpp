@@ -17,8 +17,23 @@ std::atomic<bool> g_recording{false};
 std::atomic<std::size_t> g_error_count{0};
 std::mutex g_errors_mutex;
 std::vector<std::string> g_errors;
+std::string g_first_since_mark;  // guarded by g_errors_mutex
+
+// A broken frame can raise the same error hundreds of thousands of times; the first few lines
+// say what is wrong, the rest would only bury it.
+constexpr std::size_t kLoggedErrors = 20;
+
+void log_gl_error(const std::string& line) {
+  const std::size_t seen = g_error_count.load();
+  if (seen < kLoggedErrors) log_error("{}", line);
+  else if (seen == kLoggedErrors) log_error("further GL errors are counted but not logged");
+}
 
 void record_error(std::string message) {
+  {
+    std::lock_guard lock(g_errors_mutex);
+    if (g_first_since_mark.empty()) g_first_since_mark = message;
+  }
   ++g_error_count;
   if (!g_recording) return;
   std::lock_guard lock(g_errors_mutex);
@@ -58,7 +73,7 @@ void GLAPIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum sev
   if (source == GL_DEBUG_SOURCE_SHADER_COMPILER) {
     log_debug("{}", line);  // the caller gets the mapped log in its Result
   } else if (is_error) {
-    log_error("{}", line);
+    log_gl_error(line);
     record_error(line);
   } else if (severity == GL_DEBUG_SEVERITY_HIGH || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR) {
     log_warn("{}", line);
@@ -86,6 +101,29 @@ void install_debug_output() {
 void set_gl_error_recording(bool on) { g_recording = on; }
 bool gl_error_recording() { return g_recording; }
 std::size_t gl_error_count() { return g_error_count; }
+
+std::size_t gl_error_mark() {
+  std::lock_guard lock(g_errors_mutex);
+  g_first_since_mark.clear();
+  return g_error_count;
+}
+
+Status check_frame_gl_errors(std::size_t mark, std::string_view where) {
+  const Status drained = check_gl_errors(where);
+  const std::size_t errors = gl_error_count() - mark;
+  if (errors == 0) return ok_status();
+  std::string first;
+  {
+    std::lock_guard lock(g_errors_mutex);
+    first = g_first_since_mark;
+  }
+  std::string message = fmt::format("{} GL error(s) during {}; the picture cannot be trusted. First: {}", errors, where,
+                                    first.empty() && !drained.ok() ? drained.error().message : first);
+  if (message.find("GL_OUT_OF_MEMORY") != std::string::npos || message.find("out of memory") != std::string::npos) {
+    message += " (out of GPU memory: use a smaller --size, smaller maps or fewer instances)";
+  }
+  return make_error(ErrorCode::kGl, message);
+}
 
 std::vector<std::string> take_gl_errors() {
   std::lock_guard lock(g_errors_mutex);
@@ -115,7 +153,7 @@ Status check_gl_errors(std::string_view where) {
     const GLenum code = glGetError();
     if (code == GL_NO_ERROR) break;
     const std::string line = fmt::format("glGetError at {}: {} (0x{:x})", where, gl_error_name(code), code);
-    log_error("{}", line);
+    log_gl_error(line);
     record_error(line);
     codes += codes.empty() ? "" : ", ";
     codes += gl_error_name(code);

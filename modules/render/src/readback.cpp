@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,20 @@ Image to_image_flipped(const std::vector<float>& pixels, int width, int height, 
   return image;
 }
 
+// Room for a readback of width x height x channels floats. GL takes the buffer size as a 32-bit
+// GLsizei, so a read of 2 GiB or more (w * h >= 2^27 for RGBA floats) would overflow it: refuse
+// before allocating.
+Result<std::vector<float>> readback_storage(int width, int height, int channels, std::string_view what) {
+  const std::uint64_t bytes = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) *
+                              static_cast<std::uint64_t>(channels) * sizeof(float);
+  if (bytes > static_cast<std::uint64_t>(std::numeric_limits<GLsizei>::max())) {
+    return make_error(ErrorCode::kLimit, fmt::format("{}: reading back {}x{} pixels needs {} MiB, above GL's 2 GiB per "
+                                                     "read; use a smaller size",
+                                                     what, width, height, bytes >> 20));
+  }
+  return std::vector<float>(static_cast<std::size_t>(bytes / sizeof(float)));
+}
+
 }  // namespace
 
 Result<Image> read_color(const Framebuffer& fb, int attachment) {
@@ -36,7 +52,9 @@ Result<Image> read_color(const Framebuffer& fb, int attachment) {
   }
   fb.resolve();
   const Texture& tex = fb.color_texture(attachment);
-  std::vector<float> pixels(static_cast<std::size_t>(fb.width()) * static_cast<std::size_t>(fb.height()) * 4);
+  auto storage = readback_storage(fb.width(), fb.height(), 4, "read_color");
+  if (!storage.ok()) return storage.error();
+  std::vector<float>& pixels = *storage;
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(tex.id(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)), pixels.data());
   return to_image_flipped(pixels, fb.width(), fb.height(), 4);
@@ -48,7 +66,9 @@ Result<Image> read_depth(const Framebuffer& fb) {
   }
   fb.resolve();
   const Texture& tex = fb.depth_texture();
-  std::vector<float> pixels(static_cast<std::size_t>(fb.width()) * static_cast<std::size_t>(fb.height()));
+  auto storage = readback_storage(fb.width(), fb.height(), 1, "read_depth");
+  if (!storage.ok()) return storage.error();
+  std::vector<float>& pixels = *storage;
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTextureImage(tex.id(), 0, GL_DEPTH_COMPONENT, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)),
                     pixels.data());
@@ -59,7 +79,9 @@ Result<Image> read_bound_framebuffer(int x, int y, int width, int height) {
   if (width < 1 || height < 1) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("read_bound_framebuffer: size {}x{}", width, height));
   }
-  std::vector<float> pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+  auto storage = readback_storage(width, height, 4, "read_bound_framebuffer");
+  if (!storage.ok()) return storage.error();
+  std::vector<float>& pixels = *storage;
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadnPixels(x, y, width, height, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(pixels.size() * sizeof(float)),
                 pixels.data());

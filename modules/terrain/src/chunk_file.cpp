@@ -70,9 +70,10 @@ Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree)
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: the chunk tree was built without meshes (keep_meshes = false)", path.string()));
   }
+  SYLVA_TRY(check_replaceable(path));
   const std::filesystem::path temp = temp_path_beside(path);
   std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-  if (!out) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create {}", path.string(), temp.string()));
+  if (!out) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create a file in this folder", path.string()));
   std::string header(kHeaderBytes, '\0');
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   std::string directory(tree.chunk_count() * kEntryBytes, '\0');
@@ -125,7 +126,11 @@ Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree)
   out.seekp(0);
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   out.close();
-  if (!out) return make_error(ErrorCode::kIo, fmt::format("{}: writing {} failed", path.string(), temp.string()));
+  if (!out) {
+    std::error_code ec;
+    std::filesystem::remove(temp, ec);
+    return make_error(ErrorCode::kIo, fmt::format("{}: writing failed (disk full?); the old file is untouched", path.string()));
+  }
   return replace_with_temp(temp, path);
 }
 

@@ -243,6 +243,17 @@ class GroundDrawable final : public render::Drawable {
 
 using Settings = SettingsOf<GroundModuleSettings>;
 
+// The plain ground draws every sample (no LOD), so its GPU buffers grow with the map's area: a
+// 16384^2 map would ask for ~13 GB and leave the frame without ground. Refuse before allocating;
+// the terrain module is the level-of-detail path for large maps.
+constexpr std::uint64_t kMaxGroundGpuBytes = 1024ull << 20;
+
+std::uint64_t ground_gpu_bytes(int columns, int rows) {
+  const auto samples = static_cast<std::uint64_t>(columns) * static_cast<std::uint64_t>(rows);
+  const auto quads = static_cast<std::uint64_t>(std::max(columns - 1, 0)) * static_cast<std::uint64_t>(std::max(rows - 1, 0));
+  return samples * sizeof(GroundVertex) + quads * 6 * sizeof(std::uint32_t);
+}
+
 class GroundInstance final : public ModuleInstance {
  public:
   static Result<std::unique_ptr<ModuleInstance>> create(const ModuleBuildContext& ctx) {
@@ -285,6 +296,19 @@ class GroundInstance final : public ModuleInstance {
   }
 
   Status build() {
+    const HeightField& field = *ctx_.ground;
+    const std::uint64_t bytes = ground_gpu_bytes(field.columns(), field.rows());
+    if (bytes > kMaxGroundGpuBytes) {
+      const auto map = ctx_.section->maps.find("height");
+      const std::string source = map != ctx_.section->maps.end()
+                                     ? "the height map " + map->second
+                                     : fmt::format("the generated ground (ground.resolution = {})", field.columns());
+      return make_error(ErrorCode::kLimit,
+                        fmt::format("ground: {} has {}x{} samples; the plain ground draws every sample and would need {} "
+                                    "MiB of GPU buffers, above its limit of {} MiB. Use a terrain section (level of "
+                                    "detail) for maps this large, or resample the map to at most 4097x4097",
+                                    source, field.columns(), field.rows(), bytes >> 20, kMaxGroundGpuBytes >> 20));
+    }
     auto d = GroundDrawable::create(*ctx_.ground, settings().chunk_quads, &settings(), ctx_.debug);
     if (!d.ok()) return make_error(d.error().code, "ground: " + d.error().message);
     drawable_ = std::move(*d);

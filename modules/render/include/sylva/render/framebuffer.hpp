@@ -3,8 +3,10 @@
 // attachment (reversed-Z needs float depth, camera.hpp), optionally multisampled with a
 // resolve into single-sample textures that can be read back or sampled.
 //
-// Failure: create() returns kGl naming the incompleteness status, and kLimit when the size
-// exceeds GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT or samples exceed GL_MAX_SAMPLES.
+// Failure: create() returns kGl naming the incompleteness status or a GL error (out of memory)
+// raised while allocating, and kLimit when the size exceeds GL_MAX_FRAMEBUFFER_WIDTH/HEIGHT,
+// samples exceed GL_MAX_SAMPLES, or the target would take more than kMaxFramebufferBytes
+// (checked before anything is allocated).
 
 #include <sylva/core/result.hpp>
 #include <sylva/render/gl_handle.hpp>
@@ -13,6 +15,7 @@
 #include <epoxy/gl.h>
 #include <glm/glm.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace sylva::render {
@@ -29,10 +32,15 @@ struct FramebufferDesc {
   int samples = 0;   // 0 or 1: single-sampled; >= 2: MSAA with resolve targets
 };
 
+// Largest render target create() allocates (all attachments, samples and resolve targets).
+inline constexpr std::uint64_t kMaxFramebufferBytes = 4ull << 30;
+
 class Framebuffer {
  public:
   Framebuffer() = default;
   static Result<Framebuffer> create(const FramebufferDesc& desc);
+  // GPU bytes a target of `desc` takes (attachments x samples, plus resolve targets).
+  static std::uint64_t estimated_bytes(const FramebufferDesc& desc);
 
   GLuint id() const { return fbo_.get(); }
   int width() const { return desc_.width; }

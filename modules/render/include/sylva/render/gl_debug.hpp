@@ -27,6 +27,17 @@ bool gl_error_recording();
 // Total number of GL errors seen since start (debug callback + check_gl_errors).
 std::size_t gl_error_count();
 
+// For the frame loops of the player, editor and bench (only the first 20 GL error lines of a
+// process are logged; every error is counted):
+//   const std::size_t mark = gl_error_mark();     // before scene creation or a frame
+//   ... GL work ...
+//   SYLVA_TRY(check_frame_gl_errors(mark, "frame 3"));
+// check_frame_gl_errors drains glGetError() and returns kGl when any GL error happened since the
+// mark, with the count and the first message since the mark (an out-of-memory error says so and
+// what to reduce). A run whose frame had a GL error must fail (exit 1), not write a picture.
+std::size_t gl_error_mark();
+Status check_frame_gl_errors(std::size_t mark, std::string_view where);
+
 // Returns and clears the recorded error messages.
 std::vector<std::string> take_gl_errors();
 
