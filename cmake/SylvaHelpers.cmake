@@ -72,6 +72,12 @@ function(sylva_add_test module kind name)
   add_executable(${exe} ${T_SOURCES})
   target_link_libraries(${exe} PRIVATE ${T_DEPS} GTest::gtest GTest::gtest_main)
   sylva_target_defaults(${exe})
+  # sylva_tests_<kind> builds every test of one kind and only what they link: `make test-asan`
+  # builds sylva_tests_unit alone, because a whole Debug + ASan tree does not fit CI's time.
+  if(NOT TARGET sylva_tests_${kind})
+    add_custom_target(sylva_tests_${kind})
+  endif()
+  add_dependencies(sylva_tests_${kind} ${exe})
   gtest_discover_tests(${exe}
     PROPERTIES TIMEOUT 300
     WORKING_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}"
