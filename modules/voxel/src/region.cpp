@@ -11,6 +11,7 @@
 #include <bit>
 #include <cstring>
 #include <fstream>
+#include <limits>
 
 namespace sylva::voxel {
 
@@ -82,6 +83,15 @@ ChunkCoord slot_chunk(const RegionCoord& r, int slot) {
 }
 
 std::string chunk_name(const ChunkCoord& c) { return fmt::format("chunk ({}, {}, {})", c.x, c.y, c.z); }
+
+// Whether every block of a region has an int64 position: (r * blocks per region edge) + the
+// last block must not overflow. A file read from disk may claim any coordinate, and without
+// this check slot_chunk() and chunk_origin() would overflow (undefined) for |r| >= 2^60.
+constexpr std::int64_t kRegionBlocks = std::int64_t{kRegionSize} * kChunkSize;
+bool region_axis_in_world(std::int64_t r) {
+  std::int64_t first = 0, last = 0;
+  return !__builtin_mul_overflow(r, kRegionBlocks, &first) && !__builtin_add_overflow(first, kRegionBlocks - 1, &last);
+}
 
 }  // namespace
 
@@ -171,6 +181,12 @@ Result<RegionContents> decode_region(std::span<const std::uint8_t> bytes, const 
   }
   RegionContents out;
   if (!in.i64(out.coord.x) || !in.i64(out.coord.y) || !in.i64(out.coord.z)) return corrupt("truncated header");
+  if (!region_axis_in_world(out.coord.x) || !region_axis_in_world(out.coord.y) || !region_axis_in_world(out.coord.z)) {
+    return corrupt(fmt::format("region coordinate ({}, {}, {}) is outside the world (each axis within {}..{})",
+                               out.coord.x, out.coord.y, out.coord.z,
+                               std::numeric_limits<std::int64_t>::min() / kRegionBlocks,
+                               std::numeric_limits<std::int64_t>::max() / kRegionBlocks));
+  }
   std::uint32_t name_count = 0;
   if (!in.u32(name_count) || name_count > 65536) return corrupt("bad block-name count");
   std::vector<std::string> names(name_count);

@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "support/test_chunks.hpp"
 
@@ -141,6 +145,48 @@ TEST(Region, CorruptHeaderTruncationAndGarbageAreReported) {
   ASSERT_EQ(r->bad_chunks.size(), 1u);
   EXPECT_NE(r->bad_chunks.begin()->second.message.find("not in the palette"), std::string::npos);
   fs::remove_all(dir);
+}
+
+// A header may claim any region coordinate; one whose blocks have no int64 position (here from
+// 2^55 on, the 2^60 of the issue included) is refused by name instead of overflowing.
+TEST(Region, CoordinatesOutsideTheWorldAreRefused) {
+  const auto& palette = testing::test_palette();
+  Chunk a = pattern_chunk(1);
+  const std::vector<std::pair<ChunkCoord, const Chunk*>> list = {{{0, 0, 0}, &a}};
+  const auto good = encode_region({0, 0, 0}, palette, list);
+  // The header checksum sits right after the header it covers: find it to re-sign the patch.
+  std::size_t header_end = 0;
+  for (std::size_t p = 16; p + 4 <= good.size() && header_end == 0; ++p) {
+    std::uint32_t stored = 0;
+    std::memcpy(&stored, good.data() + p, 4);
+    if (crc32(std::span(good).first(p)) == stored) header_end = p;
+  }
+  ASSERT_GT(header_end, 0u);
+  auto with_x = [&](std::int64_t rx) {
+    auto bytes = good;
+    std::memcpy(bytes.data() + 16, &rx, 8);  // after magic, version, chunk size
+    const std::uint32_t crc = crc32(std::span(bytes).first(header_end));
+    std::memcpy(bytes.data() + header_end, &crc, 4);
+    return bytes;
+  };
+  const std::int64_t edge = std::numeric_limits<std::int64_t>::max() / 256;  // 2^55 - 1
+  for (std::int64_t rx : {std::int64_t{1} << 60, std::numeric_limits<std::int64_t>::max(),
+                          std::numeric_limits<std::int64_t>::min(), edge + 1, -edge - 2}) {
+    auto r = decode_region(with_x(rx), palette, "far.svr");
+    ASSERT_FALSE(r.ok()) << rx;
+    EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+    EXPECT_NE(r.error().message.find("far.svr"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find(fmt::format("region coordinate ({}, 0, 0) is outside the world", rx)),
+              std::string::npos)
+        << r.error().message;
+  }
+  // The last regions inside the world still decode, with their chunk where it belongs.
+  for (std::int64_t rx : {edge, -edge - 1}) {
+    auto r = decode_region(with_x(rx), palette, "edge.svr");
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    ASSERT_EQ(r->chunks.size(), 1u);
+    EXPECT_EQ(r->chunks.begin()->first, (ChunkCoord{rx * kRegionSize, 0, 0}));
+  }
 }
 
 TEST(Region, CacheHoldsAtMostItsLimit) {
