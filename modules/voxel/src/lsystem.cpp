@@ -267,9 +267,12 @@ Result<std::string> derive(const LSystem& system, int derivations, std::uint64_t
       }
       const std::size_t add = piece ? piece->size() : 1;
       if (next.size() + add > limits.max_symbols) {
+        // The cap is a field of the caller's ExpansionLimits, not a scene parameter: name it as
+        // such rather than a --set path that does not exist.
         return make_error(ErrorCode::kLimit,
                           fmt::format("{}: expansion exceeds max_symbols={} at derivation {} of {} "
-                                      "(lower the derivation count or raise voxel.lsystem.max_symbols)",
+                                      "(use fewer derivations; the cap is voxel::ExpansionLimits::max_symbols, "
+                                      "not a scene parameter)",
                                       system.where(), limits.max_symbols, step, derivations));
       }
       if (piece) {

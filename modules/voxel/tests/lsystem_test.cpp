@@ -150,6 +150,9 @@ TEST(LSystemDerive, ExplodingGrammarStopsAtTheCap) {
   EXPECT_NE(s.error().message.find("bomb.lsys:1"), std::string::npos) << s.error().message;
   EXPECT_NE(s.error().message.find("max_symbols=1000000"), std::string::npos) << s.error().message;
   EXPECT_NE(s.error().message.find("derivation 7 of 12"), std::string::npos) << s.error().message;
+  // It names the real knob, not a --set path that no scene has (issue 17).
+  EXPECT_NE(s.error().message.find("voxel::ExpansionLimits::max_symbols"), std::string::npos) << s.error().message;
+  EXPECT_EQ(s.error().message.find("voxel.lsystem"), std::string::npos) << s.error().message;
   // Below the cap it still works.
   EXPECT_TRUE(derive(r->front(), 5, 1, limits).ok());
 }
