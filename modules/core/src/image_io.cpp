@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <system_error>
 
 namespace sylva {
@@ -74,6 +75,15 @@ Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) 
   if (spec.width > options.max_side || spec.height > options.max_side) {
     return make_error(ErrorCode::kLimit, fmt::format("{}: image is {}x{}, larger than the limit of {} per side",
                                                      name, spec.width, spec.height, options.max_side));
+  }
+  // Samples are held as 32-bit floats: a header may claim a size whose pixels would not fit in
+  // memory, so the cost is checked before anything is allocated.
+  const std::uint64_t bytes = static_cast<std::uint64_t>(spec.width) * static_cast<std::uint64_t>(spec.height) *
+                              static_cast<std::uint64_t>(std::max(spec.nchannels, 1)) * sizeof(float);
+  if (bytes > options.max_bytes) {
+    return make_error(ErrorCode::kLimit,
+                      fmt::format("{}: image is {}x{} with {} channels, {} MiB as floats, above the limit of {} MiB", name,
+                                  spec.width, spec.height, spec.nchannels, bytes >> 20, options.max_bytes >> 20));
   }
   if (spec.depth > 1) {
     return make_error(ErrorCode::kUnsupported, fmt::format("{}: volume images (depth {}) are not supported", name,

@@ -135,6 +135,16 @@ TEST(Image, AbsurdlyLargeIsRefusedBeforeReading) {
   EXPECT_NE(r.error().message.find("300x2"), std::string::npos);
 }
 
+TEST(Image, MoreBytesThanTheBudgetIsRefusedBeforeReading) {
+  const fs::path path = temp_dir() / "rgba.png";
+  ASSERT_TRUE(sylva::write_image(path, Image(64, 32, 4, PixelFormat::kU8)).ok());
+  auto r = sylva::read_image(path, {.max_bytes = 64 * 32 * 4 * 4 - 1});
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kLimit);
+  EXPECT_NE(r.error().message.find("64x32 with 4 channels"), std::string::npos) << r.error().message;
+  EXPECT_TRUE(sylva::read_image(path, {.max_bytes = 64 * 32 * 4 * 4}).ok());
+}
+
 TEST(Image, NanInExrIsReportedWithPosition) {
   Image image(8, 4, 1, PixelFormat::kF32);
   image.at(5, 2) = std::numeric_limits<float>::quiet_NaN();

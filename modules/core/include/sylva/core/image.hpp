@@ -60,12 +60,13 @@ class Image {
 
 struct ImageReadOptions {
   int max_side = 32768;          // larger files are refused (kLimit) before any pixel is read
+  std::uint64_t max_bytes = 4ull << 30;  // so are files whose samples as floats take more [bytes]
   bool allow_non_finite = true;  // false: NaN/Inf samples are an error naming count and position
 };
 
 // Reads PNG, EXR, TIFF, JPEG and anything else OpenImageIO reads. Errors name the file and say
-// what is wrong: missing (kNotFound), truncated or undecodable (kCorrupt), 0x0 or > max_side
-// (kLimit), more than 4 channels or an unknown format (kUnsupported).
+// what is wrong: missing (kNotFound), truncated or undecodable (kCorrupt), 0x0, > max_side or
+// > max_bytes as floats (kLimit), more than 4 channels or an unknown format (kUnsupported).
 Result<Image> read_image(const std::filesystem::path& path, const ImageReadOptions& options = {});
 
 // Writes through a temporary file in the same folder and renames it over `path`, so a failed
