@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test clean
+.PHONY: all deps configure build demo test lean test-asan clean
 
 all: build
 
@@ -26,6 +26,27 @@ demo: build
 # software rasteriser can miss a frame budget; a real failure fails twice.
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 300 --repeat until-pass:2
+
+# Lean player: the `lean` preset (terrain + grass, no ImGui) builds sylva-player alone; then
+# scripts/check-lean plays the default scene headless and checks it refuses built-out modules.
+lean: deps
+	cmake --preset lean >/dev/null
+	cmake --build build/lean -j $(JOBS) --target sylva-player
+	./scripts/check-lean build/lean/apps/player/sylva-player
+
+# Sanitizer job: the `dev` preset (Debug, ASan + UBSan) builds only the tests of the kinds in
+# ASAN_KINDS (target sylva_tests_<kind>: those tests and what they link; a whole Debug + ASan
+# tree does not fit CI's time) and runs those labels. Any report fails the test that made it.
+ASAN_KINDS ?= unit
+empty :=
+space := $(empty) $(empty)
+SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1 \
+                 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+test-asan: deps
+	cmake --preset dev >/dev/null
+	$(SANITIZER_ENV) cmake --build build/dev -j $(JOBS) --target $(addprefix sylva_tests_,$(ASAN_KINDS))
+	$(SANITIZER_ENV) ctest --test-dir build/dev --output-on-failure -j $(JOBS) --timeout 600 \
+	  -L '^($(subst $(space),|,$(strip $(ASAN_KINDS))))$$'
 
 clean:
 	rm -rf build out
