@@ -5,17 +5,18 @@
 
 #include <fmt/format.h>
 
-#include <source_location>
 #include <string>
 
+// The place is passed as __FILE__/__LINE__/__PRETTY_FUNCTION__ rather than std::source_location:
+// clang 14 (the fuzz build, fuzz/) cannot compile libstdc++ 12's <source_location>.
 namespace sylva::detail {
-[[noreturn]] void assert_fail(const char* condition, const std::string& detail,
-                              const std::source_location& where);
+[[noreturn]] void assert_fail(const char* condition, const std::string& detail, const char* file,
+                              unsigned line, const char* function);
 }  // namespace sylva::detail
 
 #define SYLVA_ASSERT(cond, ...)                                                             \
   do {                                                                                      \
     if (!(cond)) [[unlikely]]                                                               \
-      ::sylva::detail::assert_fail(#cond, ::fmt::format(__VA_ARGS__),                       \
-                                   ::std::source_location::current());                      \
+      ::sylva::detail::assert_fail(#cond, ::fmt::format(__VA_ARGS__), __FILE__, __LINE__,    \
+                                   __PRETTY_FUNCTION__);                                    \
   } while (0)
