@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test lean test-asan clean
+.PHONY: all deps configure build demo test lean test-asan fuzz clean
 
 all: build
 
@@ -47,6 +47,17 @@ test-asan: deps
 	$(SANITIZER_ENV) cmake --build build/dev -j $(JOBS) --target $(addprefix sylva_tests_,$(ASAN_KINDS))
 	$(SANITIZER_ENV) ctest --test-dir build/dev --output-on-failure -j $(JOBS) --timeout 600 \
 	  -L '^($(subst $(space),|,$(strip $(ASAN_KINDS))))$$'
+
+# Fuzzing (fuzz/README.md): the `fuzz` preset (clang 14, libFuzzer + ASan/UBSan) builds the fuzz
+# targets and only the libraries they link, then runs each for FUZZ_SECONDS (CI: 30) and stops at
+# the first crash, printing its reproducer. FUZZ_TARGETS="scene_json obj" runs only those.
+# Corpora grow in build/fuzz-work, outside git.
+FUZZ_SECONDS ?= 60
+FUZZ_TARGETS ?=
+fuzz: deps
+	cmake --preset fuzz >/dev/null
+	nice -n 5 cmake --build build/fuzz -j $(JOBS) --target sylva-fuzz-all
+	fuzz/run-fuzzers build/fuzz build/fuzz-work $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 
 clean:
 	rm -rf build out
