@@ -102,7 +102,8 @@ void load_module(ModuleSection& section, const nlohmann::json& json, std::vector
   }
   const std::vector<MapSlot> slots = section.settings->map_slots();
   for (const auto& [slot, value] : maps->items()) {
-    const bool known = std::any_of(slots.begin(), slots.end(), [&](const MapSlot& s) { return slot == s.name; });
+    // An init-capture, not [&]: clang 14 (the fuzz build) cannot capture a structured binding.
+    const bool known = std::any_of(slots.begin(), slots.end(), [&key = slot](const MapSlot& s) { return key == s.name; });
     if (!known) continue;  // reported and kept as an unknown key
     if (!value.is_string() || value.get<std::string>().empty()) {
       errors.push_back(fmt::format("{}.{}: expected a non-empty file path string, got {}", maps_path, slot,
