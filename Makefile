@@ -22,10 +22,9 @@ demo: build
 	@mkdir -p out
 	$(BUILD)/apps/player/sylva-player --screenshot out/demo.png
 
-# A test that fails is run once more before it counts as failed: GL timing tests on a loaded
-# software rasteriser can miss a frame budget; a real failure fails twice.
+# No retries: a test that fails once has found a bug (in the code or in the test).
 test: build
-	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 300 --repeat until-pass:2
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS) --timeout 300
 
 # Lean player: the `lean` preset (terrain + grass, no ImGui) builds sylva-player alone; then
 # scripts/check-lean plays the default scene headless and checks it refuses built-out modules.
