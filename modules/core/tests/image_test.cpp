@@ -1,18 +1,25 @@
 // core images: formats, channels, round trips through OpenImageIO, and bad files.
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/file_fault.hpp>
 #include <sylva/core/image.hpp>
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <sys/mount.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
 using sylva::ErrorCode;
+using sylva::FileFaultPoint;
 using sylva::Image;
 using sylva::PixelFormat;
+using sylva::ScopedFileFault;
 
 namespace {
 
@@ -158,20 +165,66 @@ TEST(Image, NanInExrIsReportedWithPosition) {
   EXPECT_NE(r.error().message.find("(5, 2)"), std::string::npos) << r.error().message;
 }
 
+std::string bytes_of(const fs::path& path) { return sylva::read_file(path).value_or("<unreadable>"); }
+
+// No temporary file of a failed write is left in `dir`.
+void expect_no_temporaries(const fs::path& dir) {
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+}
+
+// The old file is put at risk: a new image for the same path fails half way (disk full) or at the
+// rename; the old bytes must survive.
 TEST(Image, FailedWriteKeepsTheOldFile) {
   const fs::path path = temp_dir() / "keep.png";
   ASSERT_TRUE(sylva::write_image(path, gradient(16, 16, 3), PixelFormat::kU8).ok());
-  const auto size_before = fs::file_size(path);
+  const std::string before = bytes_of(path);
+  for (const FileFaultPoint point : {FileFaultPoint::kWrite, FileFaultPoint::kRename}) {
+    {
+      ScopedFileFault fault([&](const fs::path& target, FileFaultPoint p) { return p == point && target == path; });
+      auto written = sylva::write_image(path, gradient(64, 32, 3), PixelFormat::kU8);
+      ASSERT_FALSE(written.ok());
+      EXPECT_NE(written.error().message.find(path.string()), std::string::npos) << written.error().message;
+    }
+    EXPECT_EQ(bytes_of(path), before) << "fault at " << static_cast<int>(point);
+    expect_no_temporaries(temp_dir());
+  }
   // An empty image cannot be written; the old file must be untouched.
   EXPECT_FALSE(sylva::write_image(path, Image()).ok());
   // An unknown extension has no writer; nothing may be created or replaced.
   EXPECT_FALSE(sylva::write_image(temp_dir() / "x.unknownext", gradient(4, 4, 1)).ok());
-  EXPECT_EQ(file_size(path), size_before);
-  EXPECT_TRUE(sylva::read_image(path).ok());
-  // No temporary files are left behind.
-  for (const auto& entry : fs::directory_iterator(temp_dir())) {
-    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  EXPECT_FALSE(fs::exists(temp_dir() / "x.unknownext"));
+  EXPECT_EQ(bytes_of(path), before);
+  expect_no_temporaries(temp_dir());
+}
+
+// A real full disk: a 64 KiB tmpfs holding the old file, and a new image too large for it at the
+// same path. Needs permission to mount (root in CI); skipped otherwise.
+TEST(Image, FullDiskKeepsTheOldFile) {
+  const fs::path dir = temp_dir() / "small_disk";
+  fs::create_directories(dir);
+  if (::mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=64k") != 0) {
+    GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
   }
+  struct Unmount {
+    fs::path dir;
+    ~Unmount() { ::umount2(dir.c_str(), MNT_DETACH); }
+  } unmount{dir};
+  const fs::path path = dir / "keep.exr";
+  ASSERT_TRUE(sylva::write_image(path, gradient(16, 16, 3), PixelFormat::kF32).ok());
+  const std::string before = bytes_of(path);
+  Image noise(256, 256, 4);  // 1 MiB of floats that no compression brings under 64 KiB
+  std::uint32_t h = 1u;
+  for (float& v : noise.data()) v = static_cast<float>((h = h * 1664525u + 1013904223u) >> 8) / 16777216.0f;
+  auto written = sylva::write_image(path, noise, PixelFormat::kF32);
+  ASSERT_FALSE(written.ok());
+  EXPECT_NE(written.error().message.find(path.string()), std::string::npos) << written.error().message;
+  EXPECT_EQ(bytes_of(path), before);
+  const sylva::Status text = sylva::write_file_atomic(path, std::string(200000, 'x'));
+  ASSERT_FALSE(text.ok());
+  EXPECT_EQ(bytes_of(path), before);
+  expect_no_temporaries(dir);
 }
 
 TEST(Image, WriteIntoMissingFolderFailsCleanly) {

@@ -1,5 +1,7 @@
 // Map grids: placement, bit-exact copy/paste of rectangles, changed areas, and map files
 // (float files lossless, 16-bit PNG within one level; a failed write keeps the old file).
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/file_fault.hpp>
 #include <sylva/scene/height_source.hpp>
 #include <sylva/scene/map_grid.hpp>
 
@@ -81,6 +83,29 @@ TEST(MapGrid, FloatFilesAreLosslessAndPngKeeps16Bits) {
   auto h_back = read_map_image(png, 300.0f, -20.0f, g.texel_origin, g.texel_size);
   ASSERT_TRUE(h_back.ok());
   for (std::size_t k = 0; k < g.values.size(); ++k) EXPECT_NEAR(h_back->values[k], heights.values[k], 300.0 / 65535.0);
+}
+
+// The old map is put at risk: a new map for the same file fails half way (disk full) or at the
+// rename; the old map reads back unchanged.
+TEST(MapGrid, FailedWriteKeepsTheOldFile) {
+  const MapGrid old_map = ramp(33, 17);
+  MapGrid new_map = ramp(33, 17);
+  for (float& v : new_map.values) v = 1.0f - v;
+  for (const char* name : {"keep.exr", "keep.png"}) {
+    const fs::path file = temp_dir() / name;
+    ASSERT_TRUE(write_map_image(file, old_map, 1.0f, 0.0f).ok());
+    const std::string before = sylva::read_file(file).value();
+    for (const sylva::FileFaultPoint point : {sylva::FileFaultPoint::kWrite, sylva::FileFaultPoint::kRename}) {
+      sylva::ScopedFileFault fault([&](const fs::path& target, sylva::FileFaultPoint p) { return p == point && target == file; });
+      const sylva::Status s = write_map_image(file, new_map, 1.0f, 0.0f);
+      ASSERT_FALSE(s.ok()) << name;
+      EXPECT_NE(s.error().message.find(file.string()), std::string::npos) << s.error().message;
+      EXPECT_EQ(sylva::read_file(file).value_or(""), before) << name << ", fault at " << static_cast<int>(point);
+    }
+    for (const auto& e : fs::directory_iterator(temp_dir())) {
+      EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+    }
+  }
 }
 
 TEST(MapGrid, ErrorsNameTheFile) {

@@ -2,12 +2,11 @@
 // fade-in-background weights (one level always opaque), queues ordered near to far, culling.
 #include <sylva/vegetation/lod_selection.hpp>
 
+#include <sylva/core/timer.hpp>
 #include <sylva/render/camera.hpp>
 
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -163,8 +162,10 @@ TEST(LodSelection, QueuesAreOrderedNearToFarAndCulled) {
   EXPECT_TRUE(q.level[1].empty() && q.level[2].empty());
 }
 
-// CPU cost at forest scale: 100,000 instances in a 3 km square, camera inside.
-TEST(LodSelection, HundredThousandInstancesSelectInMilliseconds) {
+// Forest scale: 100,000 instances in a 3 km square, camera inside; every visible instance is in
+// exactly one queue (two while it fades). Its CPU time is printed here and measured by
+// bench/lod_bench (BM_Update, select_ms), not asserted: a shared machine makes any bound flaky.
+TEST(LodSelection, HundredThousandInstancesSelect) {
   std::vector<render::Sphere> spheres;
   std::uint32_t h = 12345u;
   for (int i = 0; i < 100000; ++i) {
@@ -185,20 +186,14 @@ TEST(LodSelection, HundredThousandInstancesSelectInMilliseconds) {
   LodQueues q;
   const LodView view{cam.position(), &f, 623.0, 3000.0};
   select_lods(s, view, spheres, heights, state, q);  // warm-up (allocations)
-  // Process CPU time (the machine is shared: wall time depends on the load), best of 5.
-  double best = 1e30;
-  double best_wall = 1e30;
-  for (int r = 0; r < 5; ++r) {
-    const std::clock_t c0 = std::clock();
-    const auto t0 = std::chrono::steady_clock::now();
-    select_lods(s, view, spheres, heights, state, q);
-    best_wall = std::min(best_wall, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-    best = std::min(best, 1000.0 * static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC);
-  }
-  std::printf("select_lods: 100000 instances, %zu visible (LOD0 %zu, LOD1 %zu, LOD2 %zu), %.2f ms CPU, %.2f ms wall\n",
-              q.visible, q.level[0].size(), q.level[1].size(), q.level[2].size(), best, best_wall);
+  const Stopwatch wall;
+  select_lods(s, view, spheres, heights, state, q);
+  std::printf("select_lods: 100000 instances, %zu visible (LOD0 %zu, LOD1 %zu, LOD2 %zu), %.2f ms wall\n",
+              q.visible, q.level[0].size(), q.level[1].size(), q.level[2].size(), wall.elapsed_ms());
   EXPECT_GT(q.visible, 5000u);
-  EXPECT_LT(best, 100.0);  // a regression guard (linear time); Release takes a few ms
+  EXPECT_LT(q.visible, spheres.size() / 2) << "the frustum must cull";
+  EXPECT_EQ(q.level[0].size() + q.level[1].size() + q.level[2].size(), q.visible + q.transitions);
+  for (const auto& level : q.level) EXPECT_GT(level.size(), 0u);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // Region files: round trip, corruption detection (header, payload, truncation, unknown block)
 // and atomic replacement.
 
+#include <sylva/core/file_fault.hpp>
 #include <sylva/voxel/region.hpp>
 
 #include <gtest/gtest.h>
@@ -208,23 +209,35 @@ TEST(Region, CacheHoldsAtMostItsLimit) {
   fs::remove_all(dir);
 }
 
+// The old region file is put at risk: a new one for the same path fails half way (disk full) or
+// at the rename, and the old bytes must survive with no temporary file left behind.
 TEST(Region, FailedWriteKeepsTheOldFile) {
   const auto dir = temp_dir("atomic");
   const auto& palette = testing::test_palette();
-  Chunk a = pattern_chunk(1);
-  const std::vector<std::pair<ChunkCoord, const Chunk*>> list = {{{0, 0, 0}, &a}};
+  Chunk a = pattern_chunk(1), b = pattern_chunk(2);
+  const std::vector<std::pair<ChunkCoord, const Chunk*>> old_list = {{{0, 0, 0}, &a}};
+  const std::vector<std::pair<ChunkCoord, const Chunk*>> new_list = {{{0, 0, 0}, &b}, {{1, 0, 0}, &a}};
   const auto path = dir / region_file_name({0, 0, 0});
-  ASSERT_TRUE(write_region_file(path, {0, 0, 0}, palette, list).ok());
+  ASSERT_TRUE(write_region_file(path, {0, 0, 0}, palette, old_list).ok());
   const auto before = read_all(path);
-  // The rename target is a non-empty directory: the write must fail and touch nothing else.
-  const auto blocked = dir / "blocked.svr";
-  fs::create_directories(blocked / "inside");
-  const Status st = write_region_file(blocked, {0, 0, 0}, palette, list);
-  EXPECT_FALSE(st.ok());
-  EXPECT_EQ(read_all(path), before);
-  for (const auto& e : fs::directory_iterator(dir)) {
-    EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+  for (const FileFaultPoint point : {FileFaultPoint::kWrite, FileFaultPoint::kRename}) {
+    {
+      ScopedFileFault fault([&](const fs::path& target, FileFaultPoint p) { return p == point && target == path; });
+      const Status st = write_region_file(path, {0, 0, 0}, palette, new_list);
+      ASSERT_FALSE(st.ok());
+      EXPECT_NE(st.error().message.find(path.string()), std::string::npos) << st.error().message;
+    }
+    EXPECT_EQ(read_all(path), before) << "fault at " << static_cast<int>(point);
+    std::size_t files = 0;
+    for (const auto& e : fs::directory_iterator(dir)) {
+      ++files;
+      EXPECT_EQ(e.path().string().find(".tmp"), std::string::npos) << "temporary file left: " << e.path();
+    }
+    EXPECT_EQ(files, 1u);
   }
+  // Without the fault the same write goes through (the fault, not the data, failed it).
+  ASSERT_TRUE(write_region_file(path, {0, 0, 0}, palette, new_list).ok());
+  EXPECT_NE(read_all(path), before);
   fs::remove_all(dir);
 }
 
