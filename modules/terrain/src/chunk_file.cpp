@@ -3,6 +3,7 @@
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/log.hpp>
 
+#include <cmath>
 #include <cstring>
 
 namespace sylva::terrain {
@@ -179,12 +180,21 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
   std::uint64_t expected_count = 0;
   if (t.levels_ < 1 || t.levels_ > 24) return corrupt(fmt::format("implausible level count {}", t.levels_));
   for (int l = 0; l < t.levels_; ++l) expected_count += (1ull << l) * (1ull << l);
-  if (count != expected_count || t.n_ < 2 || (t.n_ << (t.levels_ - 1)) != t.root_n_) {
+  if (count != expected_count || t.n_ < 2 || (std::uint64_t{t.n_} << (t.levels_ - 1)) != t.root_n_) {
     return corrupt(fmt::format("inconsistent tree layout ({} chunks for {} levels)", count, t.levels_));
+  }
+  // The geometry every later computation trusts: a field the root grid covers, a finite placement.
+  if ((t.n_ & (t.n_ - 1)) != 0 || t.settings_.leaf_dimension != static_cast<int>(t.n_ + 1) || t.columns_ < 1 ||
+      t.rows_ < 1 || static_cast<std::uint32_t>(t.columns_) > t.root_n_ + 1 ||
+      static_cast<std::uint32_t>(t.rows_) > t.root_n_ + 1 || !(t.spacing_ > 0.0) || !std::isfinite(t.spacing_) ||
+      !std::isfinite(t.origin_.x) || !std::isfinite(t.origin_.y)) {
+    return corrupt(fmt::format("implausible field geometry ({} x {} samples, spacing {}, leaf dimension {})", t.columns_,
+                               t.rows_, t.spacing_, t.settings_.leaf_dimension));
   }
   const auto dir_offset = get<std::uint64_t>(header.data(), 80);
   const auto dir_bytes = get<std::uint64_t>(header.data(), 88);
-  if (dir_bytes != static_cast<std::uint64_t>(count) * kEntryBytes || dir_offset + dir_bytes != size) {
+  if (dir_bytes != static_cast<std::uint64_t>(count) * kEntryBytes || dir_bytes > size ||
+      dir_offset != size - dir_bytes) {
     return corrupt("the directory does not fit the file");
   }
   std::string dir(dir_bytes, '\0');
@@ -200,11 +210,20 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
   }
   t.chunks_.resize(count);
   file->entries_.resize(count);
+  int level = 0;
   for (std::uint32_t i = 0; i < count; ++i) {
     const char* e = dir.data() + static_cast<std::size_t>(i) * kEntryBytes;
     Chunk& c = t.chunks_[i];
     c.present = get<std::uint8_t>(e, 0) != 0;
     c.key = ChunkKey{get<std::uint8_t>(e, 1), get<std::uint32_t>(e, 4), get<std::uint32_t>(e, 8)};
+    // The key is implied by the slot (levels in order, rows of chunks x fastest); one that is not
+    // would index outside the tree.
+    if (level + 1 < t.levels_ && i >= t.level_offset_[static_cast<std::size_t>(level) + 1]) ++level;
+    const std::uint32_t local = i - t.level_offset_[static_cast<std::size_t>(level)], side = 1u << level;
+    if (c.key != ChunkKey{level, local % side, local / side}) {
+      return corrupt(fmt::format("chunk {} is labelled level {} at {}, {} but its slot is level {} at {}, {}", i,
+                                 c.key.level, c.key.x, c.key.z, level, local % side, local / side));
+    }
     c.error = get<float>(e, 12);
     c.error_bound = get<float>(e, 16);
     c.min_y = get<float>(e, 20);
@@ -217,7 +236,8 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
     en.checksum = get<std::uint64_t>(e, 56);
     en.vertices = c.vertex_count;
     en.indices = c.triangle_count * 3;
-    if (c.present && (en.offset < kHeaderBytes || en.offset + en.bytes > dir_offset || en.bytes < 24)) {
+    if (c.present && (en.offset < kHeaderBytes || en.bytes > dir_offset || en.offset > dir_offset - en.bytes ||
+                      en.bytes < 24)) {
       return corrupt(fmt::format("chunk {} (level {} at {}, {}) points outside the data", i, c.key.level, c.key.x, c.key.z));
     }
   }
