@@ -86,11 +86,12 @@ Status FileTransaction::commit() {
     s.backup = temp_path_beside(s.target).replace_extension(".old");
     fs::create_hard_link(s.target, s.backup, ec);
     if (ec) {
-      const std::string why = ec.message();
+      // Copied before discard(): it destroys the element `s` refers to.
+      const std::string target = s.target.string(), why = ec.message();
       s.backup.clear();
       discard();
       return make_error(ErrorCode::kIo, fmt::format("{}: cannot keep the old file while saving ({}); nothing was saved",
-                                                    s.target.string(), why));
+                                                    target, why));
     }
   }
   for (std::size_t i = 0; i < staged_.size(); ++i) {
@@ -101,12 +102,12 @@ Status FileTransaction::commit() {
       fs::rename(s.temp, s.target, ec);
     }
     if (ec) {
-      const std::string why = ec.message();
+      const std::string target = s.target.string(), why = ec.message();  // discard() destroys `s`
       roll_back(i);
       discard();
       return make_error(ErrorCode::kIo, fmt::format("{}: cannot replace the file ({}); nothing was saved, every old "
                                                     "file is as it was",
-                                                    s.target.string(), why));
+                                                    target, why));
     }
     s.temp.clear();
   }
