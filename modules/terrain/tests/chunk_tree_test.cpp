@@ -17,6 +17,7 @@ namespace {
 
 using testing::fbm_field;
 using testing::make_field;
+using testing::same_bytes;
 
 ChunkTree build_or_die(const HeightField& f, ChunkTreeSettings s = {}) {
   auto r = ChunkTree::build(f, s);
@@ -259,7 +260,7 @@ TEST(ChunkTree, ThreadCountAndMeshRetentionDoNotChangeTheResult) {
     EXPECT_EQ(a.error_bound, m.error_bound);
     EXPECT_EQ(a.triangle_count, m.triangle_count);
     ASSERT_EQ(a.mesh.vertices.size(), b.mesh.vertices.size());
-    EXPECT_EQ(std::memcmp(a.mesh.vertices.data(), b.mesh.vertices.data(), a.mesh.vertices.size() * sizeof(ChunkVertex)), 0);
+    EXPECT_TRUE(same_bytes(a.mesh.vertices, b.mesh.vertices));
     EXPECT_EQ(a.mesh.indices, b.mesh.indices);
     EXPECT_TRUE(m.mesh.vertices.empty());
   }

@@ -44,9 +44,7 @@ void write_bytes(const fs::path& p, const std::string& s) {
   out.write(s.data(), static_cast<std::streamsize>(s.size()));
 }
 bool same_mesh(const ChunkMesh& a, const ChunkMesh& b) {
-  return a.vertices.size() == b.vertices.size() &&
-         std::memcmp(a.vertices.data(), b.vertices.data(), a.vertices.size() * sizeof(ChunkVertex)) == 0 &&
-         a.indices == b.indices && a.edges == b.edges;
+  return same_bytes(a.vertices, b.vertices) && a.indices == b.indices && a.edges == b.edges;
 }
 
 TEST(ChunkFile, RoundTripKeepsMetadataAndMeshesBitExact) {

@@ -8,11 +8,20 @@
 #include <sylva/terrain/selection.hpp>
 
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <string>
+#include <vector>
 
 namespace sylva::terrain::testing {
+
+// Bit-exact equality of two arrays, empty ones included: memcmp must not be given the null
+// data() of an empty vector (undefined behaviour, reported by UBSan).
+template <class T>
+bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
 
 HeightField make_field(int columns, int rows, double spacing, const std::function<float(int, int)>& height,
                        glm::dvec2 origin = {0.0, 0.0});
