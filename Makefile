@@ -40,6 +40,7 @@ ASAN_KINDS ?= unit
 empty :=
 space := $(empty) $(empty)
 SANITIZER_ENV := ASAN_OPTIONS=detect_leaks=1:check_initialization_order=1:strict_init_order=1:detect_stack_use_after_return=1 \
+                 LSAN_OPTIONS=suppressions=$(CURDIR)/scripts/lsan-suppressions.txt \
                  UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 test-asan: deps
 	cmake --preset dev >/dev/null
