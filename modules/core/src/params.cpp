@@ -465,17 +465,21 @@ std::string format_component(const ParamRef& ref, int index) {
 }
 
 std::string closest_match(std::string_view wanted, const std::vector<std::string>& candidates) {
+  // Close enough to be a typo: a few edits, fewer than a third of the name.
+  const std::size_t limit = std::max<std::size_t>(2, wanted.size() / 3);
   std::string best;
   std::size_t best_distance = std::numeric_limits<std::size_t>::max();
   for (const std::string& c : candidates) {
+    // The distance is at least the difference in length: skipping those candidates keeps a long
+    // garbage name (a hostile --set or JSON key) from costing its length times every name.
+    const std::size_t length_gap = c.size() > wanted.size() ? c.size() - wanted.size() : wanted.size() - c.size();
+    if (length_gap > limit) continue;
     const std::size_t d = edit_distance(wanted, c);
     if (d < best_distance) {
       best_distance = d;
       best = c;
     }
   }
-  // Close enough to be a typo: a few edits, fewer than a third of the name.
-  const std::size_t limit = std::max<std::size_t>(2, wanted.size() / 3);
   return best_distance <= limit ? best : std::string();
 }
 
