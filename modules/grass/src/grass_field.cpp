@@ -136,7 +136,7 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
     c.blades = render::Buffer::immutable(data, true);
     const std::size_t list_bytes = std::max<std::size_t>(c.blade_count, 1) * sizeof(std::uint32_t);
     for (PassLists* pass : {&c.colour, &c.shadow}) {
-      pass->visible = render::Buffer::immutable(list_bytes, nullptr);
+      pass->visible = render::Buffer::immutable(list_bytes, nullptr, true);  // sort_visible_lists
       pass->command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
       pass->jobs = render::Buffer::dynamic(sizeof(TileJob));
     }
@@ -279,6 +279,7 @@ void GrassField::cull_chunks(PassLists Chunk::*lists) {
     glDispatchCompute(static_cast<GLuint>(pass.job_list.size()), 1, 1);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  if (sorted_draw_order_) sort_visible_lists(lists);
   // Sub-draws of at most blades_per_sub_draw() blades each (culling.hpp, blades_per_draw).
   const std::uint32_t per_draw = blades_per_sub_draw();
   batch_.use();
@@ -293,6 +294,22 @@ void GrassField::cull_chunks(PassLists Chunk::*lists) {
     glDispatchCompute(1, 1, 1);
   }
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+}
+
+void GrassField::sort_visible_lists(PassLists Chunk::*lists) {
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  std::vector<std::uint32_t> indices;
+  for (Chunk& c : chunks_) {
+    PassLists& pass = c.*lists;
+    if (pass.job_list.empty()) continue;
+    CommandBlock block{};
+    pass.command.read(0, sizeof(block), &block);
+    indices.resize(std::min(block.draw_count, block.capacity));
+    if (indices.size() < 2) continue;
+    pass.visible.read(0, indices.size() * sizeof(std::uint32_t), indices.data());
+    std::sort(indices.begin(), indices.end());
+    pass.visible.update(0, indices.size() * sizeof(std::uint32_t), indices.data());
+  }
 }
 
 void GrassField::draw_chunks(PassLists Chunk::*lists, render::PassStats* stats) const {

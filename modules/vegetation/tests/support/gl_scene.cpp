@@ -10,12 +10,13 @@
 
 namespace sylva::vegetation::testing {
 
-GlScene GlScene::create(int width, int height, int samples) {
+GlScene GlScene::create(int width, int height, int samples, GLenum color_format) {
   GlScene s;
   render::FramebufferDesc desc;
   desc.width = width;
   desc.height = height;
   desc.samples = samples;
+  desc.color_formats = {color_format};
   Result<render::Framebuffer> fb = render::Framebuffer::create(desc);
   SYLVA_ASSERT(fb.ok(), "framebuffer: {}", fb.error().message);
   s.target = std::move(fb).value();

@@ -23,8 +23,9 @@ struct GlScene {
   render::Camera camera;
   glm::vec4 clear_color{1.0f, 0.0f, 1.0f, 1.0f};
 
-  // samples >= 2 gives a multisampled target (alpha-to-coverage).
-  static GlScene create(int width, int height, int samples = 0);
+  // samples >= 2 gives a multisampled target (alpha-to-coverage). A float `color_format` for
+  // tests that look for NaN in the picture (an 8-bit target stores NaN as a number).
+  static GlScene create(int width, int height, int samples = 0, GLenum color_format = GL_RGBA8);
   void begin(double time = 0.0);
   Image read() const;
 };

@@ -154,6 +154,13 @@ class GrassField : public render::Drawable {
   // driver without the limit could draw in fewer calls). Reallocates the command buffers.
   void set_blades_per_draw(std::uint32_t blades);
 
+  // Draw order. cull.comp appends the visible blades in the order its atomics happen to run,
+  // which changes from frame to frame and run to run, and a picture can differ where two blades
+  // meet at exactly the same depth. On: every visible list is read back and sorted by blade index
+  // after culling (a stall; for reference renders and tests that compare pictures), so the same
+  // blades always give the same picture.
+  void set_sorted_draw_order(bool on) { sorted_draw_order_ = on; }
+
   const glm::dvec3& origin() const { return origin_; }
   const std::vector<GrassTile>& tiles() const { return tiles_; }
   std::size_t blade_count() const { return blade_count_; }
@@ -206,12 +213,15 @@ class GrassField : public render::Drawable {
   // Runs cull.comp over every chunk with jobs (the caller set the cull uniforms), then
   // draw_batches.comp, with the barriers the indirect draw needs.
   void cull_chunks(PassLists Chunk::*lists);
+  // set_sorted_draw_order(): sorts each chunk's visible list of the pass (after cull.comp).
+  void sort_visible_lists(PassLists Chunk::*lists);
   // Draws every chunk's sub-draws with the bound blade program.
   void draw_chunks(PassLists Chunk::*lists, render::PassStats* stats) const;
   void set_cull_uniforms(const render::Program& program, const CullView& view) const;
   void set_blade_uniforms(const render::Program& program, const glm::mat4& relative_view_projection,
                           const render::Camera& camera) const;
 
+  bool sorted_draw_order_ = false;
   GrassRenderSettings settings_;
   glm::dvec3 origin_{0.0};
   std::vector<GrassTile> tiles_;
