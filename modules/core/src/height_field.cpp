@@ -84,7 +84,9 @@ Result<HeightField> HeightField::from_image(const Image& image, const HeightFiel
     for (int i = 0; i < field.columns(); ++i) {
       const float v = image.at(i, j, options.channel);
       const double h = static_cast<double>(v) * options.height_scale + options.height_offset;
-      if (!std::isfinite(v) || !std::isfinite(h)) {
+      // A finite sample can still leave float range once scaled (3e38 x 100 m): that is as
+      // unusable as NaN/Inf (found by the image_map fuzz target).
+      if (!std::isfinite(v) || !(std::abs(h) <= static_cast<double>(std::numeric_limits<float>::max()))) {
         if (bad.count == 0) {
           bad.first_x = i;
           bad.first_y = j;
@@ -99,8 +101,8 @@ Result<HeightField> HeightField::from_image(const Image& image, const HeightFiel
   if (bad.count > 0) {
     if (options.non_finite == NonFinitePolicy::kReject) {
       return make_error(ErrorCode::kInvalidArgument,
-                        fmt::format("height field: {} NaN/Inf samples, the first at ({}, {}); use the repair "
-                                    "option to fill them from their neighbours",
+                        fmt::format("height field: {} NaN/Inf samples (or beyond float range once scaled), the "
+                                    "first at ({}, {}); use the repair option to fill them from their neighbours",
                                     bad.count, bad.first_x, bad.first_y));
     }
     const std::size_t repaired = repair_non_finite(field);

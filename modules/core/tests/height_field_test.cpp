@@ -62,3 +62,18 @@ TEST(HeightField, FromImageRejectsBadOptionsNamingThem) {
   EXPECT_NE(bad_spacing.error().message.find("spacing"), std::string::npos);
   EXPECT_FALSE(HeightField::from_image(Image()).ok());
 }
+
+// Found by the image_map fuzz target: a finite sample that overflows float once scaled became
+// an infinite height that passed the NaN/Inf check.
+TEST(HeightField, SamplesBeyondFloatRangeOnceScaledAreNonFinite) {
+  Image image(3, 2, 1);
+  image.at(1, 1) = 3e38f;
+  auto rejected = HeightField::from_image(image, {.height_scale = 100.0});
+  ASSERT_FALSE(rejected.ok());
+  EXPECT_NE(rejected.error().message.find("1 NaN/Inf samples (or beyond float range once scaled), the first at (1, 1)"),
+            std::string::npos) << rejected.error().message;
+  auto repaired = HeightField::from_image(image, {.height_scale = 100.0, .non_finite = sylva::NonFinitePolicy::kRepair});
+  ASSERT_TRUE(repaired.ok());
+  for (float h : repaired->samples()) EXPECT_TRUE(std::isfinite(h));
+  EXPECT_TRUE(HeightField::from_image(image, {.height_scale = 1.0}).ok());  // 3e38 m itself is a float
+}
