@@ -37,6 +37,16 @@ OIIO::TypeDesc type_from(PixelFormat format) {
 }
 
 // OIIO keeps a per-thread error string; fetch it so it does not leak into a later message.
+// A reader's error text can hold one line per damaged row (thousands for a truncated TIFF):
+// the message keeps the first and says how many followed.
+std::string first_line_and_count(const std::string& text) {
+  const auto end = text.find('\n');
+  if (end == std::string::npos) return text;
+  const auto more = std::count(text.begin() + static_cast<std::ptrdiff_t>(end), text.end(), '\n') +
+                    (text.back() == '\n' ? 0 : 1);
+  return more == 0 ? text.substr(0, end) : fmt::format("{}; and {} more like it", text.substr(0, end), more);
+}
+
 std::string oiio_error(const OIIO::ImageInput* in) {
   std::string message = in ? in->geterror() : std::string();
   const std::string global = OIIO::geterror();
@@ -95,8 +105,14 @@ Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) 
   }
   auto image = Image::create(spec.width, spec.height, spec.nchannels, format_from(spec.format));
   if (!image.ok()) return make_error(image.error().code, fmt::format("{}: {}", name, image.error().message));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image->data().data())) {
-    return make_error(ErrorCode::kCorrupt, fmt::format("{}: truncated or corrupt image data ({})", name, oiio_error(in.get())));
+  const bool read = in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image->data().data());
+  // The TIFF reader reports strips shorter than the header promises but still returns success,
+  // with the missing rows zero-filled: a pending error fails the read as much as `false` does.
+  std::string damage = in->geterror();
+  if (!read || !damage.empty()) {
+    if (damage.empty()) damage = oiio_error(nullptr);
+    return make_error(ErrorCode::kCorrupt,
+                      fmt::format("{}: truncated or corrupt image data ({})", name, first_line_and_count(damage)));
   }
   in->close();
   if (!options.allow_non_finite) {

@@ -125,6 +125,34 @@ TEST(Image, TruncatedPngIsCorrupt) {
   EXPECT_NE(r.error().message.find("cut.png"), std::string::npos);
 }
 
+// libtiff zero-fills strips that the file is too short for, and OpenImageIO reports success:
+// the reader must still fail (the hostile suite's TiffStripShorterThanHeader).
+TEST(Image, TiffStripShorterThanItsHeaderIsCorrupt) {
+  std::string tiff = {'I', 'I', 42, 0, 8, 0, 0, 0, 8, 0};  // little-endian, first directory at 8, 8 entries
+  auto entry = [&tiff](std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
+    const std::uint32_t count = 1;
+    tiff.append(reinterpret_cast<const char*>(&tag), 2).append(reinterpret_cast<const char*>(&type), 2);
+    tiff.append(reinterpret_cast<const char*>(&count), 4).append(reinterpret_cast<const char*>(&value), 4);
+  };
+  const std::uint32_t strip_at = 10 + 8 * 12 + 4;
+  for (std::uint16_t tag : {256, 257}) entry(tag, 4, 512);  // 512 x 512 pixels
+  entry(258, 3, 8);         // 8 bits
+  entry(259, 3, 1);         // uncompressed
+  entry(262, 3, 1);         // grey
+  entry(273, 4, strip_at);  // one strip ...
+  entry(278, 4, 512);
+  entry(279, 4, 16);        // ... of 16 bytes instead of 262144
+  tiff.append(4, '\0').append(16, '\x40');
+  const fs::path file = temp_dir() / "short_strip.tif";
+  std::ofstream(file, std::ios::binary).write(tiff.data(), static_cast<std::streamsize>(tiff.size()));
+  auto r = sylva::read_image(file);
+  ASSERT_FALSE(r.ok()) << "a 16-byte strip read as a 512x512 picture";
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(r.error().message.find("short_strip.tif: truncated or corrupt image data"), std::string::npos)
+      << r.error().message;
+  EXPECT_LT(r.error().message.size(), 400u) << "one line per damaged strip is not a message";
+}
+
 TEST(Image, GarbageFileIsRejected) {
   const fs::path junk = temp_dir() / "junk.png";
   std::ofstream(junk) << "this is not an image";
