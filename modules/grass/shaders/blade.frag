@@ -26,7 +26,9 @@ void main() {
   vec3 n = normalize(te_normal);
   if (dot(n, view) < 0.0) n = -n;  // two-sided: the face towards the eye
   vec3 l = sun_direction();
-  float v = te_uv.y;
+  // Multisampled targets shade a partly covered pixel at its centre, which can lie off the blade:
+  // the interpolants are then extrapolated (v < 0 below the root), and pow(v, 0.8) is NaN there.
+  float v = clamp(te_uv.y, 0.0, 1.0);
   vec3 albedo = mix(u_base_color, u_tip_color, pow(v, 0.8)) * te_color_mult;
   float ao = mix(1.0 - u_shading.z, 1.0, smoothstep(0.0, 1.0, v));
   // A blade is not a flat card: its cross-section is curved and it sits in a canopy lit from

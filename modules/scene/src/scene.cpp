@@ -30,7 +30,9 @@ struct Scene::Gpu {
   render::ShadowMaps shadows;  // the sun's cascades; bound for receivers every frame
   std::unique_ptr<render::CallbackShadowCaster> caster;  // draws every module's Pass::kShadow
   std::optional<render::ToneMapper> tone;  // built the first time tone mapping is on
-  render::Framebuffer hdr;     // the frame before tone mapping (RGBA16F + float depth)
+  // The frame before it reaches the caller's target: multisampled (render.msaa_samples) and/or
+  // RGBA16F for tone mapping; resolved, then tone-mapped or copied into the target.
+  render::Framebuffer offscreen;
   render::Program lines;  // built the first time the chunk-bounds view is on
   render::Buffer line_buffer;
   render::VertexArray line_vao;
@@ -367,7 +369,8 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
   }
   for (const auto& [module, counts] : shadow_counts_) profiler.add_cpu_counts(module_scope(shadow_pass, module), counts);
 
-  // Colour passes into the HDR target (tone-mapped at the end) or straight into the target.
+  // Colour passes into an offscreen target (multisampled, HDR for tone mapping, or both) or
+  // straight into the caller's target when neither is asked for.
   const render::Framebuffer* colour = &target;
   if (rs.tone_map && !gpu_->tone) {
     auto tone = render::ToneMapper::create();
@@ -377,17 +380,40 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
       log_warn("scene: no tone mapping: {}", tone.error().message);
     }
   }
-  if (rs.tone_map && gpu_->tone) {
-    if (!gpu_->hdr || gpu_->hdr.size() != target.size()) {
-      auto hdr = render::Framebuffer::create({.width = target.width(), .height = target.height(), .color_formats = {GL_RGBA16F}});
-      if (hdr.ok()) {
-        gpu_->hdr = std::move(*hdr);
-      } else {
-        log_warn("scene: no HDR target ({}), rendering without tone mapping", hdr.error().message);
+  const bool tone_map = rs.tone_map && gpu_->tone.has_value();
+  int samples = rs.msaa_samples > 1 ? rs.msaa_samples : 0;
+  if (samples > 1) {
+    GLint max_samples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (samples > max_samples) {
+      if (!msaa_warned_) {
+        log_warn("scene: render.msaa_samples = {} is above this GL's maximum of {} samples; using {}", samples,
+                 max_samples, max_samples);
+        msaa_warned_ = true;
+      }
+      samples = max_samples > 1 ? max_samples : 0;
+    }
+  }
+  if (tone_map || samples > 1) {
+    const GLenum format = tone_map ? GL_RGBA16F : target.desc().color_formats.front();
+    const render::FramebufferDesc& have = gpu_->offscreen.desc();
+    if (!gpu_->offscreen || gpu_->offscreen.size() != target.size() || have.samples != samples ||
+        have.color_formats.front() != format) {
+      gpu_->offscreen = {};  // free the old one first: at large sizes both would not fit
+      auto made = render::Framebuffer::create(
+          {.width = target.width(), .height = target.height(), .color_formats = {format}, .samples = samples});
+      if (made.ok()) {
+        gpu_->offscreen = std::move(*made);
+      } else if (!offscreen_warned_) {
+        log_warn("scene: no offscreen target ({}), rendering without MSAA and tone mapping", made.error().message);
+        offscreen_warned_ = true;
       }
     }
-    if (gpu_->hdr) colour = &gpu_->hdr;
+    if (gpu_->offscreen) colour = &gpu_->offscreen;
   }
+  // Rasterise with every sample of a multisampled target whatever the caller left enabled.
+  const bool multisample_was_on = glIsEnabled(GL_MULTISAMPLE);
+  if (colour->multisampled()) glEnable(GL_MULTISAMPLE);
   gpu_->lighting.update(lighting_, camera_.position().y, time_);
   gpu_->lighting.bind();
   gpu_->shadows.bind();
@@ -407,13 +433,21 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
     draw_debug_lines();
     profiler.end("debug");
   }
+  if (colour->multisampled() && !multisample_was_on) glDisable(GL_MULTISAMPLE);
   if (colour != &target) {
-    profiler.begin("tone_map");
-    target.bind();
-    gpu_->tone->apply(colour->color_texture(), rs.tone);
-    render::apply_reversed_z_state();
-    profiler.end("tone_map");
-    profiler.add_cpu_counts("tone_map", render::PassStats{.draw_calls = 1});
+    colour->resolve();  // MSAA: average the samples (before tone mapping); no-op otherwise
+    if (tone_map) {
+      profiler.begin("tone_map");
+      target.bind();
+      gpu_->tone->apply(colour->color_texture(), rs.tone);
+      render::apply_reversed_z_state();
+      profiler.end("tone_map");
+      profiler.add_cpu_counts("tone_map", render::PassStats{.draw_calls = 1});
+    } else {
+      glBlitNamedFramebuffer(colour->read_id(), target.id(), 0, 0, target.width(), target.height(), 0, 0, target.width(),
+                             target.height(), GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT, GL_NEAREST);
+      target.bind();
+    }
   }
   profiler.end_frame();
 }

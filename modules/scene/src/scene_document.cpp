@@ -343,6 +343,9 @@ Status SceneDocument::validate() const {
   check(validate_params(wind, "wind"));
   check(validate_params(environment, "environment"));
   check(validate_params(render, "render"));
+  if (const int m = render.msaa_samples; m != 1 && m != 2 && m != 4 && m != 8) {
+    problems.push_back(fmt::format("render.msaa_samples: {} is not 1, 2, 4 or 8", m));
+  }
   for (const auto& [n, view] : bookmarks) check(validate_params(view, "bookmarks." + n));
   for (const auto& [n, path] : camera_paths) check(path.validate("camera_paths." + n));
   int grounds = 0;

@@ -66,10 +66,15 @@ struct SceneRenderSettings {
   // scene once materials are linear.
   bool tone_map = false;
   render::ToneMapSettings tone;        // render/tone_mapping.hpp
+  // Samples per pixel of the colour passes: 1 = off; 2, 4, 8 = MSAA, resolved (before tone
+  // mapping) into the caller's target. Leaves and slices switch to alpha-to-coverage on
+  // multisampled targets (vegetation AlphaMode::kAuto), so their edges get fractional coverage.
+  int msaa_samples = 4;
 
   template <class V>
   void visit(V& v) {
     v(shadows, "shadows");
+    v(msaa_samples, "msaa_samples", {.min = 1, .max = 8, .help = "Samples per pixel (1 off, 2, 4 or 8 MSAA)"});
     v(tone_map, "tone_map", {.help = "Render in HDR and tone-map to the display (off: modules write display values directly)"});
     v(tone, "tone");
   }

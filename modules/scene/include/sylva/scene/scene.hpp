@@ -187,6 +187,8 @@ class Scene {
   std::map<std::string, double> build_ms_;
   std::map<std::string, render::PassStats> shadow_counts_;  // this frame's shadow pass, by module
   bool shadow_warned_ = false;
+  bool offscreen_warned_ = false;
+  bool msaa_warned_ = false;
 };
 
 }  // namespace sylva::scene
