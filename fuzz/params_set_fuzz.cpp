@@ -22,7 +22,11 @@ const sylva::scene::SceneDocument& default_document() {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   sylva::scene::SceneDocument document = default_document();
   const sylva::ParamRegistry params = document.params();
-  for (const std::string& line : sylva::fuzz::split_lines(sylva::fuzz::as_text(data, size))) {
+  std::vector<std::string> lines = sylva::fuzz::split_lines(sylva::fuzz::as_text(data, size));
+  // A command line holds a handful of overrides; each unknown path costs a "did you mean" search
+  // over every parameter name, so more lines would only slow the fuzzer down.
+  lines.resize(std::min<std::size_t>(lines.size(), 8));
+  for (const std::string& line : lines) {
     if (line.find('=') == std::string::npos) {
       auto value = params.get(line);
       if (!value.ok()) sylva::fuzz::require_message(value.error());
