@@ -41,6 +41,9 @@ Status check_output_file(const fs::path& path) {
 }
 
 Status check_output_image(const fs::path& path) {
+  // The place first: a folder given as the screenshot has no extension, but "is a folder" is
+  // what is wrong with it.
+  SYLVA_TRY(check_output_file(path));
   // The writer is chosen by extension, as write_image() does; creating it opens no file.
   if (!OIIO::ImageOutput::create(path.string())) {
     OIIO::geterror();  // drop the message about the unknown format: ours names the path
@@ -48,7 +51,7 @@ Status check_output_image(const fs::path& path) {
                       fmt::format("{}: no image format is known for the extension \"{}\" (use .png, .exr, .tif, .jpg)",
                                   path.string(), path.extension().string()));
   }
-  return check_output_file(path);
+  return ok_status();
 }
 
 Status check_output_folder(const fs::path& folder) {

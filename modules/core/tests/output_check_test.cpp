@@ -49,6 +49,7 @@ TEST_F(OutputCheck, EachProblemIsNamed) {
   const std::string d = dir_.string();
   expect_error(check_output_file(dir_ / "missing" / "s.json"), ErrorCode::kIo, d + "/missing/s.json", "does not exist");
   expect_error(check_output_file(dir_ / "folder"), ErrorCode::kIo, d + "/folder", "is a folder");
+  expect_error(check_output_image(dir_ / "folder"), ErrorCode::kIo, d + "/folder", "is a folder");
   expect_error(check_output_file(dir_ / "file.json" / "s.json"), ErrorCode::kIo, d + "/file.json/s.json", "not a folder");
   expect_error(check_output_image(dir_ / "shot.xyz"), ErrorCode::kUnsupported, d + "/shot.xyz", "\".xyz\"");
   expect_error(check_output_folder(dir_ / "file.json"), ErrorCode::kIo, d + "/file.json", "is a file");

@@ -18,7 +18,7 @@ namespace sylva {
 // read-only mount.
 Status check_output_file(const std::filesystem::path& path);
 
-// check_output_file(), and an image writer exists for the extension.
+// check_output_file(), then that an image writer exists for the extension.
 Status check_output_image(const std::filesystem::path& path);
 
 // A folder that the run creates if missing: its nearest existing ancestor is a folder that
