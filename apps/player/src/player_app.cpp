@@ -1,6 +1,7 @@
 #include "player_app.hpp"
 
 #include "frame_recorder.hpp"
+#include "output_checks.hpp"
 #include "scene_loading.hpp"
 
 #include <sylva/core/timer.hpp>
@@ -61,10 +62,19 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
     return 0;
   }
 
+  // Outputs first: a path that cannot be written fails now, not after the frames are rendered.
+  if (Status writable = check_outputs(options); !writable.ok()) {
+    err << "sylva-player: " << writable.error().message << "\n";
+    return 1;
+  }
   auto loaded = load_scene(options.scene_path, options.overrides);
   if (!loaded.ok()) {
     err << "sylva-player: " << loaded.error().message << "\n";
     return 2;
+  }
+  if (Status apart = check_outputs_are_not_inputs(options, loaded->document); !apart.ok()) {
+    err << "sylva-player: " << apart.error().message << "\n";
+    return 1;
   }
   for (const std::string& w : loaded->warnings) err << "sylva-player: warning: " << w << "\n";
   if (options.bookmark && loaded->document.bookmarks.count(*options.bookmark) == 0) {
