@@ -445,7 +445,10 @@ void EditorUi::stats_overlay(const glm::vec2& origin) {
                 camera_mode_ == CameraMode::kFly ? "fly" : "orbit");
     if (latest) {
       const scene::SceneFrameStats s = scene::split_frame_stats(*latest);
-      ImGui::Text("GPU %.2f ms   CPU %.2f ms", s.gpu_ms, s.cpu_ms);
+      // Wall: between buffer swaps, what the user waits for. GPU: timer queries, which a software
+      // rasteriser's work escapes. CPU: update and submission.
+      ImGui::Text("frame (wall) %.2f ms   GPU (queries) %.2f ms   CPU %.2f ms", 1000.0 * ImGui::GetIO().DeltaTime,
+                  s.gpu_ms, s.cpu_ms);
       if (ImGui::BeginTable("passes", 5, ImGuiTableFlags_SizingFixedFit)) {
         ImGui::TableSetupColumn("module/pass");
         ImGui::TableSetupColumn("GPU ms");

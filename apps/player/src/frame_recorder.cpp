@@ -3,6 +3,8 @@
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/stats.hpp>
 
+#include <algorithm>
+
 namespace sylva::player {
 
 void FrameRecorder::add_update_ms(const std::map<std::string, double>& per_module) {
@@ -42,6 +44,11 @@ nlohmann::json FrameRecorder::to_json(int frames, glm::ivec2 size) const {
   if (!scene_name_.empty()) j["scene"] = scene_name_;
   j["cpu_ms"] = summarize(cpu_ms_);
   j["gpu_ms"] = summarize(gpu_ms_);
+  j["wall_ms"] = summarize(wall_ms_);
+  j["longest_frame_ms"] = wall_ms_.empty() ? 0.0 : *std::max_element(wall_ms_.begin(), wall_ms_.end());
+  j["timing"] = {{"cpu_ms", "CPU time of update and draw submission"},
+                 {"gpu_ms", "GPU timer queries around the passes (a software rasteriser's work is not in them)"},
+                 {"wall_ms", "wall time of the frame to the buffer swap (window) or glFinish (headless)"}};
   nlohmann::json passes = nlohmann::json::object();
   for (const auto& [name, samples] : pass_gpu_ms_) {
     nlohmann::json p = counters(pass_last_.at(name));

@@ -1,9 +1,14 @@
 #pragma once
 // Collects per-frame statistics during a run and writes the --stats JSON:
-//   {"frames", "size", "scene", "cpu_ms": {...}, "gpu_ms": {...},
+//   {"frames", "size", "scene", "cpu_ms": {...}, "gpu_ms": {...}, "wall_ms": {...},
+//    "longest_frame_ms", "timing": {"<figure>": "what it measures"},
 //    "passes":  {"<pass>": {"gpu_ms": {...}, "primitives", "samples", "triangles", "draw_calls", "instances"}},
 //    "modules": {"<module>": {"gpu_ms": {...}, "update_ms": {...},
 //                             "passes": {"<pass>": {"gpu_ms": {...}, counters...}}, ...module facts}}}
+// Three clocks, named in "timing": cpu_ms is the CPU time of update and draw submission; gpu_ms
+// the GPU timer queries, which on a software rasteriser (llvmpipe) do not see the rasterisation;
+// wall_ms the frame from its start to the buffer swap (window) or glFinish (headless), the figure
+// to compare between machines and with other programs. Per frame, wall_ms >= cpu_ms.
 // The timing objects are core SampleSummary records (count, mean, p50, p99, ...); counters are
 // those of the newest complete frame. Passes and modules come from the scene's profiler scopes
 // ("opaque", "opaque/grass": scene/frame_stats.hpp).
@@ -24,8 +29,11 @@ namespace sylva::player {
 
 class FrameRecorder {
  public:
-  // One frame's CPU time [ms] measured by the caller.
-  void add_cpu_ms(double ms) { cpu_ms_.push_back(ms); }
+  // One frame's CPU time of update + submission and its wall time to swap / glFinish [ms].
+  void add_frame_ms(double cpu_ms, double wall_ms) {
+    cpu_ms_.push_back(cpu_ms);
+    wall_ms_.push_back(wall_ms);
+  }
   // CPU time of each module's update() in one frame [ms].
   void add_update_ms(const std::map<std::string, double>& per_module);
   // A completed GPU frame record from the profiler (arrives a few frames late; repeats ignored).
@@ -40,6 +48,7 @@ class FrameRecorder {
 
  private:
   std::vector<double> cpu_ms_;
+  std::vector<double> wall_ms_;
   std::vector<double> gpu_ms_;
   std::map<std::string, std::vector<double>> pass_gpu_ms_;
   std::map<std::string, render::PassStats> pass_last_;

@@ -135,7 +135,7 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
   double time = 0.0;
   while (frame_limit == 0 || frames < frame_limit) {
     const std::size_t frame_mark = render::gl_error_mark();
-    Stopwatch cpu;
+    Stopwatch wall;  // the whole frame, to the swap (window) or glFinish (headless)
     const double dt = headless ? kHeadlessStep : frame_clock.lap_ms() * 1e-3;
     if (!headless) {
       context->poll_events();
@@ -156,19 +156,25 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
       auto view = scene.camera_path_view(*options.camera_path, time);
       if (view.ok()) camera = scene.make_camera(*view, size);
     }
+    Stopwatch cpu;  // update and draw submission only
     scene.update(camera, time, static_cast<float>(frames > 0 ? dt : 0.0), size);
     scene.render(*target, profiler);
+    const double cpu_ms = cpu.elapsed_ms();
     if (!headless) {
       glBlitNamedFramebuffer(target->read_id(), 0, 0, 0, size.x, size.y, 0, 0, size.x, size.y, GL_COLOR_BUFFER_BIT,
                              GL_NEAREST);
       context->swap_buffers();
+    } else {
+      // Headless frames have no swap to wait on: finish them, or the wall time would only be the
+      // submission and a software rasteriser's work would fall outside every figure.
+      glFinish();
     }
     // A GL error (out of memory included) means the picture is wrong: fail, write nothing.
     if (Status gl = render::check_frame_gl_errors(frame_mark, fmt::format("frame {}", frames)); !gl.ok()) {
       err << "sylva-player: " << gl.error().message << "\n";
       return 1;
     }
-    recorder.add_cpu_ms(cpu.elapsed_ms());
+    recorder.add_frame_ms(cpu_ms, wall.elapsed_ms());
     recorder.add_update_ms(scene.update_ms());
     if (const auto& latest = profiler.latest()) recorder.add_gpu_frame(*latest);
     ++frames;

@@ -66,13 +66,18 @@ TEST(PlayerHeadless, DefaultSceneRendersSkyAboveGroundAndWritesStats) {
   ASSERT_TRUE(json.ok()) << json.error().message;
   EXPECT_EQ((*json)["frames"], 4);
   EXPECT_EQ((*json)["size"], nlohmann::json::array({160, 96}));
-  for (const char* key : {"cpu_ms", "gpu_ms"}) {
+  for (const char* key : {"cpu_ms", "gpu_ms", "wall_ms"}) {
     ASSERT_TRUE(json->contains(key)) << key;
     EXPECT_GE((*json)[key]["count"].get<int>(), 1) << key;
     EXPECT_GT((*json)[key]["mean"].get<double>(), 0.0) << key;
     EXPECT_TRUE((*json)[key].contains("p50"));
     EXPECT_TRUE((*json)[key].contains("p99"));
   }
+  // Honest frame times: each frame's wall interval contains its CPU interval, so the wall figures
+  // can be no smaller (on llvmpipe the GPU queries miss the rasterisation; the wall time may not).
+  EXPECT_GE((*json)["wall_ms"]["mean"].get<double>(), (*json)["cpu_ms"]["mean"].get<double>());
+  EXPECT_GE((*json)["longest_frame_ms"].get<double>(), (*json)["cpu_ms"]["max"].get<double>());
+  EXPECT_TRUE((*json)["timing"].contains("wall_ms"));
   ASSERT_TRUE((*json)["passes"].contains("opaque"));
   EXPECT_GT((*json)["passes"]["opaque"]["triangles"].get<std::uint64_t>(), 10000u);
   EXPECT_GT((*json)["passes"]["opaque"]["samples"].get<std::uint64_t>(), 1000u);
