@@ -202,6 +202,15 @@ int main(int argc, char** argv) {
     std::cout << kUsage;
     return 0;
   }
+  // A script that is missing or malformed is a bad argument (exit 2), found before any window
+  // or GL context is made.
+  if (options->script) {
+    auto script = sylva::editor::read_script(*options->script);
+    if (!script.ok()) {
+      std::cerr << "sylva-editor: " << script.error().message << "\n";
+      return 2;
+    }
+  }
   const bool headless = options->headless || !sylva::render::display_available();
   if (headless) {
     if (!options->script) {

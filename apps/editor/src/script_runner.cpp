@@ -1,6 +1,7 @@
 #include "script_runner.hpp"
 
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/output_check.hpp>
 
 #include <fmt/format.h>
 
@@ -108,11 +109,27 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
   return make_error(ErrorCode::kInvalidArgument, "unknown command");  // the parser rejects these first
 }
 
+// Every file the script will write, checked before its first command runs: a screenshot that
+// cannot be written fails at once, not after the scene was loaded and the frames rendered.
+Status check_outputs(const std::vector<ScriptCommand>& commands, const std::string& source,
+                     const std::filesystem::path& base_dir) {
+  for (const ScriptCommand& c : commands) {
+    if (c.name != "screenshot" && c.name != "screenshot_ui") continue;
+    Status writable = check_output_image(resolve(base_dir, c.args[0]));
+    if (!writable.ok()) {
+      return make_error(writable.error().code,
+                        fmt::format("{}: {}: {}", script_location(source, c.line), c.name, writable.error().message));
+    }
+  }
+  return ok_status();
+}
+
 }  // namespace
 
 Result<ScriptOutcome> run_script(EditorSession& session, const std::vector<ScriptCommand>& commands,
                                  const std::string& source, const std::filesystem::path& base_dir, std::ostream& out,
                                  const ScriptHooks& hooks) {
+  SYLVA_TRY(check_outputs(commands, source, base_dir));
   ScriptOutcome outcome;
   for (const ScriptCommand& c : commands) {
     if (c.name == "quit") {
@@ -129,11 +146,15 @@ Result<ScriptOutcome> run_script(EditorSession& session, const std::vector<Scrip
   return outcome;
 }
 
-Result<ScriptOutcome> run_script_file(EditorSession& session, const std::filesystem::path& file, std::ostream& out,
-                                      const ScriptHooks& hooks) {
+Result<std::vector<ScriptCommand>> read_script(const std::filesystem::path& file) {
   auto text = read_file(file);
   if (!text.ok()) return text.error();
-  auto commands = parse_script(*text, file.string());
+  return parse_script(*text, file.string());
+}
+
+Result<ScriptOutcome> run_script_file(EditorSession& session, const std::filesystem::path& file, std::ostream& out,
+                                      const ScriptHooks& hooks) {
+  auto commands = read_script(file);
   if (!commands.ok()) return commands.error();
   return run_script(session, *commands, file.string(), file.parent_path(), out, hooks);
 }

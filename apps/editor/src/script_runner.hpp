@@ -26,9 +26,15 @@ struct ScriptOutcome {
   int commands_run = 0;
 };
 
+// Runs the commands in order. Before the first one, every screenshot path is checked (folder,
+// file, format): a path that cannot be written fails "<source>:<line>: screenshot: <path>: ..."
+// before anything is loaded or rendered.
 Result<ScriptOutcome> run_script(EditorSession& session, const std::vector<ScriptCommand>& commands,
                                  const std::string& source, const std::filesystem::path& base_dir, std::ostream& out,
                                  const ScriptHooks& hooks = {});
+
+// Reads and parses a script file: the file's errors (missing, a folder) or the parse errors.
+Result<std::vector<ScriptCommand>> read_script(const std::filesystem::path& file);
 
 // Reads, parses and runs a script file.
 Result<ScriptOutcome> run_script_file(EditorSession& session, const std::filesystem::path& file, std::ostream& out,

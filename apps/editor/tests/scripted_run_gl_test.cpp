@@ -167,6 +167,22 @@ TEST(EditorScript, ErrorsNameTheScriptLine) {
   EXPECT_EQ(no_file.exit_code, 1);
   EXPECT_NE(no_file.output.find("no_file.sylva:1: save: the scene has no file yet"), std::string::npos) << no_file.output;
 
+  // Screenshot paths are checked before the first command: the missing scene on line 1 is
+  // never loaded, the unwritable screenshot of line 2 is what the run reports (issue 17).
+  write(dir / "late_output.sylva", "load missing.json\nscreenshot nodir/x.png\nquit\n");
+  const RunResult late_output = run_editor("--headless --script " + (dir / "late_output.sylva").string());
+  EXPECT_EQ(late_output.exit_code, 1);
+  EXPECT_NE(late_output.output.find("late_output.sylva:2: screenshot: " + (dir / "nodir/x.png").string() +
+                                    ": the folder " + (dir / "nodir").string() + " does not exist"),
+            std::string::npos)
+      << late_output.output;
+  EXPECT_EQ(late_output.output.find("missing.json"), std::string::npos) << late_output.output;
+
+  // A script that is not there is a bad argument, like a malformed one.
+  const RunResult missing_script = run_editor("--headless --script " + (dir / "nothere.sylva").string());
+  EXPECT_EQ(missing_script.exit_code, 2);
+  EXPECT_NE(missing_script.output.find((dir / "nothere.sylva").string()), std::string::npos) << missing_script.output;
+
   const RunResult no_script = run_editor("--headless");
   EXPECT_EQ(no_script.exit_code, 2);
   EXPECT_EQ(run_editor("--bogus").exit_code, 2);
