@@ -129,7 +129,10 @@ Result<std::vector<ScriptCommand>> parse_script(std::string_view text, std::stri
     start = end + 1;
     auto fail = [&](const std::string& message) { errors.push_back(script_location(source, line_number) + ": " + message); };
     auto words = split_words(line);
-    if (!words.ok()) {
+    if (line.find('\0') != std::string_view::npos) {
+      // A path would end at the NUL when opened: refuse rather than act on part of the line.
+      fail("the line holds a NUL byte (is this a binary file?)");
+    } else if (!words.ok()) {
       fail(words.error().message);
     } else if (!words->empty()) {
       ScriptCommand c;

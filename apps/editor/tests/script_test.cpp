@@ -86,6 +86,10 @@ TEST(Script, MistakesNameTheLine) {
     EXPECT_NE(script.error().message.find(c.must_mention), std::string::npos)
         << "text: " << c.text << "\nmessage: " << script.error().message;
   }
+  // A NUL byte would cut a path short when opened: the line is refused, not half-run.
+  auto nul = parse_script(std::string("load a.json\0b\nquit\n", 19), "n.sylva");
+  ASSERT_FALSE(nul.ok());
+  EXPECT_NE(nul.error().message.find("n.sylva:1: the line holds a NUL byte"), std::string::npos) << nul.error().message;
   // Every bad line is reported, not only the first.
   auto many = parse_script("bogus1\nnew\nbogus2\n", "m.sylva");
   ASSERT_FALSE(many.ok());
