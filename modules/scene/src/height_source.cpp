@@ -1,6 +1,7 @@
 #include <sylva/scene/height_source.hpp>
 
 #include <sylva/core/assert.hpp>
+#include <sylva/core/log.hpp>
 
 #include <fmt/format.h>
 
@@ -10,7 +11,39 @@ double height_spacing(const HeightSourceSettings& settings, int columns) {
   return static_cast<double>(settings.size) / std::max(columns - 1, 1);
 }
 
-Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optional<std::filesystem::path>& map_file) {
+void place_height_grid(MapGrid& grid, const HeightSourceSettings& s, double spacing) {
+  grid.texel_size = {spacing, spacing};
+  grid.texel_origin = s.center - 0.5 * glm::dvec2(grid.width - 1, grid.height - 1) * spacing;
+}
+
+namespace {
+
+Result<MapGrid> read_elevation_grid(const HeightSourceSettings& s, const std::filesystem::path& file) {
+  ElevationReadOptions options = s.elevation.read;
+  options.plain_extent = s.size;
+  auto raster = read_elevation(file, options);
+  if (!raster.ok()) return raster.error();
+  HeightField& field = raster->field;
+  MapGrid grid;
+  grid.width = field.columns();
+  grid.height = field.rows();
+  grid.values = std::move(field.samples());
+  place_height_grid(grid, s, field.spacing());
+  log_info("{}: {}x{} samples {:.3f} m apart ({:.0f} x {:.0f} m), heights {:.2f} to {:.2f} m, read by {}{}",
+           file.string(), grid.width, grid.height, field.spacing(), field.extent().x, field.extent().y,
+           field.min_height(), field.max_height(), raster->reader, raster->crs.empty() ? "" : " in " + raster->crs);
+  return grid;
+}
+
+}  // namespace
+
+Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optional<std::filesystem::path>& map_file,
+                                 const std::optional<std::filesystem::path>& elevation_file) {
+  if (map_file && elevation_file) {
+    log_info("{}: the painted height map is used; the elevation raster {} is not read", map_file->string(),
+             elevation_file->string());
+  }
+  if (!map_file && elevation_file) return read_elevation_grid(s, *elevation_file);
   if (map_file) {
     // Placement needs the sample count, known only after reading: read with a unit placement,
     // then place.
@@ -21,9 +54,7 @@ Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optio
                         fmt::format("{}: a height map needs at least 2x2 samples, got {}x{}", map_file->string(),
                                     grid->width, grid->height));
     }
-    const double spacing = height_spacing(s, grid->width);
-    grid->texel_size = {spacing, spacing};
-    grid->texel_origin = s.center - 0.5 * glm::dvec2(grid->width - 1, grid->height - 1) * spacing;
+    place_height_grid(*grid, s, height_spacing(s, grid->width));
     return grid;
   }
   const int n = s.resolution;

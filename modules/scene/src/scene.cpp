@@ -105,20 +105,27 @@ Status Scene::build_ground() {
     const std::string id = section.name + ".height";
     auto existing = maps_.find(id);
     if (existing != maps_.end() && existing->second.unsaved()) {
-      // Painted and not saved: keep the painted heights, only re-place them.
+      // Painted and not saved: keep the painted heights, only re-place them. Heights painted over
+      // an elevation raster keep the raster's spacing unless elevation.spacing overrides it.
       MapGrid& grid = existing->second.grid;
-      const double spacing = height_spacing(source, grid.width);
-      grid.texel_size = {spacing, spacing};
-      grid.texel_origin = source.center - 0.5 * glm::dvec2(grid.width - 1, grid.height - 1) * spacing;
+      const bool from_raster = existing->second.path.empty() && !source.elevation.file.empty();
+      const double spacing = !from_raster                         ? height_spacing(source, grid.width)
+                             : source.elevation.read.spacing > 0.0 ? source.elevation.read.spacing
+                                                                   : grid.texel_size.x;
+      place_height_grid(grid, source, spacing);
     } else {
-      std::optional<std::filesystem::path> file;
+      std::optional<std::filesystem::path> file, elevation;
       std::string path;
       if (auto m = section.maps.find("height"); m != section.maps.end()) {
         path = m->second;
         file = document_->resolve(path);
       }
-      auto grid = make_height_grid(source, file);
-      if (!grid.ok()) return make_error(grid.error().code, fmt::format("{}.maps.height: {}", section.name, grid.error().message));
+      if (!source.elevation.file.empty()) elevation = document_->resolve(source.elevation.file);
+      auto grid = make_height_grid(source, file, elevation);
+      if (!grid.ok()) {
+        return make_error(grid.error().code, fmt::format("{}.{}: {}", section.name, file ? "maps.height" : "elevation.file",
+                                                         grid.error().message));
+      }
       SceneMap map;
       map.module = section.name;
       map.slot = "height";

@@ -8,7 +8,16 @@
 // the z extent follows from the sample rows. Generated fields have `resolution` samples per
 // side. A height map (the section's maps.height) gives the sample grid instead; its values are
 // file units * map_scale + map_offset metres (1.0 = white of a 16-bit PNG).
+//
+// An elevation raster (`elevation.file`, relative to the scene file: GeoTIFF, SRTM .hgt, ASCII
+// grid, ... through core read_elevation, whose header states the rules) gives the grid, its
+// spacing and its heights in metres from the file's georeferencing; `elevation.spacing`,
+// `height_scale` and `height_offset` override the file, and `size` applies only to a raster
+// without georeferencing. The raster is centred on `center` like every other ground. A painted
+// map (maps.height) wins over the raster: it holds the user's edits; the raster is never
+// written to (edits are saved as a map beside the scene).
 
+#include <sylva/core/elevation_raster.hpp>
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/noise.hpp>
 #include <sylva/core/params.hpp>
@@ -20,6 +29,7 @@
 #include <array>
 #include <filesystem>
 #include <optional>
+#include <string>
 
 namespace sylva::scene {
 
@@ -31,6 +41,19 @@ constexpr std::array<EnumName<HeightGenerator>, 4> enum_names(HeightGenerator) {
            {HeightGenerator::kHillsAndRidges, "hills_and_ridges"}}};
 }
 
+// The elevation raster of a ground and how to read it ("terrain.elevation.file", ...).
+struct ElevationSource {
+  std::string file;           // relative to the scene file; "" = none
+  ElevationReadOptions read;  // spacing, height_scale, height_offset, nodata (flat in the JSON)
+
+  template <class V>
+  void visit(V& v) {
+    v(file, "file", {.max = 4096.0, .help = "Elevation raster (GeoTIFF, SRTM .hgt, ASCII grid, ...) relative to the scene file",
+                     .rebuild = Rebuild::kOffline});
+    read.visit(v);
+  }
+};
+
 struct HeightSourceSettings {
   glm::dvec2 center{0.0, 0.0};  // world x/z of the field's centre [m]
   float size = 4000.0f;         // x extent [m]
@@ -41,6 +64,7 @@ struct HeightSourceSettings {
                     .seed = 7, .ridge_gain = 2.0f};
   float map_scale = 1.0f;       // metres per file unit of a height map
   float map_offset = 0.0f;      // metres added to a height map
+  ElevationSource elevation;    // an elevation raster instead of a generated field
 
   template <class V>
   void visit(V& v) {
@@ -52,15 +76,20 @@ struct HeightSourceSettings {
     v(noise, "noise");
     v(map_scale, "map_scale", {.min = -1.0e5, .max = 1.0e5, .unit = "m", .help = "Metres per unit of the height map file", .rebuild = Rebuild::kOffline});
     v(map_offset, "map_offset", {.min = -1.0e6, .max = 1.0e6, .unit = "m", .help = "Metres added to the height map", .rebuild = Rebuild::kOffline});
+    v(elevation, "elevation");
   }
 };
 
-// The height map grid: read from `map_file` when given (errors name the file), else generated.
-// Heights in metres; texel centres are the height samples.
-Result<MapGrid> make_height_grid(const HeightSourceSettings& settings, const std::optional<std::filesystem::path>& map_file);
+// The height map grid: read from `map_file` when given, else from `elevation_file` (the resolved
+// elevation.file), else generated. Errors name the file. Heights in metres; texel centres are
+// the height samples.
+Result<MapGrid> make_height_grid(const HeightSourceSettings& settings, const std::optional<std::filesystem::path>& map_file,
+                                 const std::optional<std::filesystem::path>& elevation_file = std::nullopt);
 
 // Sample spacing and origin for a grid of `columns` samples along x.
 double height_spacing(const HeightSourceSettings& settings, int columns);
+// Square samples `spacing` metres apart, centred on settings.center.
+void place_height_grid(MapGrid& grid, const HeightSourceSettings& settings, double spacing);
 
 // A HeightField with the grid's samples and placement (texel size must be square, asserted).
 HeightField height_field_from_grid(const MapGrid& grid);
