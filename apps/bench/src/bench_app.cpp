@@ -8,6 +8,7 @@
 #include "svg_plot.hpp"
 
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/output_check.hpp>
 
 #include <sylva/render/gl_context.hpp>
 
@@ -140,6 +141,13 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
     if (o.list_params) print_params(**target, out);
     if (o.list_camera_paths) print_paths(**target, out);
     return kExitOk;
+  }
+
+  // Everything else writes into --out: a folder that cannot be made or written fails now, not
+  // after every setting (or the whole stability report) was rendered.
+  if (Status writable = check_output_folder(o.out); !writable.ok()) {
+    err << "sylva-bench: --out " << writable.error().message << "\n";
+    return kExitFailed;
   }
 
   // Everything else renders: one headless context for the whole run.

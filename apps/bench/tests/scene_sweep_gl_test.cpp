@@ -11,6 +11,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -127,6 +128,23 @@ TEST(BenchSceneSweep, UnknownScenePathAndCameraPathAreNamed) {
             2);
   EXPECT_NE(output.find("nowhere"), std::string::npos) << output;
   EXPECT_NE(output.find("orbit"), std::string::npos) << output;  // lists the paths the scene has
+}
+
+// An --out that cannot be written is reported before anything renders (issue 17): the
+// stability report used to run every case and fail only when writing its page.
+TEST(BenchSceneSweep, UnwritableOutFailsBeforeRendering) {
+  const fs::path dir = test_dir("unwritable");
+  std::string output;
+  // /proc refuses new entries even to root.
+  EXPECT_EQ(run("--stability --out /proc/sylva_bench_test", dir / "log.txt", output), 1);
+  EXPECT_NE(output.find("--out /proc/sylva_bench_test: cannot create a file in the folder /proc"), std::string::npos)
+      << output;
+  EXPECT_EQ(output.find("passed"), std::string::npos) << "no case may run first:\n" << output;
+  std::ofstream(dir / "file.txt") << "not a folder";
+  EXPECT_EQ(run("'" + kGroundScene + "' --sweep ground.height=5,10 --out '" + (dir / "file.txt" / "o").string() + "'",
+                dir / "log2.txt", output),
+            1);
+  EXPECT_NE(output.find((dir / "file.txt").string() + " is not a folder"), std::string::npos) << output;
 }
 
 #else
