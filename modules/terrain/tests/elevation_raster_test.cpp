@@ -1,0 +1,267 @@
+// Elevation rasters as users have them (issue 15, first section): small georeferenced GeoTIFFs
+// written here through GDAL (projected UTM and geographic EPSG:4326, Int16 and Float32, with
+// nodata), read by core read_elevation: spacing in metres, heights, vertical units, nodata fill
+// and refusal, overrides, and bad input (truncated, unknown format, all nodata, huge header).
+#include <sylva/core/elevation_raster.hpp>
+#include <sylva/core/image.hpp>
+#include <sylva/core/log.hpp>
+
+#include <support/geotiff_fixture.hpp>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace sylva {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path temp(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "sylva_elevation_raster_test";
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// Every log line while alive, by level.
+struct LogCapture {
+  std::vector<std::string> info, warnings;
+  LogCapture() {
+    set_log_sink([this](LogLevel level, std::string_view m) {
+      if (level == LogLevel::kWarn) warnings.emplace_back(m);
+      if (level == LogLevel::kInfo) info.emplace_back(m);
+    });
+  }
+  ~LogCapture() { set_log_sink(nullptr); }
+  static bool any(const std::vector<std::string>& lines, const std::string& a, const std::string& b = "") {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+      return l.find(a) != std::string::npos && l.find(b) != std::string::npos;
+    });
+  }
+};
+
+// 100 + 3 i - 2 j (i east, j south): distinct, exact in Int16 and Float32.
+test::GeoTiffSpec ramp(int columns, int rows) {
+  test::GeoTiffSpec s;
+  s.columns = columns;
+  s.rows = rows;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) s.values.push_back(100.0 + 3.0 * i - 2.0 * j);
+  return s;
+}
+
+TEST(ElevationRaster, ProjectedInt16TiledCompressedKeepsSpacingAndHeights) {
+  auto spec = ramp(40, 24);
+  spec.options = {"TILED=YES", "BLOCKXSIZE=16", "BLOCKYSIZE=16", "COMPRESS=DEFLATE"};
+  const fs::path file = temp("utm_int16.tif");
+  test::write_geotiff(file, spec);
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_TRUE(r->georeferenced);
+  EXPECT_EQ(r->reader, "GDAL GTiff");
+  EXPECT_NE(r->crs.find("UTM zone 32N"), std::string::npos) << r->crs;
+  ASSERT_EQ(r->field.columns(), 40);
+  ASSERT_EQ(r->field.rows(), 24);
+  EXPECT_DOUBLE_EQ(r->field.spacing(), 30.0);
+  for (int j = 0; j < 24; ++j)
+    for (int i = 0; i < 40; ++i) ASSERT_EQ(r->field.sample(i, j), 100.0f + 3.0f * i - 2.0f * j) << i << "," << j;
+}
+
+TEST(ElevationRaster, FeetAreConvertedBothWays) {
+  // NAD83 / New York Long Island (ftUS): the grid is in US survey feet, the heights in feet.
+  auto spec = ramp(8, 6);
+  spec.type = GDT_Float32;
+  spec.epsg = 2263;
+  spec.left = 1000000.0;
+  spec.top = 200000.0;
+  spec.pixel_x = spec.pixel_y = 100.0;
+  spec.unit = "ft";
+  const fs::path file = temp("feet.tif");
+  test::write_geotiff(file, spec);
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_NEAR(r->field.spacing(), 100.0 * 1200.0 / 3937.0, 1e-9);
+  EXPECT_NEAR(r->field.sample(5, 3), (100.0 + 15.0 - 6.0) * 0.3048, 1e-4);
+}
+
+TEST(ElevationRaster, GeographicSpacingIsConvertedAtTheCentreLatitudeAndResampledSquare) {
+  // 3 arc-second WGS 84 grid centred on 45 N: a degree of latitude there is 111132.95 m and one
+  // of longitude 78846.81 m (ellipsoid tables), so samples are 65.706 m east-west by 92.611 m
+  // north-south and are resampled to 65.706 m squares.
+  auto spec = ramp(20, 12);
+  spec.type = GDT_Float32;
+  spec.epsg = 4326;
+  spec.pixel_x = spec.pixel_y = 1.0 / 1200.0;
+  spec.left = 7.0;
+  spec.top = 45.0 + 6.0 / 1200.0;
+  const fs::path file = temp("geographic.tif");
+  test::write_geotiff(file, spec);
+  LogCapture log;
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_NEAR(r->source_spacing_x, 78846.81 / 1200.0, 0.01);
+  EXPECT_NEAR(r->source_spacing_z, 111132.95 / 1200.0, 0.01);
+  EXPECT_NEAR(r->field.spacing(), r->source_spacing_x, 1e-9);
+  EXPECT_EQ(r->field.columns(), 20);
+  EXPECT_EQ(r->field.rows(), 17);  // 11 * 92.611 / 65.706 = 15.5 -> 16 steps
+  EXPECT_TRUE(LogCapture::any(log.info, file.string(), "centre latitude 45.0000"));
+  // The ramp is linear, so bilinear resampling keeps it: row r lies r * 65.706 / 92.611 rows down.
+  const double rows_per_row = r->field.spacing() / r->source_spacing_z;
+  for (int row = 0; row < r->field.rows(); ++row) {
+    const double j = std::min(row * rows_per_row, 11.0);
+    EXPECT_NEAR(r->field.sample(4, row), 100.0 + 12.0 - 2.0 * j, 1e-3) << row;
+  }
+}
+
+TEST(ElevationRaster, NodataIsFilledFromTheNearestValidSamplesWithAWarning) {
+  auto spec = ramp(16, 16);
+  spec.nodata = -32768.0;
+  for (int j = 5; j < 8; ++j)
+    for (int i = 5; i < 8; ++i) spec.values[j * 16 + i] = -32768.0;
+  spec.values[0] = -32768.0;
+  const fs::path file = temp("nodata_int16.tif");
+  test::write_geotiff(file, spec);
+  LogCapture log;
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_EQ(r->nodata_filled, 10u);
+  EXPECT_TRUE(LogCapture::any(log.warnings, file.string(), "filled 10 "));
+  // Filled samples lie within the heights around them; valid ones are untouched.
+  for (int j = 5; j < 8; ++j) {
+    for (int i = 5; i < 8; ++i) {
+      EXPECT_GE(r->field.sample(i, j), 100.0f + 3 * 4 - 2 * 8) << i << "," << j;
+      EXPECT_LE(r->field.sample(i, j), 100.0f + 3 * 8 - 2 * 4) << i << "," << j;
+    }
+  }
+  EXPECT_NEAR(r->field.sample(0, 0), 100.0f, 3.0f);
+  EXPECT_EQ(r->field.sample(4, 4), 100.0f + 12.0f - 8.0f);
+  EXPECT_GT(r->field.min_height(), 50.0f);  // no -32768 left
+
+  ElevationReadOptions refuse;
+  refuse.nodata = NodataPolicy::kRefuse;
+  auto refused = read_elevation(file, refuse);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(refused.error().message.find(file.string()), std::string::npos);
+  EXPECT_NE(refused.error().message.find("10 of 256"), std::string::npos) << refused.error().message;
+}
+
+TEST(ElevationRaster, FloatNaNCountsAsNodata) {
+  auto spec = ramp(8, 8);
+  spec.type = GDT_Float32;
+  spec.values[9] = std::numeric_limits<double>::quiet_NaN();
+  const fs::path file = temp("nan_float.tif");
+  test::write_geotiff(file, spec);
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_EQ(r->nodata_filled, 1u);
+  EXPECT_TRUE(std::isfinite(r->field.sample(1, 1)));
+}
+
+TEST(ElevationRaster, AllNodataIsAnErrorNamingTheFile) {
+  auto spec = ramp(8, 8);
+  spec.nodata = -9999.0;
+  std::fill(spec.values.begin(), spec.values.end(), -9999.0);
+  const fs::path file = temp("all_nodata.tif");
+  test::write_geotiff(file, spec);
+  auto r = read_elevation(file);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kInvalidArgument);
+  EXPECT_NE(r.error().message.find(file.string()), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("all 64 samples"), std::string::npos) << r.error().message;
+}
+
+TEST(ElevationRaster, OverridesWinOverTheFile) {
+  auto spec = ramp(8, 6);
+  spec.unit = "ft";  // ignored once height_scale is given
+  const fs::path file = temp("overrides.tif");
+  test::write_geotiff(file, spec);
+  ElevationReadOptions o;
+  o.spacing = 5.0;
+  o.height_scale = 2.0;
+  o.height_offset = 10.0;
+  auto r = read_elevation(file, o);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_DOUBLE_EQ(r->field.spacing(), 5.0);
+  EXPECT_EQ(r->field.sample(2, 1), (100.0f + 6.0f - 2.0f) * 2.0f + 10.0f);
+}
+
+TEST(ElevationRaster, AsciiGridWithoutCoordinateSystemIsReadInMetres) {
+  const fs::path file = temp("grid.asc");
+  std::ofstream(file) << "ncols 4\nnrows 3\nxllcorner 1000\nyllcorner 2000\ncellsize 12.5\nNODATA_value -9999\n"
+                         "1 2 3 4\n5 -9999 7 8\n9 10 11 12\n";
+  LogCapture log;
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_EQ(r->reader, "GDAL AAIGrid");
+  EXPECT_DOUBLE_EQ(r->field.spacing(), 12.5);
+  EXPECT_EQ(r->field.sample(3, 0), 4.0f);
+  EXPECT_EQ(r->field.sample(0, 2), 9.0f);
+  EXPECT_EQ(r->nodata_filled, 1u);
+  EXPECT_TRUE(LogCapture::any(log.info, file.string(), "taken as metres"));
+}
+
+TEST(ElevationRaster, PictureWithoutGeoreferencingGoesThroughOpenImageIO) {
+  Image img(11, 5, 1, PixelFormat::kU16);
+  for (int y = 0; y < 5; ++y)
+    for (int x = 0; x < 11; ++x) img.at(x, y) = static_cast<float>(x * 1000 + y) / 65535.0f;
+  const fs::path file = temp("plain16.png");
+  ASSERT_TRUE(write_image(file, img, PixelFormat::kU16).ok());
+  ElevationReadOptions o;
+  o.plain_extent = 100.0;
+  o.height_scale = 65535.0;
+  auto r = read_elevation(file, o);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_FALSE(r->georeferenced);
+  EXPECT_EQ(r->reader, "OpenImageIO");
+  EXPECT_DOUBLE_EQ(r->field.spacing(), 10.0);
+  EXPECT_NEAR(r->field.sample(7, 3), 7003.0f, 1e-2f);
+}
+
+TEST(ElevationRaster, TruncatedFileIsACorruptError) {
+  auto spec = ramp(256, 256);
+  const fs::path file = temp("truncated.tif");
+  test::write_geotiff(file, spec);
+  fs::resize_file(file, fs::file_size(file) / 3);
+  auto r = read_elevation(file);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt) << r.error().describe();
+  EXPECT_NE(r.error().message.find(file.string()), std::string::npos) << r.error().message;
+}
+
+TEST(ElevationRaster, UnknownFormatIsUnsupportedNamingTheFile) {
+  const fs::path file = temp("mystery.dem");
+  std::ofstream(file, std::ios::binary) << std::string("\x7f\x01\x02 not a raster of any kind \xff\xfe", 32);
+  auto r = read_elevation(file);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kUnsupported) << r.error().describe();
+  EXPECT_NE(r.error().message.find(file.string()), std::string::npos) << r.error().message;
+}
+
+TEST(ElevationRaster, HugeHeaderIsALimitBeforeAnythingIsAllocated) {
+  // 40000^2 Int16 claimed by a sparse file of a few hundred kB: 6 GiB as floats.
+  test::GeoTiffSpec spec;
+  spec.columns = spec.rows = 40000;
+  spec.write_values = false;
+  spec.options = {"TILED=YES", "BLOCKXSIZE=512", "BLOCKYSIZE=512"};
+  const fs::path file = temp("huge_header.tif");
+  test::write_geotiff(file, spec);
+  auto r = read_elevation(file);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kLimit);
+  EXPECT_NE(r.error().message.find(file.string()), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("40000x40000"), std::string::npos) << r.error().message;
+}
+
+TEST(ElevationRaster, MissingFileIsNotFound) {
+  auto r = read_elevation(temp("no_such.tif"));
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kNotFound);
+}
+
+}  // namespace
+}  // namespace sylva
