@@ -210,12 +210,19 @@ TEST(EditorScript, AnInterruptedSaveNeverCorruptsThePreviousFile) {
     pid_t pid = 0;
     ASSERT_EQ(posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ), 0);
     posix_spawn_file_actions_destroy(&actions);
-    // Wait until the first save exists, then kill at a random moment of the save loop.
-    for (int w = 0; w < 600 && !fs::exists(dir / "work.json"); ++w) std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(30, 900)(rng)));
-    ::kill(pid, SIGKILL);
+    // Wait until the first save exists (however long a loaded machine takes to start the editor:
+    // a time limit here killed it before its first save), then kill at a random moment of the
+    // save loop.
     int status = 0;
-    ::waitpid(pid, &status, 0);
+    bool ended = false;
+    while (!fs::exists(dir / "work.json") && !(ended = ::waitpid(pid, &status, WNOHANG) == pid)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    if (!ended) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(30, 900)(rng)));
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+    }
     killed_during_run += WIFSIGNALED(status) ? 1 : 0;
 
     std::vector<std::string> warnings;
