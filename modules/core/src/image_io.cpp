@@ -143,7 +143,11 @@ Status write_image_file(const fs::path& file, const Image& image, PixelFormat fo
   OIIO::ImageSpec spec(image.width(), image.height(), image.channels(), type_from(format));
   spec.attribute("oiio:UnassociatedAlpha", 1);
   if (!out->open(file.string(), spec)) {
+    // OpenImageIO names the temporary file it was given; the user knows only their own path.
     std::string why = out->geterror();
+    for (auto at = why.find(file.string()); at != std::string::npos; at = why.find(file.string(), at + name.size())) {
+      why.replace(at, file.string().size(), name);
+    }
     return make_error(ErrorCode::kIo, fmt::format("{}: cannot create the file ({})", name, why));
   }
   const bool written = out->write_image(OIIO::TypeDesc::FLOAT, image.data().data());

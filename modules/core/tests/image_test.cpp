@@ -255,6 +255,15 @@ TEST(Image, FullDiskKeepsTheOldFile) {
   expect_no_temporaries(dir);
 }
 
+// The writer fails on the temporary file beside the target; the message must still name the
+// user's path only (/proc refuses new files even to root).
+TEST(Image, WriteIntoAFolderThatRefusesFilesNamesTheUsersPath) {
+  auto s = sylva::write_image("/proc/sylva_image_test.png", gradient(4, 4, 3), PixelFormat::kU8);
+  ASSERT_FALSE(s.ok());
+  EXPECT_EQ(s.error().message.rfind("/proc/sylva_image_test.png: cannot create the file", 0), 0u) << s.error().message;
+  EXPECT_EQ(s.error().message.find(".tmp"), std::string::npos) << s.error().message;
+}
+
 TEST(Image, WriteIntoMissingFolderFailsCleanly) {
   auto r = sylva::write_image("/nonexistent/folder/out.png", gradient(4, 4, 3));
   ASSERT_FALSE(r.ok());
