@@ -61,7 +61,7 @@ class HostileChunkFile : public ::testing::Test {
     EXPECT_NE(file.error().message.find(what), std::string::npos) << file.error().message;
   }
 
-  fs::path path_ = fs::temp_directory_path() / "sylva_terrain_hostile.chunks";
+  fs::path path_ = testing::unique_temp("hostile.chunks");
   std::string good_;
 };
 

@@ -6,6 +6,8 @@
 #include <sylva/terrain/chunk_tree.hpp>
 #include <sylva/terrain/height_source.hpp>
 
+#include "support/terrain_test_support.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -15,7 +17,7 @@
 namespace sylva::terrain {
 namespace {
 
-std::filesystem::path temp(const char* name) { return std::filesystem::temp_directory_path() / name; }
+std::filesystem::path temp(const char* name) { return testing::unique_temp(name); }
 
 // Captures warnings while alive.
 struct WarningCapture {

@@ -149,12 +149,12 @@ TEST(LodStability, NonFiniteSamplesAreReportedOrRepaired) {
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 16; ++x) img.at(x, y) = 0.25f;
   img.at(5, 2) = std::numeric_limits<float>::quiet_NaN();
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "sylva_terrain_nan.exr";
+  const std::filesystem::path path = unique_temp("nan.exr");
   ASSERT_TRUE(write_image(path, img).ok());
   HeightImageSettings hs;
   auto refused = load_height_field(path, hs);
   ASSERT_FALSE(refused.ok());
-  EXPECT_NE(refused.error().message.find("sylva_terrain_nan.exr"), std::string::npos) << refused.error().message;
+  EXPECT_NE(refused.error().message.find(path.string()), std::string::npos) << refused.error().message;
   hs.repair_non_finite = true;
   auto repaired = load_height_field(path, hs);
   ASSERT_TRUE(repaired.ok()) << repaired.error().describe();
@@ -168,7 +168,7 @@ TEST(LodStability, SixteenBitExtremes) {
   Image img(129, 129, 1, PixelFormat::kU16);
   for (int y = 0; y < 129; ++y)
     for (int x = 0; x < 129; ++x) img.at(x, y) = ((x / 3 + y / 5) % 2) ? 1.0f : 0.0f;
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "sylva_terrain_u16.png";
+  const std::filesystem::path path = unique_temp("u16.png");
   ASSERT_TRUE(write_image(path, img).ok());
   HeightImageSettings hs;
   hs.height_scale = 8848.0;

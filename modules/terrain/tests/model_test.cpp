@@ -63,7 +63,7 @@ TEST(Obj, ErrorsNameFileAndLine) {
 
 TEST(Obj, SaveAndLoadRoundTrip) {
   const TriangleMesh t = triangulate(grid_cage(3, 10.0, [](double x, double z) { return static_cast<float>(x * 0.5 - z); }));
-  const auto path = std::filesystem::temp_directory_path() / "sylva_terrain_roundtrip.obj";
+  const auto path = unique_temp("roundtrip.obj");
   ASSERT_TRUE(save_obj(path, t).ok());
   auto back = load_obj(path);
   std::filesystem::remove(path);

@@ -26,7 +26,7 @@ struct Built {
     s.leaf_dimension = 17;
     return std::move(ChunkTree::build(field, s)).value();
   }();
-  fs::path path = fs::temp_directory_path() / "sylva_terrain_stream_test.chunks";
+  fs::path path = unique_temp("stream_test.chunks");
   Built() { EXPECT_TRUE(save_chunk_file(path, tree).ok()); }
   ~Built() { fs::remove(path); }
 };
@@ -74,12 +74,12 @@ TEST(ChunkFile, RoundTripKeepsMetadataAndMeshesBitExact) {
 TEST(ChunkFile, CorruptAndTruncatedFilesAreRejectedClearly) {
   Built& b = built();
   const std::string good = read_bytes(b.path);
-  const fs::path bad = fs::temp_directory_path() / "sylva_terrain_bad.chunks";
+  const fs::path bad = unique_temp("bad.chunks");
   auto expect_open_error = [&](const std::string& bytes, const char* what) {
     write_bytes(bad, bytes);
     auto f = ChunkFile::open(bad);
     ASSERT_FALSE(f.ok()) << what;
-    EXPECT_NE(f.error().message.find("sylva_terrain_bad.chunks"), std::string::npos) << f.error().message;
+    EXPECT_NE(f.error().message.find(bad.string()), std::string::npos) << f.error().message;
     EXPECT_NE(f.error().message.find(what), std::string::npos) << f.error().message;
   };
   expect_open_error(good.substr(0, 50), "truncated");
@@ -114,7 +114,7 @@ TEST(ChunkFile, CorruptAndTruncatedFilesAreRejectedClearly) {
     }
   }
   EXPECT_EQ(failures, 1u);
-  EXPECT_FALSE(ChunkFile::open(fs::temp_directory_path() / "sylva_no_such_file.chunks").ok());
+  EXPECT_FALSE(ChunkFile::open(unique_temp("no_such_file.chunks")).ok());
   fs::remove(bad);
 }
 
@@ -123,7 +123,7 @@ TEST(ChunkFile, CorruptAndTruncatedFilesAreRejectedClearly) {
 TEST(ChunkFile, RandomDamageNeverCrashes) {
   Built& b = built();
   const std::string good = read_bytes(b.path);
-  const fs::path bad = fs::temp_directory_path() / "sylva_terrain_fuzz.chunks";
+  const fs::path bad = unique_temp("fuzz.chunks");
   std::mt19937 rng(99);
   int rejected = 0;
   for (int round = 0; round < 60; ++round) {
@@ -247,7 +247,7 @@ TEST(Streaming, ACorruptChunkIsReportedAndItsParentKeepsDrawing) {
                                   return e;
                                 }()) * 4;
   s[128 + root_blob + 40] ^= 0x20;
-  const fs::path bad = fs::temp_directory_path() / "sylva_terrain_badchunk.chunks";
+  const fs::path bad = unique_temp("badchunk.chunks");
   write_bytes(bad, s);
   auto file = ChunkFile::open(bad).value();
   auto streamer = ChunkStreamer::create(file, StreamingSettings{}).value();

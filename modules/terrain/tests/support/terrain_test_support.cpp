@@ -10,8 +10,13 @@
 #include <limits>
 #include <map>
 #include <unordered_map>
+#include <unistd.h>
 
 namespace sylva::terrain::testing {
+
+std::filesystem::path unique_temp(const std::string& name) {
+  return std::filesystem::temp_directory_path() / fmt::format("sylva_terrain_{}_{}", ::getpid(), name);
+}
 
 HeightField make_field(int columns, int rows, double spacing, const std::function<float(int, int)>& height,
                        glm::dvec2 origin) {

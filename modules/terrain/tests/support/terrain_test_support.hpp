@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <string>
@@ -22,6 +23,11 @@ template <class T>
 bool same_bytes(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
+
+// A path in the temporary folder that belongs to this process ("sylva_terrain_<pid>_<name>"):
+// ctest runs every test case as its own process, two at a time, and suites may run side by
+// side, so a fixed name is written, damaged or removed by another test while this one reads it.
+std::filesystem::path unique_temp(const std::string& name);
 
 HeightField make_field(int columns, int rows, double spacing, const std::function<float(int, int)>& height,
                        glm::dvec2 origin = {0.0, 0.0});
