@@ -5,6 +5,7 @@
 #include <sylva/core/log.hpp>
 
 #include "support/models.hpp"
+#include "support/temp_path.hpp"
 
 #include <gtest/gtest.h>
 
@@ -94,7 +95,7 @@ TEST(Objt, RoundTripIsExact) {
 }
 
 TEST(Objt, SaveAndLoadThroughAFile) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "sylva_objt_test_tree.objt";
+  const std::filesystem::path path = testing::unique_temp("objt_test_tree.objt");
   const TreeModel model = small_tree();
   ASSERT_TRUE(save_objt(path, model).ok());
   Result<TreeModel> back = load_objt(path);

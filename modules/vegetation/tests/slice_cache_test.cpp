@@ -5,6 +5,8 @@
 
 #include <sylva/core/atomic_file.hpp>
 
+#include "support/temp_path.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -59,7 +61,7 @@ TEST(SliceCache, RoundTripIsIdentical) {
   EXPECT_TRUE(same(t, *back));
   EXPECT_TRUE(back->from_cache);
   // Through a file (atomic write), and the serialisation is deterministic.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sylva-slice-cache-test";
+  const std::filesystem::path dir = testing::unique_temp("slice_cache_test");
   const std::filesystem::path file = slice_cache_file(dir, 0x1234u);
   ASSERT_TRUE(save_slice_cache(file, t, 0x1234u).ok());
   Result<BakedTree> loaded = load_slice_cache(file, 0x1234u);
@@ -95,7 +97,7 @@ TEST(SliceCache, DamagedFilesAreRejectedAsCorrupt) {
     rejected(bad, 7u, "flipped payload bit");
   }
   // A file on disk: missing is kNotFound, damaged is kCorrupt naming the file.
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "sylva-slice-cache-test2";
+  const std::filesystem::path dir = testing::unique_temp("slice_cache_test2");
   const std::filesystem::path file = slice_cache_file(dir, 7u);
   EXPECT_EQ(load_slice_cache(file, 7u).error().code, ErrorCode::kNotFound);
   std::filesystem::create_directories(dir);

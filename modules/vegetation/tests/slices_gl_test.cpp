@@ -11,6 +11,7 @@
 #include "support/gl_scene.hpp"
 #include "support/lod_scene.hpp"
 #include "support/models.hpp"
+#include "support/temp_path.hpp"
 
 #include <gtest/gtest.h>
 
@@ -177,7 +178,7 @@ TEST_F(SlicesGl, SilhouettesMatchLod0FromARingOfViews) {
 // hysteresis). Every frame the tree's pixel coverage stays >= 95 % of the smaller coverage of the
 // two levels it is between (each rendered alone from the same pose): never see-through.
 TEST_F(SlicesGl, TransitionsNeverDropCoverageDuringADolly) {
-  const std::filesystem::path cache = std::filesystem::temp_directory_path() / "sylva-lod-dolly-cache";
+  const std::filesystem::path cache = testing::unique_temp("lod_dolly_cache");
   std::filesystem::remove_all(cache);
   const auto make = [&] {
     ForestSettings settings;
@@ -243,7 +244,7 @@ TEST_F(SlicesGl, TransitionsNeverDropCoverageDuringADolly) {
 
 // A corrupt cache file is rejected, rebaked and replaced; the rebake is identical to the first bake.
 TEST_F(SlicesGl, CorruptBakeCacheIsRejectedAndRebuilt) {
-  const std::filesystem::path cache = std::filesystem::temp_directory_path() / "sylva-lod-corrupt-cache";
+  const std::filesystem::path cache = testing::unique_temp("lod_corrupt_cache");
   std::filesystem::remove_all(cache);
   Forest forest = testing::make_lod_forest(32);
   const Result<TreeTextureSet> tex = make_texture_set(SpeciesPreset::kBroadleaf, 1, 64, 64);
