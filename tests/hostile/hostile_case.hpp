@@ -34,6 +34,7 @@ struct HostileCase {
 // The tables, one per kind of input (cases_*.cpp).
 std::vector<HostileCase> scene_file_cases();
 std::vector<HostileCase> map_image_cases();
+std::vector<HostileCase> elevation_raster_cases();
 std::vector<HostileCase> player_command_line_cases();
 std::vector<HostileCase> output_path_cases();
 std::vector<HostileCase> editor_script_cases();
