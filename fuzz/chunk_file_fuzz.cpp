@@ -6,19 +6,13 @@
 
 #include <sylva/terrain/chunk_file.hpp>
 
-#include <cstring>
-
 namespace {
 
 constexpr std::size_t kHeaderBytes = 128;  // chunk_file.hpp layout
 constexpr std::size_t kEntryBytes = 64;
 
-std::uint64_t read_u64(const std::vector<std::uint8_t>& b, std::size_t at) {
-  std::uint64_t v = 0;
-  std::memcpy(&v, b.data() + at, 8);
-  return v;
-}
-void write_u64(std::vector<std::uint8_t>& b, std::size_t at, std::uint64_t v) { std::memcpy(b.data() + at, &v, 8); }
+using sylva::fuzz::load;
+using sylva::fuzz::store;
 
 // Rewrites the blob checksums of the directory entries, the directory checksum, the file size
 // and the header checksum. Returns false when there is no header to repair.
@@ -26,16 +20,16 @@ bool repair_checksums(std::vector<std::uint8_t>& b) {
   using sylva::terrain::fnv1a64;
   const std::size_t size = b.size();
   if (size < kHeaderBytes) return false;
-  const std::uint64_t dir_offset = read_u64(b, 80), dir_bytes = read_u64(b, 88);
+  const std::uint64_t dir_offset = load<std::uint64_t>(b, 80), dir_bytes = load<std::uint64_t>(b, 88);
   if (dir_offset <= size && dir_bytes <= size - dir_offset) {
     for (std::uint64_t e = dir_offset; e + kEntryBytes <= dir_offset + dir_bytes; e += kEntryBytes) {
-      const std::uint64_t offset = read_u64(b, e + 40), bytes = read_u64(b, e + 48);
-      if (offset <= size && bytes <= size - offset) write_u64(b, e + 56, fnv1a64(b.data() + offset, bytes));
+      const std::uint64_t offset = load<std::uint64_t>(b, e + 40), bytes = load<std::uint64_t>(b, e + 48);
+      if (offset <= size && bytes <= size - offset) store<std::uint64_t>(b, e + 56, fnv1a64(b.data() + offset, bytes));
     }
-    write_u64(b, 96, fnv1a64(b.data() + dir_offset, dir_bytes));
+    store<std::uint64_t>(b, 96, fnv1a64(b.data() + dir_offset, dir_bytes));
   }
-  write_u64(b, 104, size);
-  write_u64(b, 120, fnv1a64(b.data(), 120));
+  store<std::uint64_t>(b, 104, size);
+  store<std::uint64_t>(b, 120, fnv1a64(b.data(), 120));
   return true;
 }
 

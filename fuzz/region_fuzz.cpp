@@ -5,44 +5,37 @@
 
 #include <sylva/voxel/region.hpp>
 
-#include <cstring>
-
 namespace {
 
+using sylva::fuzz::load;
+using sylva::fuzz::store;
 using sylva::voxel::crc32;
-
-std::uint32_t read_u32(const std::vector<std::uint8_t>& b, std::size_t at) {
-  std::uint32_t v = 0;
-  std::memcpy(&v, b.data() + at, 4);
-  return v;
-}
-void write_u32(std::vector<std::uint8_t>& b, std::size_t at, std::uint32_t v) { std::memcpy(b.data() + at, &v, 4); }
 
 // Walks the header layout of region.hpp and rewrites every chunk CRC and the header CRC.
 // Returns false when the header is too short to walk.
 bool repair_checksums(std::vector<std::uint8_t>& b) {
   std::size_t pos = 40;  // magic, version, chunk size, region x y z
   if (b.size() < pos + 4) return false;
-  const std::uint32_t names = read_u32(b, pos);
+  const std::uint32_t names = load<std::uint32_t>(b, pos);
   pos += 4;
   for (std::uint32_t i = 0; i < names && i <= 65536; ++i) {
     if (b.size() < pos + 2) return false;
     pos += 2 + (b[pos] | (b[pos + 1] << 8));
   }
   if (b.size() < pos + 4) return false;
-  const std::uint32_t entries = std::min<std::uint32_t>(read_u32(b, pos), 512);
+  const std::uint32_t entries = std::min<std::uint32_t>(load<std::uint32_t>(b, pos), 512);
   pos += 4;
   const std::size_t table = pos;
   const std::size_t header_end = table + std::size_t{16} * entries;
   if (b.size() < header_end + 4) return false;
   const std::size_t payload = header_end + 4;
   for (std::size_t e = table; e < header_end; e += 16) {
-    const std::size_t offset = read_u32(b, e + 4), size = read_u32(b, e + 8);
+    const std::size_t offset = load<std::uint32_t>(b, e + 4), size = load<std::uint32_t>(b, e + 8);
     if (payload + offset + size <= b.size()) {
-      write_u32(b, e + 12, crc32(std::span<const std::uint8_t>(b).subspan(payload + offset, size)));
+      store<std::uint32_t>(b, e + 12, crc32(std::span<const std::uint8_t>(b).subspan(payload + offset, size)));
     }
   }
-  write_u32(b, header_end, crc32(std::span<const std::uint8_t>(b).first(header_end)));
+  store<std::uint32_t>(b, header_end, crc32(std::span<const std::uint8_t>(b).first(header_end)));
   return true;
 }
 

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -24,6 +25,18 @@ std::vector<std::string> split_lines(std::string_view text);
 // Writes the bytes to one file per process under the system temp folder, named with the given
 // extension (".png"), and returns its path. The same path is reused by every input.
 std::filesystem::path write_temp_file(std::span<const std::uint8_t> bytes, std::string_view extension);
+
+// A field of a binary header in host (little-endian) order; `at + sizeof(T)` must be in range.
+template <class T>
+T load(const std::vector<std::uint8_t>& bytes, std::size_t at) {
+  T value;
+  std::memcpy(&value, bytes.data() + at, sizeof(T));
+  return value;
+}
+template <class T>
+void store(std::vector<std::uint8_t>& bytes, std::size_t at, T value) {
+  std::memcpy(bytes.data() + at, &value, sizeof(T));
+}
 
 // Aborts with the message when `condition` is false (an invariant of the parser broke).
 void require(bool condition, std::string_view what);
