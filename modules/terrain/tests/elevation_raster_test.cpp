@@ -150,6 +150,42 @@ TEST(ElevationRaster, NodataIsFilledFromTheNearestValidSamplesWithAWarning) {
   EXPECT_NE(refused.error().message.find("10 of 256"), std::string::npos) << refused.error().message;
 }
 
+TEST(ElevationRaster, FillCarriesTheNearestValidHeightsIntoLargeHoles) {
+  // West half 100 m, east half 300 m, a 20x20 hole across the edge: smoothing alone would leave
+  // the hole's middle far from both; the flood gives each side its nearest height.
+  constexpr int n = 40;
+  std::vector<float> values(n * n);
+  std::vector<std::uint8_t> valid(n * n, 1);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      values[j * n + i] = i < n / 2 ? 100.0f : 300.0f;
+      if (i >= 10 && i < 30 && j >= 10 && j < 30) {
+        values[j * n + i] = -9999.0f;
+        valid[j * n + i] = 0;
+      }
+    }
+  }
+  const std::vector<float> before = values;
+  EXPECT_EQ(fill_nodata(values, valid, n, n), 400u);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      const float v = values[j * n + i];
+      if (valid[j * n + i]) {
+        ASSERT_EQ(v, before[j * n + i]);
+        continue;
+      }
+      ASSERT_GE(v, 100.0f) << i << "," << j;
+      ASSERT_LE(v, 300.0f) << i << "," << j;
+      if (i < 14) {
+        EXPECT_LT(v, 130.0f) << i << "," << j;
+      }
+      if (i >= 26) {
+        EXPECT_GT(v, 270.0f) << i << "," << j;
+      }
+    }
+  }
+}
+
 TEST(ElevationRaster, FloatNaNCountsAsNodata) {
   auto spec = ramp(8, 8);
   spec.type = GDT_Float32;
