@@ -53,16 +53,6 @@ test::GeoTiffSpec hills() {
 
 void write_text(const fs::path& file, const std::string& text) { std::ofstream(file) << text; }
 
-struct WarningCapture {
-  std::vector<std::string> warnings;
-  WarningCapture() {
-    set_log_sink([this](LogLevel level, std::string_view m) {
-      if (level == LogLevel::kWarn) warnings.emplace_back(m);
-    });
-  }
-  ~WarningCapture() { set_log_sink(nullptr); }
-};
-
 Result<std::unique_ptr<Scene>> load_scene(const fs::path& file) {
   std::vector<std::string> warnings;
   auto doc = SceneDocument::load(file, warnings);
@@ -88,7 +78,7 @@ TEST_F(ElevationGl, SceneGroundTakesSpacingHeightsAndFilledNodataFromTheGeoTiff)
   const fs::path file = dir / "hills.json";
   write_text(file, std::string(R"({"sylva_scene": 1, ")") + ground_section() +
                        R"(": {"center": [100, -50], "elevation": {"file": "dem/hills.tif"}}})");
-  WarningCapture capture;
+  test::LogCapture capture;
   auto scene = load_scene(file);
   ASSERT_TRUE(scene.ok()) << scene.error().describe();
   const HeightField* ground = (*scene)->ground();
@@ -109,9 +99,7 @@ TEST_F(ElevationGl, SceneGroundTakesSpacingHeightsAndFilledNodataFromTheGeoTiff)
   const float filled = ground->sample(30, 20);
   EXPECT_GT(filled, static_cast<float>(spec.values[19 * kColumns + 29]) - 60.0f);
   EXPECT_LT(filled, static_cast<float>(spec.values[19 * kColumns + 29]) + 60.0f);
-  EXPECT_TRUE(std::any_of(capture.warnings.begin(), capture.warnings.end(), [](const std::string& w) {
-    return w.find("hills.tif") != std::string::npos && w.find("filled 5 ") != std::string::npos;
-  }));
+  EXPECT_TRUE(test::LogCapture::any(capture.warnings, "hills.tif", "filled 5 "));
 
   // Scene overrides win over the file, through the same parameter paths as --set.
   const std::string s = ground_section();

@@ -27,22 +27,7 @@ fs::path temp(const std::string& name) {
   return dir / name;
 }
 
-// Every log line while alive, by level.
-struct LogCapture {
-  std::vector<std::string> info, warnings;
-  LogCapture() {
-    set_log_sink([this](LogLevel level, std::string_view m) {
-      if (level == LogLevel::kWarn) warnings.emplace_back(m);
-      if (level == LogLevel::kInfo) info.emplace_back(m);
-    });
-  }
-  ~LogCapture() { set_log_sink(nullptr); }
-  static bool any(const std::vector<std::string>& lines, const std::string& a, const std::string& b = "") {
-    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
-      return l.find(a) != std::string::npos && l.find(b) != std::string::npos;
-    });
-  }
-};
+using test::LogCapture;
 
 // 100 + 3 i - 2 j (i east, j south): distinct, exact in Int16 and Float32.
 test::GeoTiffSpec ramp(int columns, int rows) {

@@ -1,13 +1,17 @@
 #pragma once
 // Small georeferenced rasters written through the GDAL API, for the elevation tests (issue 15):
-// the tests make their own GeoTIFFs instead of shipping binary fixtures. Header-only so the
-// scene tests can include it too (they add this folder to their include path).
+// the tests make their own GeoTIFFs instead of shipping binary fixtures; and the log lines the
+// reader writes about them. Header-only so the scene tests can include it too (they add this
+// folder to their include path).
+
+#include <sylva/core/log.hpp>
 
 #include <cpl_conv.h>
 #include <cpl_string.h>
 #include <gdal.h>
 #include <ogr_srs_api.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <optional>
 #include <stdexcept>
@@ -15,6 +19,26 @@
 #include <vector>
 
 namespace sylva::test {
+
+// Every info and warning line logged while alive.
+struct LogCapture {
+  std::vector<std::string> info, warnings;
+  LogCapture() {
+    set_log_sink([this](LogLevel level, std::string_view m) {
+      if (level == LogLevel::kWarn) warnings.emplace_back(m);
+      if (level == LogLevel::kInfo) info.emplace_back(m);
+    });
+  }
+  ~LogCapture() { set_log_sink(nullptr); }
+  LogCapture(const LogCapture&) = delete;
+  LogCapture& operator=(const LogCapture&) = delete;
+  // A line holding both a and b.
+  static bool any(const std::vector<std::string>& lines, const std::string& a, const std::string& b = "") {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) {
+      return l.find(a) != std::string::npos && l.find(b) != std::string::npos;
+    });
+  }
+};
 
 struct GeoTiffSpec {
   int columns = 0;
