@@ -60,7 +60,9 @@ class Image {
 
 struct ImageReadOptions {
   int max_side = 32768;          // larger files are refused (kLimit) before any pixel is read
-  std::uint64_t max_bytes = 4ull << 30;  // so are files whose samples as floats take more [bytes]
+  // So are files whose samples, held as 32-bit floats, take more [bytes]: 2 GiB holds one channel
+  // of up to 23170^2 (a 16385^2 height map fits); a lying 30000^2 header is refused unread.
+  std::uint64_t max_bytes = 2ull << 30;
   bool allow_non_finite = true;  // false: NaN/Inf samples are an error naming count and position
 };
 
