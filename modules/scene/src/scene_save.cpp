@@ -7,7 +7,9 @@
 //  - on a "save as" (another file than the one the document came from) every unedited map given
 //    by a relative path is copied byte for byte into the new scene's own map folder, so the two
 //    scenes share no map file that either could later overwrite;
-//  - otherwise an unedited map keeps its file; a relative path is rewritten for the new folder.
+//  - otherwise an unedited map keeps its file; a relative path is rewritten for the new folder;
+//  - an elevation raster (<section>.elevation.file) is only referenced, its relative path
+//    rewritten for the new folder: it is read-only source data, often too large to copy.
 // The scene file is staged last and so renamed last. The in-memory document and maps change only
 // after the commit succeeded.
 
@@ -15,6 +17,7 @@
 
 #include <sylva/core/file_transaction.hpp>
 #include <sylva/core/image.hpp>
+#include <sylva/core/params.hpp>
 
 #include <fmt/format.h>
 
@@ -116,6 +119,13 @@ Status Scene::save(const std::filesystem::path& file) {
   // The saved document: the same settings with the planned map paths.
   SceneDocument saved = *document_;
   for (ModuleSection& section : saved.modules()) {
+    // An elevation raster is the user's source, referenced and never copied (it may be
+    // gigabytes): a save into another folder rebases its relative path to the same file.
+    for (const ParamDescriptor& param : sylva::describe_params(*section.settings)) {
+      if (param.path != "elevation.file" || param.ref.type != ParamType::kString) continue;
+      auto& raster = *static_cast<std::string*>(param.ref.ptr);
+      if (!raster.empty()) raster = rebase(raster, old_dir, new_dir);
+    }
     for (auto& [slot, path] : section.maps) path = plans.at({section.name, slot}).path;
     for (const auto& [key, plan] : plans) {
       if (key.first == section.name) section.maps[key.second] = plan.path;

@@ -112,6 +112,22 @@ TEST_F(ElevationGl, SceneGroundTakesSpacingHeightsAndFilledNodataFromTheGeoTiff)
   EXPECT_EQ(ground->sample(5, 7), static_cast<float>(spec.values[7 * kColumns + 5] * 2.0 - 100.0));
 }
 
+TEST_F(ElevationGl, SaveAsIntoAnotherFolderStillNamesTheSameRaster) {
+  const fs::path dir = scene_dir();
+  test::write_geotiff(dir / "dem" / "hills.tif", hills());
+  write_text(dir / "save.json", R"({"sylva_scene": 1, "ground": {"elevation": {"file": "dem/hills.tif"}}})");
+  auto scene = load_scene(dir / "save.json");
+  ASSERT_TRUE(scene.ok()) << scene.error().describe();
+  fs::create_directories(dir / "elsewhere");
+  const fs::path copy = dir / "elsewhere" / "copy.json";
+  ASSERT_TRUE((*scene)->save(copy).ok());
+  EXPECT_FALSE(fs::exists(dir / "elsewhere" / "copy_maps")) << "the raster is referenced, not copied";
+  auto reloaded = load_scene(copy);
+  ASSERT_TRUE(reloaded.ok()) << reloaded.error().describe();
+  EXPECT_EQ((*reloaded)->get_param("ground.elevation.file").value(), "../dem/hills.tif");
+  EXPECT_EQ((*reloaded)->ground()->samples(), (*scene)->ground()->samples());
+}
+
 TEST_F(ElevationGl, GeographicRasterWithNodataRefusedIsAnErrorNamingKeyAndFile) {
   const fs::path dir = scene_dir();
   auto spec = hills();
