@@ -300,9 +300,10 @@ class GroundInstance final : public ModuleInstance {
     const std::uint64_t bytes = ground_gpu_bytes(field.columns(), field.rows());
     if (bytes > kMaxGroundGpuBytes) {
       const auto map = ctx_.section->maps.find("height");
-      const std::string source = map != ctx_.section->maps.end()
-                                     ? "the height map " + map->second
-                                     : fmt::format("the generated ground (ground.resolution = {})", field.columns());
+      const std::string& raster = settings().source.elevation.file;
+      const std::string source = map != ctx_.section->maps.end() ? "the height map " + map->second
+                                 : !raster.empty() ? "the elevation raster " + raster
+                                                   : fmt::format("the generated ground (ground.resolution = {})", field.columns());
       return make_error(ErrorCode::kLimit,
                         fmt::format("ground: {} has {}x{} samples; the plain ground draws every sample and would need {} "
                                     "MiB of GPU buffers, above its limit of {} MiB. Use a terrain section (level of "
