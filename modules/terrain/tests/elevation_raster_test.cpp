@@ -226,6 +226,34 @@ TEST(ElevationRaster, AsciiGridWithoutCoordinateSystemIsReadInMetres) {
   EXPECT_TRUE(LogCapture::any(log.info, file.string(), "taken as metres"));
 }
 
+TEST(ElevationRaster, SrtmHgtTileIsReadAsGeographicMetres) {
+  // A 3 arc-second SRTM tile (1201^2 Int16, nodata -32768) made by GDAL's own SRTMHGT writer.
+  auto spec = ramp(1201, 1201);
+  spec.epsg = 4326;
+  spec.pixel_x = spec.pixel_y = 1.0 / 1200.0;
+  spec.left = 7.0 - 0.5 / 1200.0;
+  spec.top = 47.0 + 0.5 / 1200.0;
+  spec.values[600 * 1201 + 600] = -32768.0;
+  const fs::path tif = temp("srtm_source.tif");
+  test::write_geotiff(tif, spec);
+  const fs::path hgt = temp("N46E007.hgt");
+  GDALDatasetH source = GDALOpen(tif.string().c_str(), GA_ReadOnly);
+  ASSERT_NE(source, nullptr);
+  GDALDatasetH copy = GDALCreateCopy(GDALGetDriverByName("SRTMHGT"), hgt.string().c_str(), source, FALSE, nullptr,
+                                     nullptr, nullptr);
+  ASSERT_NE(copy, nullptr) << CPLGetLastErrorMsg();
+  GDALClose(copy);
+  GDALClose(source);
+  auto r = read_elevation(hgt);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  EXPECT_EQ(r->reader, "GDAL SRTMHGT");
+  EXPECT_EQ(r->nodata_filled, 1u);  // SRTM's void value
+  EXPECT_NEAR(r->source_spacing_z, 111141.0 / 1200.0, 0.5);  // 1 degree of latitude near 46.5 N
+  EXPECT_NEAR(r->field.spacing(), r->source_spacing_x, 1e-9);
+  EXPECT_LT(r->field.spacing(), r->source_spacing_z);
+  EXPECT_EQ(r->field.sample(0, 0), 100.0f);
+}
+
 TEST(ElevationRaster, PictureWithoutGeoreferencingGoesThroughOpenImageIO) {
   Image img(11, 5, 1, PixelFormat::kU16);
   for (int y = 0; y < 5; ++y)
