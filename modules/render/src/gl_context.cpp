@@ -300,9 +300,11 @@ bool display_available() {
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   const bool env = (x11 != nullptr && x11[0] != '\0') || (wayland != nullptr && wayland[0] != '\0');
   if (!env) return false;
-  if (!glfw_acquire()) return false;
-  glfw_release();
-  return true;
+  // Keep GLFW (and its X connection) once it came up instead of terminating it here: the window
+  // that follows would open a second connection right after the first closed, and that second
+  // XOpenDisplay failed about one run in three under Xvfb ("X11: Failed to open display :0").
+  static const bool available = glfw_acquire();
+  return available;
 }
 
 ContextKind GlContext::kind() const { return impl_->kind; }
