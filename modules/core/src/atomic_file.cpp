@@ -18,7 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path folder_of(const fs::path& target) { return target.has_parent_path() ? target.parent_path() : fs::path("."); }
 
 Error io_error(const fs::path& target, std::string_view what) {
   return make_error(ErrorCode::kIo, fmt::format("{}: {}", target.string(), what));
@@ -58,20 +57,22 @@ Status finish_temp(const fs::path& temp, const fs::path& target) {
     fs::remove(temp, ec);
     return io_error(target, fmt::format("cannot replace the file ({}); the old file is untouched", why));
   }
-  return sync_folder(folder_of(target));
+  return sync_folder(containing_folder(target));
 }
 
 }  // namespace
 
+fs::path containing_folder(const fs::path& file) { return file.has_parent_path() ? file.parent_path() : fs::path("."); }
+
 fs::path temp_path_beside(const fs::path& target) {
   static std::atomic<unsigned> counter{0};
-  return folder_of(target) / fmt::format(".{}.{}-{}.tmp{}", target.stem().string(), ::getpid(), counter++,
+  return containing_folder(target) / fmt::format(".{}.{}-{}.tmp{}", target.stem().string(), ::getpid(), counter++,
                                          target.extension().string());
 }
 
 Status check_replaceable(const fs::path& target) {
   std::error_code ec;
-  const fs::path folder = folder_of(target);
+  const fs::path folder = containing_folder(target);
   const fs::file_status folder_status = fs::status(folder, ec);
   if (!fs::exists(folder_status)) return io_error(target, fmt::format("the folder {} does not exist", folder.string()));
   if (!fs::is_directory(folder_status)) return io_error(target, fmt::format("{} is not a folder", folder.string()));

@@ -15,7 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path folder_of(const fs::path& target) { return target.has_parent_path() ? target.parent_path() : fs::path("."); }
 
 // Same file for the purpose of staging twice: compare normalised absolute paths.
 fs::path identity(const fs::path& p) {
@@ -112,7 +111,7 @@ Status FileTransaction::commit() {
     s.temp.clear();
   }
   std::set<fs::path> folders;
-  for (const Staged& s : staged_) folders.insert(folder_of(s.target));
+  for (const Staged& s : staged_) folders.insert(containing_folder(s.target));
   discard();  // drops the old files' second names
   for (const fs::path& folder : folders) SYLVA_TRY(sync_folder(folder));
   return ok_status();

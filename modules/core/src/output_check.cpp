@@ -19,7 +19,6 @@ Error io_error(const fs::path& path, const std::string& why) {
   return make_error(ErrorCode::kIo, fmt::format("{}: {}", path.string(), why));
 }
 
-fs::path folder_of(const fs::path& path) { return path.has_parent_path() ? path.parent_path() : fs::path("."); }
 
 // Creates and removes an empty file in `folder`; the error names `display`.
 Status probe_folder(const fs::path& folder, const fs::path& display) {
@@ -37,7 +36,7 @@ Status probe_folder(const fs::path& folder, const fs::path& display) {
 
 Status check_output_file(const fs::path& path) {
   SYLVA_TRY(check_replaceable(path));
-  return probe_folder(folder_of(path), path);
+  return probe_folder(containing_folder(path), path);
 }
 
 Status check_output_image(const fs::path& path) {

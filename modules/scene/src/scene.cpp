@@ -33,6 +33,7 @@ struct Scene::Gpu {
   // The frame before it reaches the caller's target: multisampled (render.msaa_samples) and/or
   // RGBA16F for tone mapping; resolved, then tone-mapped or copied into the target.
   render::Framebuffer offscreen;
+  GLint max_samples = -1;  // GL_MAX_SAMPLES, queried on the first multisampled frame
   render::Program lines;  // built the first time the chunk-bounds view is on
   render::Buffer line_buffer;
   render::VertexArray line_vao;
@@ -390,8 +391,8 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
   const bool tone_map = rs.tone_map && gpu_->tone.has_value();
   int samples = rs.msaa_samples > 1 ? rs.msaa_samples : 0;
   if (samples > 1) {
-    GLint max_samples = 0;
-    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (gpu_->max_samples < 0) glGetIntegerv(GL_MAX_SAMPLES, &gpu_->max_samples);  // once, not per frame
+    const int max_samples = gpu_->max_samples;
     if (samples > max_samples) {
       if (!msaa_warned_) {
         log_warn("scene: render.msaa_samples = {} is above this GL's maximum of {} samples; using {}", samples,

@@ -16,6 +16,9 @@
 
 namespace sylva {
 
+// The folder holding `file`: its parent path, or "." for a bare file name.
+std::filesystem::path containing_folder(const std::filesystem::path& file);
+
 // A unique temporary path beside `target` that keeps its extension (so format writers that
 // pick a plugin by extension still work): "<folder>/.<stem>.<pid>-<n>.tmp<ext>".
 std::filesystem::path temp_path_beside(const std::filesystem::path& target);
