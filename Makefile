@@ -4,7 +4,7 @@ PRESET ?= ci
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
 
-.PHONY: all deps configure build demo test lean test-asan fuzz clean
+.PHONY: all deps configure build demo test gallery goldens lean test-asan fuzz clean
 
 all: build
 
@@ -21,6 +21,14 @@ build: configure
 demo: build
 	@mkdir -p out
 	$(BUILD)/apps/player/sylva-player --screenshot out/demo.png
+
+# Every shipped scene at 1280x720 on one HTML page with its render settings and frame statistics.
+gallery: build
+	./scripts/make-gallery $(BUILD)/apps/player/sylva-player out/gallery
+
+# Regenerates tests/golden/images after a deliberate change of the picture (tests/golden/README.md).
+goldens: configure
+	PRESET=$(PRESET) ./scripts/update-goldens
 
 # No retries: a test that fails once has found a bug (in the code or in the test).
 test: build

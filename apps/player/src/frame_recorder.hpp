@@ -41,6 +41,9 @@ class FrameRecorder {
   // Module-level facts (triangles, chunks, blades...), merged into "modules".
   void set_module_info(const std::string& module, nlohmann::json info) { modules_[module] = std::move(info); }
   void set_scene_name(std::string name) { scene_name_ = std::move(name); }
+  // The scene's effective render settings ("render", "sun", "environment" sections with every
+  // default filled in), so a figure can be read beside what produced it (make gallery).
+  void set_settings(nlohmann::json settings) { settings_ = std::move(settings); }
 
   nlohmann::json to_json(int frames, glm::ivec2 size) const;
   // Writes atomically (core write_file_atomic).
@@ -60,6 +63,7 @@ class FrameRecorder {
   bool any_gpu_frame_ = false;
   std::map<std::string, nlohmann::json> modules_;
   std::string scene_name_;
+  nlohmann::json settings_;
 };
 
 }  // namespace sylva::player

@@ -4,6 +4,7 @@
 #include "output_checks.hpp"
 #include "scene_loading.hpp"
 
+#include <sylva/core/params_json.hpp>
 #include <sylva/core/timer.hpp>
 #include <sylva/render/camera.hpp>
 #include <sylva/render/framebuffer.hpp>
@@ -126,6 +127,9 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
   render::FrameProfiler profiler;
   FrameRecorder recorder;
   recorder.set_scene_name(scene_name);
+  recorder.set_settings({{"render", params_to_json(scene.document().render)},
+                         {"sun", params_to_json(scene.document().sun)},
+                         {"environment", params_to_json(scene.document().environment)}});
   const render::FlySettings fly;
   std::optional<glm::dvec2> last_cursor;
 
