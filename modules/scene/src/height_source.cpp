@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace sylva::scene {
 
 double height_spacing(const HeightSourceSettings& settings, int columns) {
@@ -80,6 +82,16 @@ Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optio
           const float hills = fbm2(p, s.noise);
           const float ridges = ridged2(p * 0.8, s.noise);
           h = s.height * (0.45f * hills + 0.75f * ridges * ridges);
+          break;
+        }
+        case HeightGenerator::kValley: {
+          // Same hills and ridges, scaled by the distance from the centre: a few metres of
+          // rolling relief in the meadow, the full mountain relief toward the edges.
+          const double r = glm::length(p - s.center) / std::max(0.5 * double(s.size), 1.0);
+          const float w = static_cast<float>(glm::smoothstep(0.12, 0.55, r));
+          const float hills = fbm2(p, s.noise);
+          const float ridges = ridged2(p * 0.8, s.noise);
+          h = s.height * ((0.05f + 0.4f * w) * hills + w * 0.9f * ridges * ridges);
           break;
         }
       }

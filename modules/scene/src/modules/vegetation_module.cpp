@@ -1,8 +1,10 @@
-// The "vegetation" section: a vegetation::Forest of one procedural species (generate_tree; LOD0
+// The "vegetation" section: a vegetation::Forest of procedural species (generate_tree; LOD0
 // with hierarchical wind bending and leaf shading; the forest culls, animates, draws instanced
 // and casts shadows) whose trees are placed by the scene's world-anchored forest placement
 // (forest_placement.hpp) over a rectangle, standing on the scene's ground, swaying in the scene's
 // wind, coloured by the scene's season. Map: density (tree placement probability in [0, 1]).
+// One species (`species`) or a mixed stand (`mix`: a weight per preset); each placed tree picks
+// its species from a hash of its position, so a mix is stable under edits and reloads.
 //
 // Edits: a changed density or ground area re-places only the trees of the grid cells it touches
 // on the CPU; the species (model, mesh, textures on the GPU) is untouched, and the instance list
@@ -12,6 +14,7 @@
 
 #include <sylva/core/log.hpp>
 #include <sylva/core/params_json.hpp>
+#include <sylva/core/rng.hpp>
 #include <sylva/scene/forest_placement.hpp>
 #include <sylva/scene/module_instance.hpp>
 #include <sylva/vegetation/animation.hpp>
@@ -30,6 +33,24 @@
 namespace sylva::scene::detail {
 namespace {
 
+// Relative share of each preset in a mixed stand; all zero = the single `species`.
+struct SpeciesMix {
+  float broadleaf = 0.0f;
+  float conifer = 0.0f;
+  float birch = 0.0f;
+  float shrub = 0.0f;
+
+  template <class V>
+  void visit(V& v) {
+    const ParamInfo info{.min = 0.0, .max = 1000.0, .help = "Relative share of this species (all 0: use `species`)",
+                         .rebuild = Rebuild::kOffline};
+    v(broadleaf, "broadleaf", info);
+    v(conifer, "conifer", info);
+    v(birch, "birch", info);
+    v(shrub, "shrub", info);
+  }
+};
+
 struct ForestSectionSettings {
   glm::dvec2 area_min{-40.0, -40.0};
   glm::dvec2 area_max{40.0, 40.0};
@@ -41,6 +62,7 @@ struct ForestSectionSettings {
   int map_resolution = 128;
   vegetation::SpeciesPreset species = vegetation::SpeciesPreset::kBroadleaf;
   std::uint32_t species_seed = 1;
+  SpeciesMix mix;
   int leaf_texture_size = 128;
   vegetation::MeshSettings mesh;
   vegetation::ForestSettings forest;  // animation, shading, culling of vegetation::Forest
@@ -58,6 +80,7 @@ struct ForestSectionSettings {
     v(map_resolution, "map_resolution", {.min = 1, .max = 8192, .help = "Texels of a new density map along the longer side", .rebuild = Rebuild::kOffline});
     v(species, "species", {.help = "broadleaf, conifer, birch or shrub", .rebuild = Rebuild::kOffline});
     v(species_seed, "species_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the generated tree", .rebuild = Rebuild::kOffline});
+    v(mix, "mix");
     v(leaf_texture_size, "leaf_texture_size", {.min = 16, .max = 2048, .unit = "px", .help = "Procedural leaf and bark texture size (power of two)", .rebuild = Rebuild::kGpu});
     v(mesh, "mesh");
     v(forest, "forest");
@@ -83,6 +106,43 @@ Status check_forest(const ForestSectionSettings& s, std::string_view prefix) {
                                                      prefix, area_ha * s.trees_per_hectare, area_ha));
   }
   return {};
+}
+
+const char* preset_name(vegetation::SpeciesPreset p) {
+  return enum_table<vegetation::SpeciesPreset>().name_of(static_cast<std::int64_t>(p));
+}
+
+// The stand's species with their weights, in preset order: the mix's non-zero entries, or the
+// single `species` when the mix is all zero.
+std::vector<std::pair<vegetation::SpeciesPreset, float>> stand_species(const ForestSectionSettings& s) {
+  using vegetation::SpeciesPreset;
+  const std::pair<SpeciesPreset, float> all[] = {{SpeciesPreset::kBroadleaf, s.mix.broadleaf},
+                                                 {SpeciesPreset::kConifer, s.mix.conifer},
+                                                 {SpeciesPreset::kBirch, s.mix.birch},
+                                                 {SpeciesPreset::kShrub, s.mix.shrub}};
+  std::vector<std::pair<SpeciesPreset, float>> out;
+  for (const auto& entry : all) {
+    if (entry.second > 0.0f) out.push_back(entry);
+  }
+  if (out.empty()) out.push_back({s.species, 1.0f});
+  return out;
+}
+
+// Index into stand_species() of a tree: a weighted pick by a hash of its trunk position (in
+// centimetres) and the placement seed, independent of the randoms that drive scale and colour.
+std::size_t species_of(const PlacedTree& t, const std::vector<std::pair<vegetation::SpeciesPreset, float>>& stand,
+                       std::uint32_t seed) {
+  float total = 0.0f;
+  for (const auto& entry : stand) total += entry.second;
+  const float u = hash_to_unit_float(hash_i32(static_cast<std::int32_t>(std::floor(t.position.x * 100.0)),
+                                              static_cast<std::int32_t>(std::floor(t.position.z * 100.0)), seed ^ 0x9e3779b9u)) *
+                  total;
+  float upto = 0.0f;
+  for (std::size_t i = 0; i < stand.size(); ++i) {
+    upto += stand[i].second;
+    if (u < upto) return i;
+  }
+  return stand.size() - 1;
 }
 
 using Settings = SettingsOf<ForestSectionSettings>;
@@ -140,12 +200,14 @@ class ForestInstance final : public ModuleInstance {
   void sync_settings() override {
     if (instances_dirty_) {
       instances_dirty_ = false;
-      std::vector<vegetation::TreeInstance> all;
+      std::vector<std::vector<vegetation::TreeInstance>> per_species(stand_.size());
       for (const auto& [cell, list] : cells_) {
-        for (const PlacedTree& t : list) all.push_back(to_instance(t));
+        for (const PlacedTree& t : list) per_species[species_of(t, stand_, settings().seed)].push_back(to_instance(t));
       }
-      Status s = forest_->set_instances(0, std::move(all));
-      if (!s.ok()) log_warn("vegetation: {}", s.error().message);
+      for (std::size_t i = 0; i < per_species.size(); ++i) {
+        Status s = forest_->set_instances(static_cast<int>(i), std::move(per_species[i]));
+        if (!s.ok()) log_warn("vegetation: {}", s.error().message);
+      }
     }
     const ForestSectionSettings& s = settings();
     vegetation::ForestSettings& live = forest_->settings();
@@ -184,9 +246,19 @@ class ForestInstance final : public ModuleInstance {
     std::size_t trees = 0;
     for (const auto& [cell, list] : cells_) trees += list.size();
     const vegetation::ForestStats& fs = forest_->stats();
+    nlohmann::json triangles_per_tree = nlohmann::json::object(), trees_per_species = nlohmann::json::object();
+    std::vector<std::size_t> counts(stand_.size(), 0);
+    for (const auto& [cell, list] : cells_) {
+      for (const PlacedTree& t : list) ++counts[species_of(t, stand_, settings().seed)];
+    }
+    for (std::size_t i = 0; i < stand_.size(); ++i) {
+      triangles_per_tree[preset_name(stand_[i].first)] = forest_->asset(static_cast<int>(i)).triangles();
+      trees_per_species[preset_name(stand_[i].first)] = counts[i];
+    }
     return {{"trees", trees},
             {"trees_drawn", fs.visible},
-            {"triangles_per_tree", forest_->asset(0).triangles()},
+            {"trees_per_species", trees_per_species},
+            {"triangles_per_tree", triangles_per_tree},
             {"cells_replaced", cells_replaced_},
             {"cull_ms", fs.update_cpu_ms},
             {"instances_per_lod", instances_per_lod(fs)}};
@@ -205,10 +277,10 @@ class ForestInstance final : public ModuleInstance {
 
   std::vector<render::Aabb> debug_bounds() const override {
     std::vector<render::Aabb> out;
-    const vegetation::TreeAsset& asset = forest_->asset(0);
-    const glm::vec3 lo = asset.bounds_min(), hi = asset.bounds_max();
     for (const auto& [cell, list] : cells_) {
       for (const PlacedTree& t : list) {
+        const vegetation::TreeAsset& asset = forest_->asset(static_cast<int>(species_of(t, stand_, settings().seed)));
+        const glm::vec3 lo = asset.bounds_min(), hi = asset.bounds_max();
         out.push_back({t.position + glm::dvec3(lo) * static_cast<double>(t.scale), t.position + glm::dvec3(hi) * static_cast<double>(t.scale)});
       }
     }
@@ -237,21 +309,25 @@ class ForestInstance final : public ModuleInstance {
     const ForestSectionSettings& s = settings();
     // The image-based levels are baked when a species is added, so a change of forest.lod (e.g.
     // enabled, bake resolution) needs a new forest; its other settings are applied live.
-    return fmt::format("{} {} {} {} {}", static_cast<int>(s.species), s.species_seed, s.leaf_texture_size,
-                       params_to_json(s.mesh).dump(), lod_key(s.forest));
+    return fmt::format("{} {} {} {} {} {}", static_cast<int>(s.species), s.species_seed, params_to_json(s.mix).dump(),
+                       s.leaf_texture_size, params_to_json(s.mesh).dump(), lod_key(s.forest));
   }
 
   Status build_forest() {
     const ForestSectionSettings& s = settings();
-    auto model = vegetation::generate_tree(vegetation::species_preset(s.species, s.species_seed));
-    if (!model.ok()) return make_error(model.error().code, "vegetation: " + model.error().message);
-    auto textures = vegetation::make_texture_set(s.species, s.species_seed, s.leaf_texture_size, s.leaf_texture_size);
-    if (!textures.ok()) return make_error(textures.error().code, "vegetation: " + textures.error().message);
     auto forest = vegetation::Forest::create(s.forest);
     if (!forest.ok()) return make_error(forest.error().code, "vegetation: " + forest.error().message);
-    auto species = forest->add_species(*model, *textures, s.mesh);
-    if (!species.ok()) return make_error(species.error().code, "vegetation: " + species.error().message);
+    const auto stand = stand_species(s);
+    for (const auto& [preset, weight] : stand) {
+      auto model = vegetation::generate_tree(vegetation::species_preset(preset, s.species_seed));
+      if (!model.ok()) return make_error(model.error().code, fmt::format("vegetation ({}): {}", preset_name(preset), model.error().message));
+      auto textures = vegetation::make_texture_set(preset, s.species_seed, s.leaf_texture_size, s.leaf_texture_size);
+      if (!textures.ok()) return make_error(textures.error().code, fmt::format("vegetation ({}): {}", preset_name(preset), textures.error().message));
+      auto species = forest->add_species(*model, *textures, s.mesh);
+      if (!species.ok()) return make_error(species.error().code, fmt::format("vegetation ({}): {}", preset_name(preset), species.error().message));
+    }
     forest_ = std::move(*forest);
+    stand_ = stand;
     built_key_ = asset_key();
     instances_dirty_ = true;
     return {};
@@ -270,6 +346,7 @@ class ForestInstance final : public ModuleInstance {
 
   ModuleBuildContext ctx_;
   std::optional<vegetation::Forest> forest_;
+  std::vector<std::pair<vegetation::SpeciesPreset, float>> stand_;  // index = forest species
   std::map<std::pair<int, int>, std::vector<PlacedTree>> cells_;
   SceneMap* map_ = nullptr;
   bool instances_dirty_ = true;

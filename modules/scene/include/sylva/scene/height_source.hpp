@@ -33,12 +33,16 @@
 
 namespace sylva::scene {
 
-enum class HeightGenerator { kFlat, kFbm, kRidged, kHillsAndRidges };
-constexpr std::array<EnumName<HeightGenerator>, 4> enum_names(HeightGenerator) {
+// kValley: a landscape for a vista: gently rolling meadows within about 12 % of the half size
+// from `center`, rising into ridged mountains (full height beyond 55 %), so a camera near the
+// centre stands in a meadow with mountains on the horizon (the embedded default scene).
+enum class HeightGenerator { kFlat, kFbm, kRidged, kHillsAndRidges, kValley };
+constexpr std::array<EnumName<HeightGenerator>, 5> enum_names(HeightGenerator) {
   return {{{HeightGenerator::kFlat, "flat"},
            {HeightGenerator::kFbm, "fbm"},
            {HeightGenerator::kRidged, "ridged"},
-           {HeightGenerator::kHillsAndRidges, "hills_and_ridges"}}};
+           {HeightGenerator::kHillsAndRidges, "hills_and_ridges"},
+           {HeightGenerator::kValley, "valley"}}};
 }
 
 // The elevation raster of a ground and how to read it ("terrain.elevation.file", ...).
@@ -72,7 +76,7 @@ struct HeightSourceSettings {
     v(size, "size", {.min = 1.0, .max = 1.0e6, .unit = "m", .help = "Side length of the ground along x", .rebuild = Rebuild::kOffline, .log_scale = true});
     v(resolution, "resolution", {.min = 2, .max = 8193, .help = "Samples per side of a generated ground", .rebuild = Rebuild::kOffline});
     v(height, "height", {.min = 0.0, .max = 1.0e4, .unit = "m", .help = "Height scale of the generator", .rebuild = Rebuild::kOffline});
-    v(generator, "generator", {.help = "flat, fbm, ridged or hills_and_ridges (used when there is no height map)", .rebuild = Rebuild::kOffline});
+    v(generator, "generator", {.help = "flat, fbm, ridged, hills_and_ridges or valley (used when there is no height map)", .rebuild = Rebuild::kOffline});
     v(noise, "noise");
     v(map_scale, "map_scale", {.min = -1.0e5, .max = 1.0e5, .unit = "m", .help = "Metres per unit of the height map file", .rebuild = Rebuild::kOffline});
     v(map_offset, "map_offset", {.min = -1.0e6, .max = 1.0e6, .unit = "m", .help = "Metres added to the height map", .rebuild = Rebuild::kOffline});

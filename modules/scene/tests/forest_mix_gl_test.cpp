@@ -1,0 +1,65 @@
+// A vegetation section's mixed stand ("mix": a weight per species preset): every weighted preset
+// becomes a species of the forest, trees are shared out in proportion to the weights, the split
+// is the same at every load (a hash of each trunk's position picks its species), and an all-zero
+// mix keeps the single `species`.
+#include <sylva/render/testing.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/scene.hpp>
+
+#include <gtest/gtest.h>
+
+using namespace sylva;
+using namespace sylva::scene;
+
+namespace {
+
+using ForestMixGl = render::GlTest;
+
+std::unique_ptr<Scene> make_scene(const std::string& vegetation) {
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::from_text(R"({"ground": {"resolution": 33, "size": 512, "height": 5, "generator": "fbm"},
+                                          "vegetation": )" + vegetation + "}",
+                                      "test.json", warnings);
+  EXPECT_TRUE(doc.ok()) << doc.error().message;
+  if (!doc.ok()) return nullptr;
+  auto scene = Scene::create(std::move(*doc));
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  return scene.ok() ? std::move(*scene) : nullptr;
+}
+
+constexpr const char* kMixed = R"({"area_min": [-200, -200], "area_max": [200, 200], "trees_per_hectare": 40,
+                                   "leaf_texture_size": 32, "mix": {"broadleaf": 3, "conifer": 2, "birch": 1}})";
+
+TEST_F(ForestMixGl, WeightsShareTheTreesOutAndTheSplitIsStable) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  auto scene = make_scene(kMixed);
+  ASSERT_TRUE(scene);
+  const nlohmann::json stats = scene->module_stats()["vegetation"];
+  const nlohmann::json per = stats["trees_per_species"];
+  ASSERT_EQ(per.size(), 3u) << stats.dump();
+  EXPECT_FALSE(per.contains("shrub")) << "a zero weight adds no species";
+  const double trees = stats["trees"].get<double>();
+  ASSERT_GT(trees, 300.0);
+  EXPECT_NEAR(per["broadleaf"].get<double>() / trees, 3.0 / 6.0, 0.06) << per.dump();
+  EXPECT_NEAR(per["conifer"].get<double>() / trees, 2.0 / 6.0, 0.06) << per.dump();
+  EXPECT_NEAR(per["birch"].get<double>() / trees, 1.0 / 6.0, 0.06) << per.dump();
+  // Each species is its own model: a conifer is not a broadleaf mesh.
+  const nlohmann::json tris = stats["triangles_per_tree"];
+  EXPECT_NE(tris["broadleaf"].get<int>(), tris["conifer"].get<int>());
+
+  auto again = make_scene(kMixed);
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->module_stats()["vegetation"]["trees_per_species"], per) << "the split is the same at every load";
+}
+
+TEST_F(ForestMixGl, AnAllZeroMixKeepsTheSingleSpecies) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  auto scene = make_scene(R"({"area_min": [-50, -50], "area_max": [50, 50], "trees_per_hectare": 40,
+                              "leaf_texture_size": 32, "species": "conifer"})");
+  ASSERT_TRUE(scene);
+  const nlohmann::json per = scene->module_stats()["vegetation"]["trees_per_species"];
+  ASSERT_EQ(per.size(), 1u) << per.dump();
+  EXPECT_TRUE(per.contains("conifer")) << per.dump();
+}
+
+}  // namespace
