@@ -12,7 +12,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
+#include <vector>
 
 using namespace sylva;
 using namespace sylva::scene;
@@ -88,4 +91,86 @@ TEST_F(MsaaGl, SamplesOutsideOneTwoFourEightAreRefused) {
   ASSERT_FALSE(doc.ok());
   EXPECT_NE(doc.error().message.find("render.msaa_samples: 3 is not 1, 2, 4 or 8"), std::string::npos)
       << doc.error().message;
+}
+
+namespace {
+
+// Leaves (alpha-to-coverage) and grass blades against the sky. The same frame without the
+// vegetation is the background: a pixel the plants cover fully differs from it by the plant's
+// contrast against the sky, a pixel an edge crosses by a share of it. Returns the pixels over sky
+// that differ from the background by more than 0.02 but less than half the typical (80th
+// percentile) difference of the covered pixels.
+struct Coverage {
+  int covered = 0;
+  int partial = 0;
+};
+
+Coverage partial_coverage_over_sky(const std::string& plants, float eye_height, int samples) {
+  const glm::ivec2 size(192, 108);
+  auto frame = [&](bool with_plants) {
+    std::vector<std::string> warnings;
+    const std::string text = R"({"camera": {"position": [0, )" + std::to_string(eye_height) + R"(, 30], "height_mode": "above_ground", "yaw_deg": 0, "pitch_deg": 12, "fov_deg": 50},
+      "sun": {"fog_density": 0}, "environment": {"time_of_day_h": 12},
+      "render": {"msaa_samples": )" + std::to_string(samples) + R"(, "shadows": {"enabled": false}},
+      "ground": {"size": 400, "resolution": 17, "generator": "flat"})" + (with_plants ? ", " + plants : std::string()) + "}";
+    auto doc = SceneDocument::from_text(text, "msaa_plants.json", warnings);
+    EXPECT_TRUE(doc.ok()) << doc.error().message;
+    auto scene = Scene::create(std::move(*doc));
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    auto fb = render::Framebuffer::create({.width = size.x, .height = size.y, .color_formats = {GL_RGBA32F}}).value();
+    render::FrameProfiler profiler;
+    const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, size);
+    for (int i = 0; i < 2; ++i) {  // the forest hands its instances over at the first update
+      (*scene)->update(camera, 0.0, 0.0f, size);
+      (*scene)->render(fb, profiler);
+    }
+    return render::read_color(fb).value();
+  };
+  const Image background = frame(false), image = frame(true);
+  std::vector<float> differences;
+  for (int y = 0; y < size.y; ++y) {
+    for (int x = 0; x < size.x; ++x) {
+      const glm::vec3 b = rgb(background, x, y);
+      if (!(b.b > b.g)) continue;  // over the sky only (the ground is greener than blue)
+      const glm::vec3 d = glm::abs(rgb(image, x, y) - b);
+      differences.push_back(std::max({d.r, d.g, d.b}));
+    }
+  }
+  std::vector<float> covered;
+  for (float d : differences) if (d > 0.02f) covered.push_back(d);
+  Coverage c;
+  c.covered = static_cast<int>(covered.size());
+  if (covered.empty()) return c;
+  std::sort(covered.begin(), covered.end());
+  const float typical = covered[covered.size() * 8 / 10];
+  for (float d : covered) c.partial += d < 0.5f * typical ? 1 : 0;
+  return c;
+}
+
+}  // namespace
+
+TEST_F(MsaaGl, LeafAndBladeEdgesGetFractionalCoverage) {
+  struct Case {
+    const char* module;
+    std::string section;
+    float eye_height;  // metres above the ground: blades stand against the sky only from low down
+  };
+  const Case cases[] = {
+      {"vegetation", R"("vegetation": {"area_min": [-12, -12], "area_max": [12, 12], "trees_per_hectare": 120, "min_spacing": 6,
+                                      "leaf_texture_size": 64, "species": "broadleaf"})", 1.2f},
+      {"grass", R"("grass": {"area_min": [-10, 20], "area_max": [10, 29], "field": {"density": 300}})", 0.1f},
+  };
+  for (const Case& c : cases) {
+    if (!find_module(c.module)) continue;
+    const Coverage aliased = partial_coverage_over_sky(c.section, c.eye_height, 1);
+    const Coverage msaa = partial_coverage_over_sky(c.section, c.eye_height, 4);
+    SCOPED_TRACE(c.module);
+    std::cout << c.module << ": partial pixels over the sky 1x " << aliased.partial << " of " << aliased.covered << ", 4x "
+              << msaa.partial << " of " << msaa.covered << "\n";
+    ASSERT_GT(msaa.covered, 200) << "the plants stand against the sky";
+    // Single-sampled: leaf cards cut by the alpha test and blades are all-or-nothing per pixel;
+    // the few partial pixels are translucent or dimly lit parts. 4x: every edge pixel is partial.
+    EXPECT_GE(msaa.partial, 2 * aliased.partial + 50)
+        << "1x: " << aliased.partial << " partial of " << aliased.covered << "; 4x: " << msaa.partial << " of " << msaa.covered;
+  }
 }
