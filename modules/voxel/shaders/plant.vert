@@ -1,6 +1,8 @@
 #version 450 core
 // Instanced cubes for L-system plant parts: one instance per turtle-placed block (the seed's
 // flyweight, §1.4): chunk-relative centre, edge length, rotation and block.
+// CROSS_QUADS builds the tuft variant (tufts.hpp): two crossed cut-out quads per instance, the
+// foot at center_size.xyz, height center_size.w, a turn about y, data.w = tint rgb + width (unorm8).
 #include "voxel/common.glsl"
 
 struct PlantPartGpu {
@@ -14,6 +16,9 @@ out vec3 v_rel_pos;
 out vec3 v_normal;
 out vec2 v_uv;
 out float v_ao;
+#ifdef CROSS_QUADS
+out vec3 v_tint;
+#endif
 flat out uint v_layer;
 flat out uint v_block;
 
@@ -24,6 +29,27 @@ void main() {
   vec4 rot = vec4(unpackSnorm2x16(part.data.x), unpackSnorm2x16(part.data.y));
   rot /= max(length(rot), 1e-6);
   uint block = part.data.z;
+#ifdef CROSS_QUADS
+  // Quad 0 spans x, quad 1 spans z (before the turn); corner.y runs up the tuft.
+  int quad = gl_VertexID / 6;
+  ivec2 corner = kVoxelCorners[kVoxelTriA[gl_VertexID % 6]];
+  vec4 tint_width = unpackUnorm4x8(part.data.w);
+  float across = (float(corner.x) - 0.5) * tint_width.w * 2.0;
+  vec3 local = quad == 0 ? vec3(across, 0.0, 0.0) : vec3(0.0, 0.0, across);
+  local.y = float(corner.y) * part.center_size.w;
+  vec3 p = quat_rotate(rot, local) + part.center_size.xyz;
+  v_rel_pos = u_chunk_offset + p;
+  // Lit like a leafy tuft rather than a flat card: the quad normal turned toward the viewer and
+  // tilted up, so neither side of a tuft turns black (shade.frag does not flip it again).
+  vec3 qn = quat_rotate(rot, quad == 0 ? vec3(0.0, 0.0, 1.0) : vec3(1.0, 0.0, 0.0));
+  if (dot(qn, -v_rel_pos) < 0.0) qn = -qn;
+  v_normal = normalize(qn * 0.5 + vec3(0.0, 1.0, 0.0));
+  v_uv = vec2(float(corner.x), -float(corner.y));
+  // Darker at the foot, where the blades crowd together (a cheap contact occlusion).
+  v_ao = mix(0.7, 1.0, float(corner.y));
+  v_tint = tint_width.rgb * 2.0;
+  v_layer = voxel_layer(block, 0, 1);
+#else
   int face = gl_VertexID / 6;
   int k = gl_VertexID % 6;
   int axis = face >> 1;
@@ -44,6 +70,7 @@ void main() {
   v_uv = voxel_uv(local, axis);
   v_ao = 1.0;
   v_layer = voxel_layer(block, axis, sign);
+#endif
   v_block = block;
   gl_Position = u_view_projection * vec4(v_rel_pos, 1.0);
 }

@@ -2,12 +2,17 @@
 // Phong shading of voxel faces and plant parts (seed 004 §2.3): ambient scaled by ambient
 // occlusion, sun diffuse and specular (specular map, §2.3.2), point lights from emissive blocks
 // with attenuation 1 / (Kc + Kl d + Kq d^2) (§2.3.3.2), the host's point lights from the render
-// core (UBO 3), emission, fog. ALPHA_CUT builds the
-// cut-out variant (discard below u_alpha_cutoff, two-sided normals).
+// core (UBO 3), emission, fog, and the fade into the sky at the view distance
+// (distance_fade.glsl). The ambient term is the render core's sky hemisphere plus sun light
+// bounced off the lit ground onto faces looking sideways or down, so a face turned away from the
+// sun is lit by sky and bounce light and never black. ALPHA_CUT builds the cut-out variant
+// (discard below u_alpha_cutoff, two-sided normals); CROSS_QUADS the tuft variant (tinted, its
+// normal already faces the viewer).
 #include "voxel/common.glsl"
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
 #include "render/lib/point_lights.glsl"
+#include "voxel/distance_fade.glsl"
 #include "voxel/shadow_hook.glsl"
 
 #ifndef ALPHA_CUT
@@ -21,11 +26,16 @@ uniform vec4 u_light_color[kMaxLights];  // rgb
 uniform vec3 u_attenuation;              // Kc, Kl, Kq
 uniform float u_ao_strength;
 uniform float u_specular_scale;
+uniform float u_sky_light;  // multiplier of the render core's hemisphere ambient
+uniform float u_bounce;  // albedo of the ground that reflects the sun onto shaded faces
 
 in vec3 v_rel_pos;
 in vec3 v_normal;
 in vec2 v_uv;
 in float v_ao;
+#ifdef CROSS_QUADS
+in vec3 v_tint;
+#endif
 flat in uint v_layer;
 flat in uint v_block;
 
@@ -40,9 +50,12 @@ void main() {
 #ifdef ALPHA_CUT
   if (albedo.a < u_alpha_cutoff) discard;
 #endif
+#ifdef CROSS_QUADS
+  albedo.rgb *= v_tint;
+#endif
   VoxelBlock b = voxel_blocks[v_block];
   vec3 n = normalize(v_normal);
-#ifdef ALPHA_CUT
+#if defined(ALPHA_CUT) && !defined(CROSS_QUADS)
   if (!gl_FrontFacing) n = -n;
 #endif
   vec3 view = normalize(-v_rel_pos);
@@ -52,7 +65,12 @@ void main() {
 
   vec3 l = sun_direction();
   float lit = voxel_shadow(v_rel_pos, n);
-  vec3 color = hemisphere_ambient(n) * ao * albedo.rgb;
+  // Bounce: sun on the ground (irradiance ~ sun * max(l.y, 0)) reflected with albedo u_bounce,
+  // seen by a face in proportion to how much of the ground it faces, (1 - n.y) / 2.
+  vec3 bounce = sun_radiance() * (max(l.y, 0.0) * u_bounce * (0.5 - 0.5 * n.y));
+  // Blocky worlds have no indirect light but this term: a brighter sky (u_sky_light) keeps the
+  // shaded sides and the ground under crowns readable, as games light them.
+  vec3 color = (u_sky_light * hemisphere_ambient(n) + bounce) * ao * albedo.rgb;
   color += sun_radiance() * lit * (lambert(n, l) * albedo.rgb + phong(n, view, l, shininess) * spec_map);
   for (int i = 0; i < u_light_count; ++i) {
     vec3 d = u_light_pos[i].xyz - v_rel_pos;
@@ -64,5 +82,5 @@ void main() {
   // The host's point lights (e.g. the scene's), same attenuation family, diffuse only.
   color += albedo.rgb * sylva_point_lights_diffuse(v_rel_pos, n);
   color += b.emission.rgb * albedo.rgb * 2.0;
-  o_color = vec4(apply_fog(color, v_rel_pos), 1.0);
+  o_color = vec4(voxel_distance_fade(apply_fog(color, v_rel_pos), v_rel_pos), 1.0);
 }

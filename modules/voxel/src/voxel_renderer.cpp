@@ -5,6 +5,7 @@
 #include <sylva/render/frustum.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/voxel/block_textures.hpp>
+#include <sylva/voxel/tufts.hpp>
 
 #include <fmt/format.h>
 
@@ -41,6 +42,31 @@ struct PlantPartGpu {
 };
 static_assert(sizeof(PlantPartGpu) == 32);
 
+// One instance of plant.vert: chunk-relative centre (tufts: foot), size, rotation, block, extra.
+PlantPartGpu make_part(const glm::vec3& center, float size, const glm::quat& q, BlockId block, std::uint32_t extra) {
+  PlantPartGpu g;
+  g.center_size[0] = center.x;
+  g.center_size[1] = center.y;
+  g.center_size[2] = center.z;
+  g.center_size[3] = size;
+  g.data[0] = glm::packSnorm2x16(glm::vec2(q.x, q.y));
+  g.data[1] = glm::packSnorm2x16(glm::vec2(q.z, q.w));
+  g.data[2] = block;
+  g.data[3] = extra;
+  return g;
+}
+
+// The horizon skirt's outer radius [blocks]: the scene's far plane is infinite, and a skirt 200
+// blocks below the eye ends 0.001 degrees under the horizon there, far below a pixel.
+constexpr float kSkirtOuterRadius = 1.0e7f;
+
+// Horizontal (xz) distance from a point to a box (0 inside its footprint).
+double horizontal_distance(const render::Aabb& box, const glm::dvec3& p) {
+  const double dx = std::max({box.min.x - p.x, 0.0, p.x - box.max.x});
+  const double dz = std::max({box.min.z - p.z, 0.0, p.z - box.max.z});
+  return std::sqrt(dx * dx + dz * dz);
+}
+
 // Sets a uniform only when the program uses it: the opaque variants compile the alpha cut-off
 // away and plants have no AO, and Program::set would warn about every such inactive name.
 template <class T>
@@ -59,6 +85,8 @@ struct VoxelRenderer::ChunkGpu {
   render::Buffer plants;
   std::uint32_t plant_opaque = 0;
   std::uint32_t plant_alpha = 0;
+  render::Buffer tufts;
+  std::uint32_t tuft_count = 0;
   render::Aabb box;          // chunk box grown by its plants (world)
   render::Aabb plant_box;    // plants only (empty when min > max)
   struct Light {
@@ -77,6 +105,19 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   if (settings.texture_size < 4 || settings.texture_size > 256) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("voxel.render.texture_size: {} outside [4, 256]", settings.texture_size));
+  }
+  if (!(settings.sky_light >= 0.0f && settings.sky_light <= 8.0f)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.sky_light: {} outside [0, 8]", settings.sky_light));
+  }
+  if (!(settings.bounce >= 0.0f && settings.bounce <= 1.0f)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.bounce: {} outside [0, 1]", settings.bounce));
+  }
+  if (!(settings.view_distance >= 0.0f && settings.view_distance <= 1.0e6f)) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("voxel.render.view_distance: {} outside [0, 1e6] blocks", settings.view_distance));
+  }
+  if (!(settings.fade_share > 0.0f && settings.fade_share <= 1.0f)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.fade_share: {} outside (0, 1]", settings.fade_share));
   }
   if (settings.max_point_lights < 0 || settings.max_point_lights > kMaxLights) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.max_point_lights: {} outside [0, {}]",
@@ -150,6 +191,7 @@ Status VoxelRenderer::set_shadow_receiver(ShadowReceiver receiver) {
 
 Status VoxelRenderer::build_programs() {
   const render::ShaderDefines alpha = {{"ALPHA_CUT", "1"}};
+  const render::ShaderDefines tuft = {{"ALPHA_CUT", "1"}, {"CROSS_QUADS", "1"}};
   auto make = [](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
                  render::Program& out) -> Status {
     auto p = render::Program::create(stages, defines);
@@ -161,6 +203,8 @@ Status VoxelRenderer::build_programs() {
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, alpha, alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, {}, plant_opaque_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, alpha, plant_alpha_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, tuft, tuft_program_));
+  SYLVA_TRY(make({"voxel/horizon.vert", "voxel/horizon.frag"}, {}, horizon_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, alpha, plant_depth_program_));
@@ -173,20 +217,25 @@ void VoxelRenderer::upload_chunk(const ChunkCoord& c, ChunkGpu& gpu) {
   gpu.coord = c;
   const BlockPos o = chunk_origin(c);
   gpu.origin = glm::dvec3(static_cast<double>(o.x), static_cast<double>(o.y), static_cast<double>(o.z));
-  gpu.opaque_quads = mesh ? static_cast<std::uint32_t>(mesh->opaque.size()) : 0;
-  gpu.alpha_quads = mesh ? static_cast<std::uint32_t>(mesh->alpha_cut.size()) : 0;
+  const BlockPalette& palette = world_->palette();
   gpu.quads = {};
-  if (gpu.opaque_quads + gpu.alpha_quads > 0) {
+  gpu.opaque_quads = gpu.alpha_quads = 0;
+  if (mesh && mesh->opaque.size() + mesh->alpha_cut.size() > 0) {
     std::vector<PackedQuad> all;
-    all.reserve(gpu.opaque_quads + gpu.alpha_quads);
+    all.reserve(mesh->opaque.size() + mesh->alpha_cut.size());
     all.insert(all.end(), mesh->opaque.begin(), mesh->opaque.end());
-    all.insert(all.end(), mesh->alpha_cut.begin(), mesh->alpha_cut.end());
-    gpu.quads = render::Buffer::immutable(std::span<const PackedQuad>(all));
+    // Sides-only blocks are drawn as tufts (upload_tufts), not as the mesher's side faces.
+    for (const PackedQuad& q : mesh->alpha_cut) {
+      if (!palette.sides_only(static_cast<BlockId>(q.word1 & 0xffffu))) all.push_back(q);
+    }
+    gpu.opaque_quads = static_cast<std::uint32_t>(mesh->opaque.size());
+    gpu.alpha_quads = static_cast<std::uint32_t>(all.size()) - gpu.opaque_quads;
+    if (!all.empty()) gpu.quads = render::Buffer::immutable(std::span<const PackedQuad>(all));
   }
+  upload_tufts(c, gpu);
   // Point lights: the emissive blocks of the chunk (seed §2.3.3.2).
   gpu.lights.clear();
   const Chunk* chunk = world_->find(c);
-  const BlockPalette& palette = world_->palette();
   if (chunk && !chunk->is_uniform()) {
     const auto blocks = chunk->blocks();
     for (int i = 0; i < kChunkVolume; ++i) {
@@ -197,6 +246,25 @@ void VoxelRenderer::upload_chunk(const ChunkCoord& c, ChunkGpu& gpu) {
     }
   }
   gpu.revision = world_->revision(c);
+}
+
+void VoxelRenderer::upload_tufts(const ChunkCoord& c, ChunkGpu& gpu) {
+  gpu.tufts = {};
+  gpu.tuft_count = 0;
+  const Chunk* chunk = world_->find(c);
+  if (!chunk) return;
+  std::vector<Tuft> tufts;
+  place_tufts(*chunk, c, world_->palette(), tufts);
+  if (tufts.empty()) return;
+  std::vector<PlantPartGpu> parts;
+  parts.reserve(tufts.size());
+  for (const Tuft& t : tufts) {
+    // plant.vert (CROSS_QUADS) reads tint / 2 and width / 2 as unorm8 from data.w.
+    const std::uint32_t extra = glm::packUnorm4x8(glm::vec4(t.tint * 0.5f, t.width * 0.5f));
+    parts.push_back(make_part(t.foot, t.height, glm::angleAxis(t.yaw, glm::vec3(0, 1, 0)), t.block, extra));
+  }
+  gpu.tuft_count = static_cast<std::uint32_t>(parts.size());
+  gpu.tufts = render::Buffer::immutable(std::span<const PlantPartGpu>(parts));
 }
 
 void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
@@ -219,18 +287,7 @@ void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
       if (block == kAir) continue;
       auto& list = palette.render(block) == RenderClass::kAlphaCut ? alpha : opaque;
       for (const PlantPart& part : model.outputs[static_cast<std::size_t>(o)]) {
-        PlantPartGpu g;
-        const glm::vec3 pos = base + yaw * part.position;
-        g.center_size[0] = pos.x;
-        g.center_size[1] = pos.y;
-        g.center_size[2] = pos.z;
-        g.center_size[3] = part.size;
-        const glm::quat q = yaw * part.orientation;
-        g.data[0] = glm::packSnorm2x16(glm::vec2(q.x, q.y));
-        g.data[1] = glm::packSnorm2x16(glm::vec2(q.z, q.w));
-        g.data[2] = block;
-        g.data[3] = 0;
-        list.push_back(g);
+        list.push_back(make_part(base + yaw * part.position, part.size, yaw * part.orientation, block, 0));
       }
     }
     // Bounds: any turn about y keeps the model inside the circle through its farthest box corner.
@@ -288,16 +345,19 @@ void VoxelRenderer::update(const render::FrameContext& frame) {
   // Chunk frustum culling (seed §3.7.2 culled by chunk corners in NDC; a box-plane test has
   // neither its pitch restriction nor its narrow-FOV misses).
   const render::Frustum frustum = frame.camera.frustum();
+  const glm::dvec3 eye = frame.camera.position();
+  update_view_distance(eye);
   visible_.clear();
   for (auto& [c, gpu] : chunks_) {
     ++stats_.chunks_total;
-    const bool empty = gpu->opaque_quads + gpu->alpha_quads == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
+    const bool empty =
+        gpu->opaque_quads + gpu->alpha_quads + gpu->tuft_count == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
     if (empty) continue;
     if (settings_.frustum_culling && !frustum.intersects(gpu->box)) continue;
+    if (fade_.y > 0.0f && horizontal_distance(gpu->box, eye) > fade_.y) continue;  // wholly faded into the sky
     visible_.push_back(gpu.get());
   }
   // Stable order (front to back helps early-z).
-  const glm::dvec3 eye = frame.camera.position();
   std::sort(visible_.begin(), visible_.end(), [&eye](const ChunkGpu* a, const ChunkGpu* b) {
     const glm::dvec3 ca = a->origin + glm::dvec3(kChunkSize * 0.5) - eye;
     const glm::dvec3 cb = b->origin + glm::dvec3(kChunkSize * 0.5) - eye;
@@ -348,6 +408,10 @@ void VoxelRenderer::bind_common(const render::Program& program, const render::Fr
     set_if_active(program, "u_attenuation", glm::vec3(settings_.light_kc, settings_.light_kl, settings_.light_kq));
     set_if_active(program, "u_ao_strength", settings_.ao_strength);
     set_if_active(program, "u_specular_scale", settings_.specular_scale);
+    set_if_active(program, "u_bounce", std::clamp(settings_.bounce, 0.0f, 1.0f));
+    set_if_active(program, "u_sky_light", std::clamp(settings_.sky_light, 0.0f, 8.0f));
+    // No fade: start and end past any distance a float holds.
+    set_if_active(program, "u_fade", fade_.y > 0.0f ? fade_ : glm::vec2(3.0e38f));
     if (shadow_.bind) shadow_.bind(program.id());
   }
 }
@@ -383,6 +447,57 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
     stats.instances += count;
     stats_.plant_parts_drawn += count;
   }
+}
+
+void VoxelRenderer::draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection,
+                               const glm::dvec3& origin, render::PassStats& stats) {
+  tuft_program_.set("u_view_projection", view_projection);
+  tuft_program_.set("u_instance_base", 0u);
+  for (ChunkGpu* gpu : chunks) {
+    if (gpu->tuft_count == 0) continue;
+    tuft_program_.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
+    gpu->tufts.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(gpu->tuft_count));
+    ++stats.draw_calls;
+    stats.triangles += 4ull * gpu->tuft_count;
+    stats.instances += gpu->tuft_count;
+    stats_.tufts_drawn += gpu->tuft_count;
+  }
+}
+
+void VoxelRenderer::draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats) {
+  const auto below = static_cast<float>(lowest_block_ - origin.y);
+  // Seen from below (a camera under the lowest loaded block) the ring would be a ceiling.
+  if (!settings_.horizon_skirt || fade_.y <= 0.0f || below >= 0.0f) return;
+  horizon_program_.set("u_view_projection", view_projection);
+  // A full disc, not a ring from the view distance: under the lowest loaded block it is hidden by
+  // the world everywhere, except through the one-pixel cracks where merged quads meet in
+  // T-junctions (README), which then show the horizon colour instead of the void.
+  horizon_program_.set("u_skirt", glm::vec3(0.0f, kSkirtOuterRadius, below));
+  glDrawArrays(GL_TRIANGLES, 0, 64 * 6);
+  ++stats.draw_calls;
+  stats.triangles += 128;
+}
+
+void VoxelRenderer::update_view_distance(const glm::dvec3& eye) {
+  fade_ = glm::vec2(0.0f);
+  stats_.view_distance = 0.0f;
+  if (!(settings_.view_distance > 0.0f) || chunks_.empty()) return;
+  // The loaded area's xz rectangle: from inside it, its inscribed radius around the camera is the
+  // farthest the world reaches in every direction.
+  glm::dvec2 lo(1e300), hi(-1e300);
+  lowest_block_ = 1e300;
+  for (const auto& [c, gpu] : chunks_) {
+    lo = glm::min(lo, glm::dvec2(gpu->origin.x, gpu->origin.z));
+    hi = glm::max(hi, glm::dvec2(gpu->origin.x, gpu->origin.z) + glm::dvec2(kChunkSize));
+    lowest_block_ = std::min(lowest_block_, gpu->origin.y);
+  }
+  double end = settings_.view_distance;
+  const double inscribed = std::min({eye.x - lo.x, hi.x - eye.x, eye.z - lo.y, hi.y - eye.z});
+  if (inscribed > 0.0) end = std::min(end, inscribed);
+  fade_.y = static_cast<float>(end);
+  fade_.x = static_cast<float>(end) * (1.0f - std::clamp(settings_.fade_share, 0.01f, 1.0f));
+  stats_.view_distance = fade_.y;
 }
 
 VoxelRenderer::UboBinding VoxelRenderer::bind_fallback_block(GLuint index, const render::Buffer& fallback, bool use_host) {
@@ -440,6 +555,10 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   bind_common(alpha_program_, &frame);
   bind_common(plant_alpha_program_, &frame);
   draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, stats);
+  bind_common(tuft_program_, &frame);
+  draw_tufts(visible_, vp, eye, stats);
+  bind_common(horizon_program_, &frame);
+  draw_horizon(vp, eye, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
   restore_block(light_block);
   restore_block(shadow_block);

@@ -27,7 +27,13 @@ struct VoxelSectionSettings {
   voxel::MesherKind mesher = voxel::MesherKind::kBitmask;
   int threads = 0;               // generation and meshing workers (0 = all cores)
   voxel::WorldGenSettings worldgen;
-  voxel::VoxelRenderSettings render;
+  // A scene's world fades into the sky at the edge of its generated area (view_distance caps the
+  // inscribed radius around the camera; the library's default 0 means no fade).
+  voxel::VoxelRenderSettings render = [] {
+    voxel::VoxelRenderSettings r;
+    r.view_distance = 100000.0f;
+    return r;
+  }();
 
   template <class V>
   void visit(V& v) {
@@ -94,7 +100,8 @@ class VoxelInstance final : public ModuleInstance {
   nlohmann::json stats() const override {
     const voxel::VoxelFrameStats& s = renderer_->frame_stats();
     return {{"chunks", s.chunks_total},       {"chunks_drawn", s.chunks_drawn}, {"quads_drawn", s.quads_drawn},
-            {"plant_parts_drawn", s.plant_parts_drawn}, {"point_lights", s.point_lights},
+            {"plant_parts_drawn", s.plant_parts_drawn}, {"tufts_drawn", s.tufts_drawn},
+            {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
             {"generation_ms", generation_ms_}};
   }
 

@@ -24,6 +24,13 @@
 //  * Chunk frustum culling on the CPU against the chunk box grown by its plants' bounds.
 //  * L-system plants: one instance per turtle-placed block (position, size, rotation, block),
 //    batched per chunk, drawn as instanced cubes (the seed's flyweight, §1.4).
+//  * Grass tufts and flowers (sides-only blocks) are not drawn from the chunk mesh: each is an
+//    instanced pair of crossed cut-out quads, jittered, sized, turned and tinted by a hash of its
+//    position (tufts.hpp), so they stand in no grid rows. They receive shadows but cast none.
+//  * View distance: geometry fades into the sky at the horizon between (1 - fade_share) x and 1 x
+//    the view distance (horizontal, from the camera); chunks wholly beyond it are not drawn and a
+//    horizon skirt in the same colour covers what lies farther, so the edge of the loaded area and
+//    the void behind it never show.
 // One block = 1 world unit (metre).
 
 #include <sylva/core/result.hpp>
@@ -62,6 +69,11 @@ struct VoxelRenderSettings {
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
+  float sky_light = 1.5f;           // multiplier of the render core's sky / ground ambient, [0, 8]
+  float bounce = 0.25f;             // albedo of the sunlit ground lighting shaded faces, [0, 1]
+  float view_distance = 0.0f;       // blocks, horizontal; 0 = the loaded area's inscribed radius around the camera
+  float fade_share = 0.3f;          // share of the view distance over which geometry fades into the sky, (0, 1]
+  bool horizon_skirt = true;        // cover what lies beyond the view distance with the horizon colour
 
   template <class V>
   void visit(V& v) {
@@ -77,6 +89,11 @@ struct VoxelRenderSettings {
     v(draw_plants, "draw_plants", {.help = "Draw the L-system plants"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
+    v(sky_light, "sky_light", {.min = 0.0, .max = 8.0, .help = "Multiplier of the sky and ground ambient light on every face"});
+    v(bounce, "bounce", {.min = 0.0, .max = 1.0, .help = "Sun light bounced off the ground onto shaded faces (ground albedo)"});
+    v(view_distance, "view_distance", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Horizontal distance where the world has faded into the sky (0 = edge of the loaded area)"});
+    v(fade_share, "fade_share", {.min = 0.01, .max = 1.0, .help = "Share of the view distance over which the world fades into the sky"});
+    v(horizon_skirt, "horizon_skirt", {.help = "Fill the view below the horizon beyond the view distance with the horizon colour"});
     v(texture_size, "texture_size", {.min = 4, .max = 256, .unit = "texels", .help = "Block texture resolution", .rebuild = Rebuild::kGpu});
   }
 };
@@ -96,6 +113,8 @@ struct VoxelFrameStats {
   std::size_t chunks_drawn = 0;
   std::size_t quads_drawn = 0;
   std::size_t plant_parts_drawn = 0;
+  std::size_t tufts_drawn = 0;
+  float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame
   std::size_t point_lights = 0;
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
 };
@@ -105,6 +124,7 @@ class VoxelRenderer final : public render::Drawable {
   // Needs a current GL 4.5 context. `generator` (may be null: no plants) supplies plant models and
   // their blocks. The world and generator must outlive the renderer. Errors: kGl (shader
   // compile/link naming file:line), texture creation failures.
+  // Errors also name voxel.render.<field> for a setting out of range.
   static Result<std::unique_ptr<VoxelRenderer>> create(const World& world,
                                                       std::shared_ptr<const WorldGenerator> generator,
                                                       const VoxelRenderSettings& settings = {});
@@ -142,6 +162,11 @@ class VoxelRenderer final : public render::Drawable {
   Status build_programs();
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
   void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
+  void upload_tufts(const ChunkCoord& c, ChunkGpu& gpu);
+  void update_view_distance(const glm::dvec3& eye);
+  void draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection, const glm::dvec3& origin,
+                  render::PassStats& stats);
+  void draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
   void bind_common(const render::Program& program, const render::FrameContext* frame) const;
   void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
@@ -162,6 +187,7 @@ class VoxelRenderer final : public render::Drawable {
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
   render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_;
+  render::Program tuft_program_, horizon_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Buffer no_shadows_ubo_;
   render::Buffer no_point_lights_ubo_;
@@ -179,6 +205,8 @@ class VoxelRenderer final : public render::Drawable {
   std::uint64_t mesh_epoch_ = ~std::uint64_t{0};
   std::uint64_t plant_epoch_ = ~std::uint64_t{0};
   std::vector<ChunkGpu*> visible_;
+  glm::vec2 fade_{0.0f};      // fade start / end [blocks] this frame
+  double lowest_block_ = 0.0; // world y of the lowest loaded chunk's bottom (the skirt's height)
   std::vector<glm::vec4> light_pos_;    // camera-relative xyz
   std::vector<glm::vec4> light_color_;  // rgb
   ShadowReceiver shadow_;
