@@ -1,9 +1,15 @@
 #version 450 core
 // Slice bake, leaves (slice_bake.hpp): the leaf colour texture without the season (added when the
 // slices are drawn, seed §3.3), slice-space normal of the visible side with leafSpecificNumber in
-// alpha (§2.12), the level-1 branch and x coordinates. Alpha test at 0.5 on the coverage-
-// preserving mipmaps, so sub-texel leaves keep their coverage.
+// alpha (§2.12), the level-1 branch and x coordinates. Hashed alpha test (leaf_alpha.glsl) on the
+// box-filtered coverage where the leaf texture is minified, the 0.5 test where it is not: a slice
+// texel is often larger than a needle spray's or a leaf cluster's gaps, and a fixed threshold kept
+// only a cluster's solid parts (conifer slices covered 0.66 of LOD0's crown; with the hashed
+// test each texel is kept with the probability of its covered share, crown_gl_test).
+#include "vegetation/lib/leaf_alpha.glsl"
+
 in vec2 v_uv;
+in vec3 v_hash_position;
 in vec3 v_normal;
 in vec3 v_tangent;
 flat in int v_level1;
@@ -13,6 +19,7 @@ flat in float v_leaf_number;
 
 layout(binding = 0) uniform sampler2DArray u_leaf_color;
 layout(binding = 1) uniform sampler2DArray u_leaf_normal;
+layout(binding = 6) uniform sampler2DArray u_leaf_coverage;  // box-filtered alpha
 uniform vec3 u_slice_axis;
 uniform vec3 u_slice_normal;
 
@@ -24,7 +31,7 @@ void main() {
   float layer = gl_FrontFacing ? 0.0 : 1.0;
   vec4 col = texture(u_leaf_color, vec3(v_uv, layer));
   vec3 nts = texture(u_leaf_normal, vec3(v_uv, layer)).xyz * 2.0 - 1.0;
-  if (col.a < 0.5) discard;
+  if (sylva_leaf_alpha(1, col.a, u_leaf_coverage, v_uv, layer, v_hash_position) < 0.5) discard;
   vec3 n = normalize(v_normal);
   vec3 t = normalize(v_tangent - dot(v_tangent, n) * n);
   vec3 b = cross(t, n);

@@ -154,7 +154,7 @@ Result<int> Forest::add_species(const TreeModel& model, const TreeTextureSet& te
     Result<BakedTree> baked = bake_or_load_slices(s.asset, s.mesh, textures, lod.slice_resolution, lod.slice_margin,
                                                   resolve_cache_directory(lod.cache_directory));
     if (!baked.ok()) return baked.error();
-    Result<SliceAsset> slices = SliceAsset::create(*baked);
+    Result<SliceAsset> slices = SliceAsset::create(*baked, mean_leaf_transmittance(textures.leaves));
     if (!slices.ok()) return slices.error();
     st.bake_ms = baked->bake_ms;
     st.bake_from_cache = baked->from_cache;

@@ -249,16 +249,16 @@ TreeSpecies species_preset(SpeciesPreset preset, std::uint32_t seed) {
       s.levels = 4;
       s.trunk_length = 9.0f;
       s.crown_shape = CrownShape::kSpherical;
-      s.level1 = {.count = 7, .count_variation = 0.15f, .start = 0.35f, .end = 0.92f, .per_node = 1, .roll_deg = 137.5f,
+      s.level1 = {.count = 9, .count_variation = 0.15f, .start = 0.35f, .end = 0.92f, .per_node = 1, .roll_deg = 137.5f,
                   .angle_deg = 50.0f, .angle_variation_deg = 10.0f, .length_ratio = 0.55f, .length_variation = 0.15f,
                   .length_profile = 0.7f, .gravitropism = 0.15f};
-      s.level2 = {.count = 6, .count_variation = 0.2f, .start = 0.2f, .end = 0.95f, .per_node = 1, .roll_deg = 137.5f,
+      s.level2 = {.count = 7, .count_variation = 0.2f, .start = 0.2f, .end = 0.95f, .per_node = 1, .roll_deg = 137.5f,
                   .angle_deg = 45.0f, .angle_variation_deg = 12.0f, .length_ratio = 0.5f, .length_variation = 0.2f,
                   .length_profile = 0.5f, .gravitropism = 0.05f};
       s.level3 = {.count = 5, .count_variation = 0.25f, .start = 0.3f, .end = 0.95f, .per_node = 1, .roll_deg = 180.0f,
                   .angle_deg = 45.0f, .angle_variation_deg = 15.0f, .length_ratio = 0.55f, .length_variation = 0.2f,
                   .length_profile = 0.4f, .gravitropism = 0.0f};
-      s.leaves = {.levels = 2, .per_metre = 16.0f, .max_per_branch = 40, .start = 0.2f, .width = 0.16f, .length = 0.22f,
+      s.leaves = {.levels = 2, .per_metre = 14.0f, .max_per_branch = 40, .start = 0.15f, .width = 0.46f, .length = 0.52f,
                   .size_variation = 0.2f, .arrangement = LeafArrangement::kAlternate, .petiole_angle_deg = 50.0f,
                   .droop = 0.3f, .phototropism = 0.6f, .orientation_jitter = 0.3f, .terminal_leaf = true};
       s.leaf_shape = LeafShape::kOvate;
@@ -271,13 +271,13 @@ TreeSpecies species_preset(SpeciesPreset preset, std::uint32_t seed) {
       s.trunk_length = 14.0f;
       s.trunk_lean_deg = 1.5f;
       s.crown_shape = CrownShape::kConical;
-      s.level1 = {.count = 30, .count_variation = 0.1f, .start = 0.12f, .end = 0.97f, .per_node = 5, .roll_deg = 36.0f,
+      s.level1 = {.count = 45, .count_variation = 0.1f, .start = 0.15f, .end = 0.97f, .per_node = 5, .roll_deg = 36.0f,
                   .angle_deg = 85.0f, .angle_variation_deg = 6.0f, .length_ratio = 0.27f, .length_variation = 0.12f,
                   .length_profile = 1.0f, .gravitropism = -0.25f};
       s.level2 = {.count = 10, .count_variation = 0.2f, .start = 0.15f, .end = 0.92f, .per_node = 2, .roll_deg = 90.0f,
                   .angle_deg = 55.0f, .angle_variation_deg = 10.0f, .length_ratio = 0.35f, .length_variation = 0.2f,
                   .length_profile = 0.5f, .gravitropism = -0.1f};
-      s.leaves = {.levels = 2, .per_metre = 11.0f, .max_per_branch = 40, .start = 0.1f, .width = 0.3f, .length = 0.5f,
+      s.leaves = {.levels = 2, .per_metre = 13.0f, .max_per_branch = 40, .start = 0.05f, .width = 0.55f, .length = 0.7f,
                   .size_variation = 0.15f, .arrangement = LeafArrangement::kSpiral, .petiole_angle_deg = 60.0f,
                   .droop = 0.1f, .phototropism = 0.2f, .orientation_jitter = 1.0f, .terminal_leaf = true};
       s.leaf_shape = LeafShape::kNeedles;
@@ -299,7 +299,7 @@ TreeSpecies species_preset(SpeciesPreset preset, std::uint32_t seed) {
       s.level3 = {.count = 4, .count_variation = 0.25f, .start = 0.25f, .end = 0.95f, .per_node = 1, .roll_deg = 180.0f,
                   .angle_deg = 30.0f, .angle_variation_deg = 10.0f, .length_ratio = 0.6f, .length_variation = 0.2f,
                   .length_profile = 0.3f, .gravitropism = -0.8f};
-      s.leaves = {.levels = 2, .per_metre = 18.0f, .max_per_branch = 40, .start = 0.15f, .width = 0.11f, .length = 0.14f,
+      s.leaves = {.levels = 2, .per_metre = 15.0f, .max_per_branch = 40, .start = 0.15f, .width = 0.3f, .length = 0.36f,
                   .size_variation = 0.2f, .arrangement = LeafArrangement::kAlternate, .petiole_angle_deg = 55.0f,
                   .droop = 0.5f, .phototropism = 0.5f, .orientation_jitter = 0.4f, .terminal_leaf = true};
       s.leaf_shape = LeafShape::kBirch;
@@ -321,7 +321,7 @@ TreeSpecies species_preset(SpeciesPreset preset, std::uint32_t seed) {
       s.level2 = {.count = 4, .count_variation = 0.3f, .start = 0.3f, .end = 0.95f, .per_node = 2, .roll_deg = 90.0f,
                   .angle_deg = 45.0f, .angle_variation_deg = 12.0f, .length_ratio = 0.5f, .length_variation = 0.25f,
                   .length_profile = 0.3f, .gravitropism = 0.1f};
-      s.leaves = {.levels = 2, .per_metre = 22.0f, .max_per_branch = 24, .start = 0.15f, .width = 0.035f, .length = 0.055f,
+      s.leaves = {.levels = 2, .per_metre = 16.0f, .max_per_branch = 24, .start = 0.1f, .width = 0.2f, .length = 0.24f,
                   .size_variation = 0.2f, .arrangement = LeafArrangement::kOpposite, .petiole_angle_deg = 55.0f,
                   .droop = 0.2f, .phototropism = 0.5f, .orientation_jitter = 0.35f, .terminal_leaf = true};
       s.leaf_shape = LeafShape::kElliptic;

@@ -27,7 +27,7 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr char kMagic[8] = {'S', 'Y', 'L', 'V', 'S', 'L', 'C', 'E'};
-constexpr std::uint32_t kFormatVersion = 1;
+constexpr std::uint32_t kFormatVersion = 2;  // 2: leaves baked with the hashed alpha test
 
 // GL state the bake changes, restored on every exit.
 class BakeStateGuard {
@@ -253,6 +253,7 @@ Result<BakedTree> bake_tree_slices(const TreeAsset& asset, const TreeMesh& mesh,
   TreeAssetAccess::leaves(asset).bind_base(GL_SHADER_STORAGE_BUFFER, kLeafBinding);
   TreeAssetAccess::leaf_color(asset).bind(0);
   TreeAssetAccess::leaf_normal(asset).bind(1);
+  TreeAssetAccess::leaf_coverage(asset).bind(6);
   TreeAssetAccess::bark_albedo(asset).bind(4);
   TreeAssetAccess::bark_normal(asset).bind(5);
 

@@ -67,8 +67,9 @@ std::vector<unsigned char> displacement_field() {
 
 }  // namespace
 
-Result<SliceAsset> SliceAsset::create(const BakedTree& baked) {
+Result<SliceAsset> SliceAsset::create(const BakedTree& baked, float leaf_transmittance) {
   SliceAsset a;
+  a.leaf_transmittance_ = std::clamp(leaf_transmittance, 0.0f, 1.0f);
   for (int lod = 0; lod < 2; ++lod) {
     const BakedLod& b = baked.lod[static_cast<std::size_t>(lod)];
     const SliceImages& im = b.images;
@@ -205,6 +206,7 @@ Status SliceRenderer::draw(render::Pass pass, const TreeAsset& tree, const Slice
     prog.set("u_ior", sh.refractive_index);
     prog.set("u_specular_color", sh.specular_color);
     prog.set("u_translucent_color", sh.translucent_color);
+    prog.set("u_leaf_transmittance", slices.leaf_transmittance_);
     prog.set("u_diffuse", sh.diffuse);
     prog.set("u_ambient", sh.ambient);
   } else {

@@ -55,9 +55,8 @@ float segment_distance(glm::vec2 p, glm::vec2 a, glm::vec2 b) {
   return glm::length(p - (a + t * ab));
 }
 
-float needle_coverage(float u, float v, int size) {
+float needle_coverage(float u, float v, float px) {
   const glm::vec2 p(u, v);
-  const float px = 1.0f / static_cast<float>(size);
   // Twig along the centre, then needles alternating left and right, slanted to the tip.
   float d = segment_distance(p, {0.5f, 0.0f}, {0.5f, 0.93f}) - 0.012f;
   constexpr int kNeedles = 26;
@@ -240,6 +239,124 @@ void translucency_coefficients(const LeafTextureSettings& st, const Image& lit_n
   }
 }
 
+// Coverage of one leaf (or needle spray) filling the unit square, anti-aliased over `px`.
+float single_coverage(const LeafTextureSettings& st, float u, float v, float px) {
+  if (st.shape == LeafShape::kNeedles) return needle_coverage(u, v, px);
+  const float x = std::fabs(u - 0.5f);
+  // Stalk.
+  float d = (v <= kPetiole + 0.02f) ? x - 0.016f : 1.0f;
+  if (v < 0.0f) d = 1.0f;
+  // Blade.
+  const float s = (v - kPetiole) / (1.0f - kPetiole - 0.01f);
+  if (s > 0.0f && s < 1.0f) d = std::min(d, x - half_width(st, s));
+  return std::clamp(0.5f - d / px, 0.0f, 1.0f);
+}
+
+// One leaf of a cluster card: base point, unit axis (base to tip) and length in card units.
+struct ClusterLeaf {
+  glm::vec2 base{0.5f, 0.0f};
+  glm::vec2 axis{0.0f, 1.0f};
+  float length = 1.0f;
+};
+
+// Twig along u = 0.5 with the leaves alternating at 50-60 degrees and a terminal leaf; leaf size
+// chosen so that the leaves together cover about 60 % of the card (sqrt(area / count)).
+std::vector<ClusterLeaf> cluster_layout(const LeafTextureSettings& st) {
+  const int k = std::max(1, st.cluster);
+  if (k == 1) return {ClusterLeaf{}};
+  const float area = st.shape == LeafShape::kNeedles ? 2.2f : 1.25f;
+  const float len = std::min(st.shape == LeafShape::kNeedles ? 0.62f : 0.52f, std::sqrt(area / static_cast<float>(k)));
+  std::vector<ClusterLeaf> out;
+  const float v_top = 0.99f - len;
+  const int sides = k - 1;
+  for (int i = 0; i < sides; ++i) {
+    const float r = hash_to_unit_float(hash_u32(static_cast<std::uint32_t>(i), st.seed, 91u));
+    const float v0 = 0.03f + (v_top - 0.06f) * static_cast<float>(i) / static_cast<float>(std::max(1, sides - 1));
+    const float side = (i % 2 == 0) ? 1.0f : -1.0f;
+    const float angle = (52.0f + 12.0f * r) * kPi / 180.0f;
+    const float l = len * (0.85f + 0.25f * static_cast<float>(i + 1) / static_cast<float>(sides));
+    out.push_back({{0.5f, v0}, {side * std::sin(angle), std::cos(angle)}, l});
+  }
+  out.push_back({{0.5f, v_top}, {0.0f, 1.0f}, len});
+  return out;
+}
+
+}  // namespace
+
+ClusterSample cluster_sample(const LeafTextureSettings& st, float u, float v) {
+  const float px = 1.0f / static_cast<float>(st.size);
+  ClusterSample best;
+  best.u = u;
+  best.v = v;
+  if (std::max(1, st.cluster) == 1) {
+    best.coverage = single_coverage(st, u, v, px);
+    best.leaf = 0;
+    return best;
+  }
+  const std::vector<ClusterLeaf> leaves = cluster_layout(st);
+  // The twig: from the card's base to the terminal leaf.
+  const float twig_d = segment_distance({u, v}, {0.5f, 0.0f}, leaves.back().base) - 0.009f;
+  best.coverage = std::clamp(0.5f - twig_d / px, 0.0f, 1.0f);
+  for (std::size_t i = 0; i < leaves.size(); ++i) {
+    const ClusterLeaf& l = leaves[i];
+    const glm::vec2 q = glm::vec2(u, v) - l.base;
+    const glm::vec2 across(l.axis.y, -l.axis.x);
+    const float lu = 0.5f + glm::dot(q, across) / l.length;
+    const float lv = glm::dot(q, l.axis) / l.length;
+    const float c = single_coverage(st, lu, lv, px / l.length);
+    // Later leaves (nearer the tip) lie over earlier ones.
+    if (c > 0.0f && (c > 0.5f || c > best.coverage)) {
+      best.coverage = std::max(best.coverage, c);
+      best.u = lu;
+      best.v = lv;
+      best.leaf = static_cast<int>(i);
+    }
+  }
+  return best;
+}
+
+namespace {
+
+// Colour deviation of one leaf of a cluster (older leaves darker, some yellower), or the twig's
+// bark brown (leaf = -1), so that a card reads as several leaves.
+glm::vec3 cluster_tint(const LeafTextureSettings& st, int leaf) {
+  if (leaf < 0) return {0.06f, -0.12f, 0.0f};
+  const float b = 2.0f * hash_to_unit_float(hash_u32(static_cast<std::uint32_t>(leaf), st.seed, 92u)) - 1.0f;
+  const float y = 2.0f * hash_to_unit_float(hash_u32(static_cast<std::uint32_t>(leaf), st.seed, 93u)) - 1.0f;
+  return 1.6f * st.color_variation * glm::vec3(0.5f * b + 0.6f * y, b + 0.3f * y, 0.3f * b);
+}
+
+// Each leaf of a cluster turns about its midrib (a random tilt up to +-34 degrees plus a cupped
+// cross-section of +-17 degrees at the edges), so the card's normals vary as a real spray's leaves do and it shades unevenly
+// under the sun instead of as one flat plane.
+void tilt_cluster_leaves(const LeafTextureSettings& st, const std::vector<int>& leaf_of, const std::vector<float>& across,
+                         LeafTextures& out) {
+  const std::vector<ClusterLeaf> layout = cluster_layout(st);
+  const int n = st.size;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x);
+      const int k = leaf_of[p];
+      if (k < 0) continue;
+      const ClusterLeaf& l = layout[static_cast<std::size_t>(k)];
+      const float r = 2.0f * hash_to_unit_float(hash_u32(static_cast<std::uint32_t>(k), st.seed, 94u)) - 1.0f;
+      const float angle = 0.6f * r + 0.6f * across[p];
+      const glm::vec3 axis(l.axis.x, l.axis.y, 0.0f);
+      const auto rotate = [&](glm::vec3 v) {  // Rodrigues, axis in the card plane
+        return v * std::cos(angle) + glm::cross(axis, v) * std::sin(angle) + axis * glm::dot(axis, v) * (1.0f - std::cos(angle));
+      };
+      const glm::vec3 f = rotate(decode_normal(out.front.normal, x, y));
+      // The lower side's tangent space has x = -u and z = -n: rotate in card space, map back.
+      glm::vec3 b = decode_normal(out.back.normal, x, y);
+      b = rotate(glm::vec3(-b.x, b.y, -b.z));
+      b = glm::vec3(-b.x, b.y, -b.z);
+      for (int c = 0; c < 3; ++c) {
+        out.front.normal.at(x, y, c) = 0.5f + 0.5f * f[c];
+        out.back.normal.at(x, y, c) = 0.5f + 0.5f * b[c];
+      }
+    }
+}
+
 Status check(bool ok, const char* path, const std::string& what) {
   if (ok) return ok_status();
   return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {}", path, what));
@@ -261,31 +378,37 @@ float hl2_reconstruct(const glm::vec3& h, float rho, const glm::vec3& L) {
   return rho * std::max(sum, 0.0f);
 }
 
+float mean_leaf_transmittance(const LeafTextures& t) {
+  const Image& col = t.front.color;
+  const Image& tr = t.front.translucency;
+  double sum = 0.0;
+  double n = 0.0;
+  for (int y = 0; y < col.height(); ++y)
+    for (int x = 0; x < col.width(); ++x) {
+      if (col.at(x, y, 3) <= 0.5f) continue;
+      const glm::vec3 h = glm::vec3(tr.at(x, y, 0), tr.at(x, y, 1), tr.at(x, y, 2)) * 2.0f - 1.0f;
+      sum += hl2_reconstruct(h, tr.at(x, y, 3), {0.0f, 0.0f, 1.0f});
+      n += 1.0;
+    }
+  return n > 0.0 ? static_cast<float>(sum / n) : 0.0f;
+}
+
 LeafTextureSettings leaf_texture_settings_for(LeafShape shape, std::uint32_t seed) {
   LeafTextureSettings s;
   s.shape = shape;
   s.seed = seed;
   switch (shape) {
-    case LeafShape::kOvate: s.veins = 7; break;
-    case LeafShape::kElliptic: s.veins = 6; s.translucency = 0.5f; break;
-    case LeafShape::kBirch: s.veins = 6; s.serration = 0.8f; s.translucency = 0.7f; break;
-    case LeafShape::kNeedles: s.veins = 0; s.translucency = 0.3f; s.color_variation = 0.04f; break;
+    // Cluster sizes: a broadleaf twig carries about five leaves, birch and shrub sprays more and
+    // smaller ones, a conifer branchlet three needle sprays (compare SpeedTree / ez-tree cards).
+    case LeafShape::kOvate: s.veins = 7; s.cluster = 5; break;
+    case LeafShape::kElliptic: s.veins = 6; s.translucency = 0.5f; s.cluster = 7; break;
+    case LeafShape::kBirch: s.veins = 6; s.serration = 0.8f; s.translucency = 0.7f; s.cluster = 7; break;
+    case LeafShape::kNeedles: s.veins = 0; s.translucency = 0.3f; s.color_variation = 0.04f; s.cluster = 3; break;
   }
   return s;
 }
 
-float leaf_coverage(const LeafTextureSettings& st, float u, float v) {
-  if (st.shape == LeafShape::kNeedles) return needle_coverage(u, v, st.size);
-  const float px = 1.0f / static_cast<float>(st.size);
-  const float x = std::fabs(u - 0.5f);
-  // Stalk.
-  float d = (v <= kPetiole + 0.02f) ? x - 0.016f : 1.0f;
-  if (v < 0.0f) d = 1.0f;
-  // Blade.
-  const float s = (v - kPetiole) / (1.0f - kPetiole - 0.01f);
-  if (s > 0.0f && s < 1.0f) d = std::min(d, x - half_width(st, s));
-  return std::clamp(0.5f - d / px, 0.0f, 1.0f);
-}
+float leaf_coverage(const LeafTextureSettings& st, float u, float v) { return cluster_sample(st, u, v).coverage; }
 
 Result<LeafTextures> generate_leaf_textures(const LeafTextureSettings& st) {
   SYLVA_TRY(validate_params(st, "leaf_texture"));
@@ -295,12 +418,18 @@ Result<LeafTextures> generate_leaf_textures(const LeafTextureSettings& st) {
   Image height(n, n, 1);   // vein relief
   Image thickness(n, n, 1);
   Image mid(n, n, 1);
+  std::vector<int> leaf_of(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), -1);
+  std::vector<float> across_of(leaf_of.size(), 0.0f);
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
       const float u = (static_cast<float>(x) + 0.5f) / static_cast<float>(n);
       const float v = 1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(n);
-      const float a = leaf_coverage(st, u, v);
-      const Veins vn = veins_at(st, u, v);
+      const ClusterSample cs = cluster_sample(st, u, v);
+      const float a = cs.coverage;
+      const Veins vn = cs.leaf >= 0 ? veins_at(st, cs.u, cs.v) : Veins{};
+      const std::size_t p = static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x);
+      leaf_of[p] = a > 0.0f ? cs.leaf : -1;
+      across_of[p] = cs.u - 0.5f;
       const float relief = std::max(vn.midrib, vn.secondary) + 0.04f * gradient_noise2(glm::vec2(u, v) * 40.0f, st.seed);
       coverage.at(x, y) = a;
       height.at(x, y) = a > 0.0f ? relief * a : 0.0f;
@@ -324,6 +453,7 @@ Result<LeafTextures> generate_leaf_textures(const LeafTextureSettings& st) {
   }
   normals_from_height(relief_front, strength, 1.0f, out.front.normal, false);
   normals_from_height(relief_back, strength, -1.0f, out.back.normal, false);
+  if (st.cluster > 1) tilt_cluster_leaves(st, leaf_of, across_of, out);
   for (int y = 0; y < n; ++y) {
     for (int x = 0; x < n; ++x) {
       const float u = (static_cast<float>(x) + 0.5f) / static_cast<float>(n);
@@ -333,10 +463,15 @@ Result<LeafTextures> generate_leaf_textures(const LeafTextureSettings& st) {
       const float f1 = fbm2(glm::vec2(u, v) * 5.0f, FbmSettings{.octaves = 4, .seed = st.seed});
       const float f2 = fbm2(glm::vec2(u, v) * 7.0f, FbmSettings{.octaves = 3, .seed = st.seed + 17u});
       // Deviation c_v: mottling, lighter veins, a paler lower side.
-      const glm::vec3 front = st.color_variation * glm::vec3(0.7f * f1 + 0.3f * f2, f1, 0.4f * f1) +
-                              glm::vec3(0.05f, 0.06f, 0.0f) * h;
-      const glm::vec3 back = st.color_variation * glm::vec3(0.6f * f2, 0.8f * f2, 0.5f * f2) +
-                             st.back_lightness * glm::vec3(1.0f, 0.9f, 1.1f) + glm::vec3(0.06f, 0.06f, 0.02f) * h;
+      glm::vec3 front = st.color_variation * glm::vec3(0.7f * f1 + 0.3f * f2, f1, 0.4f * f1) +
+                        glm::vec3(0.05f, 0.06f, 0.0f) * h;
+      glm::vec3 back = st.color_variation * glm::vec3(0.6f * f2, 0.8f * f2, 0.5f * f2) +
+                       st.back_lightness * glm::vec3(1.0f, 0.9f, 1.1f) + glm::vec3(0.06f, 0.06f, 0.02f) * h;
+      if (st.cluster > 1) {
+        const glm::vec3 tint = cluster_tint(st, leaf_of[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)]);
+        front += tint;
+        back += tint;
+      }
       for (int c = 0; c < 3; ++c) {
         out.front.color.at(x, y, c) = std::clamp(0.5f + front[c], 0.0f, 1.0f);
         out.back.color.at(x, y, c) = std::clamp(0.5f + back[c], 0.0f, 1.0f);

@@ -12,6 +12,7 @@ struct TreeAssetAccess {
   static const render::Buffer& leaves(const TreeAsset& a) { return a.leaves_; }
   static const render::Texture& leaf_color(const TreeAsset& a) { return a.leaf_color_; }
   static const render::Texture& leaf_normal(const TreeAsset& a) { return a.leaf_normal_; }
+  static const render::Texture& leaf_coverage(const TreeAsset& a) { return a.leaf_coverage_; }
   static const render::Texture& bark_albedo(const TreeAsset& a) { return a.bark_albedo_; }
   static const render::Texture& bark_normal(const TreeAsset& a) { return a.bark_normal_; }
   static const render::Texture& season(const TreeAsset& a) { return a.season_; }

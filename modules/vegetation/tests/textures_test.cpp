@@ -48,6 +48,7 @@ TEST(Textures, LeafShapesHaveTheirOutline) {
 
 TEST(Textures, VenationNormalsAndThickness) {
   LeafTextureSettings s = leaf_texture_settings_for(LeafShape::kOvate);
+  s.cluster = 1;  // one leaf filling the card: its venation, untilted
   s.size = 128;
   Result<LeafTextures> t = generate_leaf_textures(s);
   ASSERT_TRUE(t.ok());
@@ -80,6 +81,7 @@ TEST(Textures, VenationNormalsAndThickness) {
 
 TEST(Textures, TranslucencyIsTheHl2ProjectionOfTheTransport) {
   LeafTextureSettings s = leaf_texture_settings_for(LeafShape::kElliptic);
+  s.cluster = 1;  // a flat single lamina: the cosine lobe exactly
   s.size = 128;
   s.veins = 0;
   s.vein_depth = 0.0f;

@@ -7,7 +7,7 @@
 
 namespace sylva::vegetation::testing {
 
-Forest make_lod_forest(int slice_resolution, SpeciesPreset preset) {
+Forest make_lod_forest(int slice_resolution, SpeciesPreset preset, int leaf_size) {
   ForestSettings settings;
   settings.receive_shadows = false;
   settings.lod.slice_resolution = slice_resolution;
@@ -15,7 +15,7 @@ Forest make_lod_forest(int slice_resolution, SpeciesPreset preset) {
   Result<Forest> f = Forest::create(settings);
   SYLVA_ASSERT(f.ok(), "forest: {}", f.error().message);
   Forest forest = std::move(f).value();
-  Result<TreeTextureSet> tex = make_texture_set(preset, 1, 64, 64);
+  Result<TreeTextureSet> tex = make_texture_set(preset, 1, leaf_size, 64);
   SYLVA_ASSERT(tex.ok(), "textures: {}", tex.error().message);
   Result<int> s = forest.add_species(preset_tree(preset), *tex);
   SYLVA_ASSERT(s.ok(), "species: {}", s.error().message);

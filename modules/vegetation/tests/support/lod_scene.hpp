@@ -10,8 +10,9 @@
 
 namespace sylva::vegetation::testing {
 
-// One broadleaf (seed 1, 64 px textures) at the origin; no shadow maps; no bake cache.
-Forest make_lod_forest(int slice_resolution = 128, SpeciesPreset preset = SpeciesPreset::kBroadleaf);
+// One broadleaf (seed 1, leaf_size px leaf textures, 64 px bark) at the origin; no shadow maps; no
+// bake cache.
+Forest make_lod_forest(int slice_resolution = 128, SpeciesPreset preset = SpeciesPreset::kBroadleaf, int leaf_size = 64);
 
 // Forces every instance to `level` (0, 1, 2) through the thresholds, or restores `natural`
 // thresholds when level < 0; resets the LOD state (no hysteresis carried over).

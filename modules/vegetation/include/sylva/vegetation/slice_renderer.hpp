@@ -37,7 +37,9 @@ inline constexpr GLuint kSliceSetBinding = 5;
 class SliceAsset {
  public:
   // Uploads a bake (needs a current GL context). kInvalidArgument for inconsistent images.
-  static Result<SliceAsset> create(const BakedTree& baked);
+  // leaf_transmittance in [0, 1]: the share of light a leaf passes straight through
+  // (mean_leaf_transmittance of the species' leaf textures), the slices' translucency strength.
+  static Result<SliceAsset> create(const BakedTree& baked, float leaf_transmittance = 0.35f);
   SliceAsset() = default;
 
   const SliceLayout& layout(int lod) const { return lods_[static_cast<std::size_t>(lod - 1)].layout; }
@@ -52,6 +54,7 @@ class SliceAsset {
     mutable render::Buffer block;  // SliceSetGpu, rewritten per draw
   };
   std::array<Level, 2> lods_;
+  float leaf_transmittance_ = 0.35f;
 };
 
 struct SliceDrawParams {

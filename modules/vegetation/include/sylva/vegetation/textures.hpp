@@ -11,6 +11,12 @@
 //                hemispherical convolution L_t^C (eqs. 3.28-3.31), alpha = transmittance rho_t.
 // Tangent space: x = u (across the blade), y = v (base to tip), z = the side's normal.
 //
+// Leaf clusters (`cluster` > 1): the card shows a twig along v with cluster - 1 leaves alternating
+// left and right and one terminal leaf, as the cluster cards of game foliage (SpeedTree, ez-tree):
+// a crown of a few thousand cards then reads as foliage masses instead of single slivers. Each
+// leaf has its own tint and a tilt about its midrib in the normal map, so one card shades as
+// several leaves. cluster = 1 is the single leaf filling the card (bit-identical to before).
+//
 // Translucency precomputation (eq. 3.28): light arriving at texel x_i of the far side from
 // direction L gives irradiance E(x_i, L) = max(n(x_i) . L, 0) with that side's normal map; it
 // diffuses to x_0 through the kernel T(r, d) = exp(-r^2 / 2 sigma^2) exp(-k d(x_i)), normalised
@@ -44,6 +50,7 @@ namespace sylva::vegetation {
 struct LeafTextureSettings {
   int size = 256;                     // square texture side [px], power of two
   LeafShape shape = LeafShape::kOvate;
+  int cluster = 1;                    // leaves (or needle sprays) per card, along one twig
   int veins = 7;                      // secondary veins per side of the midrib
   float serration = 0.0f;             // depth of edge teeth [0, 1]
   float vein_depth = 1.0f;            // strength of the venation in the normal map
@@ -58,6 +65,7 @@ struct LeafTextureSettings {
   void visit(V& v) {
     v(size, "size", {.min = 16, .max = 2048, .unit = "px", .help = "Texture side (power of two)", .rebuild = Rebuild::kGpu});
     v(shape, "shape", {.help = "Leaf outline", .rebuild = Rebuild::kGpu});
+    v(cluster, "cluster", {.min = 1, .max = 16, .help = "Leaves per card: 1 = one leaf, more = a twig spray", .rebuild = Rebuild::kGpu});
     v(veins, "veins", {.min = 0, .max = 32, .help = "Secondary veins per side", .rebuild = Rebuild::kGpu});
     v(serration, "serration", {.min = 0.0, .max = 1.0, .help = "Depth of edge teeth", .rebuild = Rebuild::kGpu});
     v(vein_depth, "vein_depth", {.min = 0.0, .max = 4.0, .help = "Strength of the venation relief", .rebuild = Rebuild::kGpu});
@@ -89,6 +97,22 @@ Result<LeafTextures> generate_leaf_textures(const LeafTextureSettings& settings)
 // Outline coverage of the shape at texture coordinate (u, v) in [0, 1]^2 for a texture of `size`
 // pixels (anti-aliased over about one pixel). Exposed for tests.
 float leaf_coverage(const LeafTextureSettings& settings, float u, float v);
+
+// What a card texel shows: coverage in [0, 1], and for the topmost leaf there its own (u, v)
+// (the single-leaf coordinates, blade base at v = 0) and index (0 .. cluster - 1; -1 = only the
+// twig or nothing). With cluster = 1, (u, v) are the card's and leaf = 0.
+struct ClusterSample {
+  float coverage = 0.0f;
+  float u = 0.0f;
+  float v = 0.0f;
+  int leaf = -1;
+};
+ClusterSample cluster_sample(const LeafTextureSettings& settings, float u, float v);
+
+// Mean over the covered texels (alpha > 0.5) of the front side of the light passed straight
+// through the leaf (eq. 3.32 for light along the far side's normal): the translucency strength of
+// the image-based levels, which have no translucency maps. 0 for a texture with no covered texel.
+float mean_leaf_transmittance(const LeafTextures& textures);
 
 // The three HL2 basis vectors of eq. 3.29 (tangent space, z = normal).
 std::array<glm::vec3, 3> hl2_basis();
