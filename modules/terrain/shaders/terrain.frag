@@ -1,40 +1,30 @@
 #version 450 core
-// terrain/terrain.frag: height/slope materials (sand, grass, rock, snow) with procedural detail,
-// normals from the full-resolution height texture, sun + hemisphere ambient, fog, optional
-// cascaded shadows, and the debug views. Output: linear HDR colour.
+// terrain/terrain.frag: the layered material of terrain/material.glsl (altitude bands in metres,
+// slope, curvature, detail at four scales, triplanar cliffs), the field's normal and curvature
+// from the shape texture (one fetch), sun + hemisphere ambient darkened in hollows, fog,
+// optional cascaded shadows, and the debug views. Output: linear HDR colour.
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
-#include "render/lib/noise.glsl"
+#include "terrain/material.glsl"
 #if SYLVA_TERRAIN_SHADOWS
 #include "render/lib/shadows.glsl"
 #endif
 
-layout(binding = 0) uniform sampler2D u_heights;  // R32F, texel (i, j) = field sample (i, j)
+// RGBA16F, texel (i, j) = field sample (i, j): x/z of the unit normal, curvature (material.hpp).
+layout(binding = 2) uniform sampler2D u_shape;
 
-uniform int u_has_heights;     // 0: normals from screen-space derivatives (no height texture)
+uniform int u_has_shape;       // 0: normals from screen-space derivatives, no curvature
 uniform ivec2 u_field_size;    // field samples (columns, rows)
 uniform float u_spacing;
-uniform vec2 u_height_range;   // field min / max [m]
-uniform int u_debug_view;      // 0 shaded, 1 LOD colours, 2 morph weight, 3 flat colour
+uniform int u_debug_view;      // 0 shaded, 1 LOD colours, 2 morph weight, 3 flat colour, 4 material layers
 uniform int u_level;           // LOD level of the chunk (debug)
 uniform vec4 u_flat_color;     // debug view 3, wireframe and bounds
-// Materials: x sand height share, y snow height share, z rock slope (1 - n.y), w detail [1/m]
-uniform vec4 u_material;
-uniform float u_detail_strength;
-uniform vec3 u_sand_color;
-uniform vec3 u_grass_color;
-uniform vec3 u_rock_color;
-uniform vec3 u_snow_color;
 
 in vec3 v_rel;
 in vec2 v_grid;
 in float v_morph;
 
 out vec4 o_color;
-
-float field_height(vec2 grid) {
-  return texture(u_heights, (grid + 0.5) / vec2(u_field_size)).r;
-}
 
 vec3 lod_color(int level) {
   const vec3 palette[8] = vec3[8](vec3(0.9, 0.2, 0.2), vec3(0.95, 0.6, 0.1), vec3(0.9, 0.9, 0.2), vec3(0.3, 0.85, 0.3),
@@ -49,41 +39,42 @@ void main() {
     o_color = u_flat_color;
     return;
   }
+  // The drawn surface's height (within tau pixels of the field's) places the altitude bands.
+  float h = v_rel.y + sylva_params.y;
   vec3 n;
-  float h;
-  if (u_has_heights != 0) {
-    float hl = field_height(v_grid - vec2(1.0, 0.0)), hr = field_height(v_grid + vec2(1.0, 0.0));
-    float hd = field_height(v_grid - vec2(0.0, 1.0)), hu = field_height(v_grid + vec2(0.0, 1.0));
-    n = normalize(vec3(-(hr - hl) / (2.0 * u_spacing), 1.0, -(hu - hd) / (2.0 * u_spacing)));
-    h = field_height(v_grid);
+  float curvature = 0.0;
+  if (u_has_shape != 0) {
+    vec3 shape = texture(u_shape, (v_grid + 0.5) / vec2(u_field_size)).xyz;
+    n = vec3(shape.x, sqrt(max(1.0 - dot(shape.xy, shape.xy), 0.0)), shape.y);
+    curvature = shape.z;
   } else {
     n = normalize(cross(dFdy(v_rel), dFdx(v_rel)));
     if (n.y < 0.0) n = -n;
-    h = v_rel.y + sylva_params.y;
   }
   if (u_debug_view == 1 || u_debug_view == 2) {
     vec3 c = u_debug_view == 1 ? lod_color(u_level) : mix(vec3(0.1, 0.3, 0.9), vec3(0.95, 0.3, 0.1), v_morph);
     o_color = vec4(c * (0.35 + 0.65 * max(dot(n, sun_direction()), 0.0)), 1.0);
     return;
   }
-  float range = max(u_height_range.y - u_height_range.x, 1e-3);
-  float t = (h - u_height_range.x) / range;
-  float slope = 1.0 - n.y;
-  vec2 world = v_grid * u_spacing;
-  float detail = sylva_fbm2(world, 4, 0.5, 2.0, u_material.w, 7u);          // [-1, 1]
-  float breakup = 0.06 * sylva_fbm2(world, 3, 0.5, 2.0, u_material.w * 0.25, 11u);
-  float sand = 1.0 - smoothstep(u_material.x - 0.02, u_material.x + 0.02, t + breakup);
-  float snow = smoothstep(u_material.y - 0.04, u_material.y + 0.04, t + breakup) * (1.0 - smoothstep(0.35, 0.6, slope));
-  float rock = smoothstep(u_material.z - 0.12, u_material.z + 0.12, slope + 0.5 * breakup);
-  vec3 albedo = u_grass_color;
-  albedo = mix(albedo, u_sand_color, sand);
-  albedo = mix(albedo, u_rock_color, rock);
-  albedo = mix(albedo, u_snow_color, snow);
-  albedo *= 1.0 + u_detail_strength * detail;
+  TerrainSurface surface = terrain_surface(vec3(v_grid.x * u_spacing, h, v_grid.y * u_spacing), n, curvature, h);
+  if (u_debug_view == 4) {
+    // Unlit layer colours: snow white, rock/scree grey, dirt brown, sand yellow, vegetation green.
+    vec3 c = vec3(0.15, 0.55, 0.1);
+    c = mix(c, vec3(0.45, 0.28, 0.1), surface.layers.z);
+    c = mix(c, vec3(0.4), surface.layers.y);
+    c = mix(c, vec3(0.95, 0.8, 0.3), surface.layers.w);
+    c = mix(c, vec3(1.0), surface.layers.x);
+    o_color = vec4(c, 1.0);
+    return;
+  }
   float shadow = 1.0;
 #if SYLVA_TERRAIN_SHADOWS
   shadow = sylva_shadow(v_rel, n);
 #endif
-  vec3 color = shade_diffuse(albedo, n, shadow);
+  vec3 nd = surface.normal;
+  // The detail relief can turn a normal away from the sun where the field faces it (and the
+  // shadow map lights it): the sun term follows the detail only as far as the field allows.
+  float sun = lambert(nd, sun_direction()) * smoothstep(0.0, 0.15, dot(n, sun_direction()));
+  vec3 color = surface.albedo * (sun_radiance() * sun * shadow + hemisphere_ambient(nd) * surface.occlusion);
   o_color = vec4(apply_fog(color, v_rel), 1.0);
 }

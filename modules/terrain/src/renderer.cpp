@@ -6,6 +6,8 @@
 #include <sylva/terrain/frame_mesh.hpp>
 #include <sylva/terrain/height_texture.hpp>
 
+#include "material_gpu.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -90,9 +92,10 @@ Result<RegionRebuild> TerrainRenderer::apply_height_edit(const HeightField& fiel
     } else {
       log_warn("{}; normals come from the triangles", heights.error().message);
       has_heights_ = false;
+      shape_ = {};
     }
   }
-  height_range_ = glm::vec2(field.min_height(), field.max_height());
+  if (shape_) update_shape_texture(shape_, field, shape_radius_m_, x0, z0, x1, z1);
   return changed;
 }
 
@@ -112,23 +115,17 @@ Status TerrainRenderer::init(const HeightField* field) {
   if (!bounds.ok()) return bounds.error();
   bounds_ = std::move(bounds).value();
 
+  detail_ = make_detail_texture();
   if (field != nullptr && field->columns() > 0 && field->rows() > 0) {
     auto heights = make_height_texture(*field);
     if (heights.ok()) {
       heights_ = std::move(heights).value();
       has_heights_ = true;
+      shape_radius_m_ = settings_.material.curvature_radius_m;
+      shape_ = std::move(make_shape_texture(*field, shape_radius_m_)).value();  // same size: fits too
     } else {
       log_warn("{}; normals come from the triangles", heights.error().message);
     }
-    height_range_ = glm::vec2(field->min_height(), field->max_height());
-  } else {
-    float lo = std::numeric_limits<float>::max(), hi = -lo;
-    for (std::uint32_t i = 0; i < tree_->chunk_count(); ++i) {
-      if (!tree_->chunk(i).present) continue;
-      lo = std::min(lo, tree_->chunk(i).min_y);
-      hi = std::max(hi, tree_->chunk(i).max_y);
-    }
-    height_range_ = glm::vec2(lo, hi);
   }
 
   batch_vao_ = render::VertexArray::create();
@@ -341,19 +338,13 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     }
     const glm::mat4 vp = frame.camera.view_projection();
     shaded_.use();
-    shaded_.set("u_has_heights", has_heights_ ? 1 : 0);
-    shaded_.set("u_height_range", height_range_);
+    shaded_.set("u_has_shape", shape_ ? 1 : 0);
     shaded_.set("u_debug_view", static_cast<int>(settings_.debug_view));
     shaded_.set("u_level", 0);
     shaded_.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
-    const MaterialSettings& m = settings_.material;
-    shaded_.set("u_material", glm::vec4(m.sand_height, m.snow_height, m.rock_slope, m.detail_frequency));
-    shaded_.set("u_detail_strength", m.detail_strength);
-    shaded_.set("u_sand_color", m.sand_color);
-    shaded_.set("u_grass_color", m.grass_color);
-    shaded_.set("u_rock_color", m.rock_color);
-    shaded_.set("u_snow_color", m.snow_color);
-    if (has_heights_) heights_.bind(0);
+    set_material_uniforms(shaded_, settings_.material, climate_);
+    detail_.bind(1);
+    if (shape_) shape_.bind(2);
     const bool levels = settings_.debug_view == DebugView::kLodColors;
     draw_geometry(shaded_, vp, levels, stats, false, nullptr);
     if (settings_.wireframe) {

@@ -44,10 +44,37 @@ struct TerrainSectionSettings {
 
 using Settings = SettingsOf<TerrainSectionSettings>;
 
+// Keys of the material before issue 19, which placed sand and snow at shares of the map's relief
+// (a 300 m lowland got snow on its highest hill). Their meaning cannot be carried over, so a scene
+// that sets them is refused with the key that replaces each.
+Status refuse_retired_keys(const ModuleBuildContext& ctx) {
+  if (ctx.document == nullptr) return {};
+  const struct {
+    const char* pointer;
+    const char* replacement;
+  } retired[] = {
+      {"/terrain/render/material/snow_height", "snow_line_m (altitude in metres at 45 deg latitude in summer)"},
+      {"/terrain/render/material/sand_height", "water_level_m and beach_height_m (metres)"},
+      {"/terrain/render/material/rock_slope", "rock_slope_deg (degrees)"},
+      {"/terrain/render/material/detail_frequency", "detail_scale_m (tile of the finest detail, metres)"},
+  };
+  const nlohmann::json& unknown = ctx.document->unknown();
+  for (const auto& key : retired) {
+    if (!unknown.contains(key.pointer)) continue;
+    std::string path = std::string(key.pointer).substr(1);
+    std::replace(path.begin(), path.end(), '/', '.');
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: no longer supported (a share of the map's relief); use terrain.render.material.{}",
+                                  path, key.replacement));
+  }
+  return {};
+}
+
 class TerrainInstance final : public ModuleInstance {
  public:
   static Result<std::unique_ptr<ModuleInstance>> create(const ModuleBuildContext& ctx) {
     if (!ctx.ground) return make_error(ErrorCode::kInvalidArgument, "terrain: the scene built no ground height field");
+    SYLVA_TRY(refuse_retired_keys(ctx));
     auto inst = std::unique_ptr<TerrainInstance>(new TerrainInstance(ctx));
     SYLVA_TRY(inst->build());
     return std::unique_ptr<ModuleInstance>(std::move(inst));
@@ -68,6 +95,8 @@ class TerrainInstance final : public ModuleInstance {
     // The scene's debug views.
     if (ctx_.debug->lod_colors && live.debug_view == terrain::DebugView::kShaded) live.debug_view = terrain::DebugView::kLodColors;
     live.chunk_bounds = live.chunk_bounds || ctx_.debug->chunk_bounds;
+    // The material's snow line follows the scene's latitude and season (terrain/material.hpp).
+    if (ctx_.environment != nullptr) renderer_->set_climate({ctx_.environment->latitude_deg, ctx_.environment->season});
   }
 
   Status rebuild(Rebuild what) override {

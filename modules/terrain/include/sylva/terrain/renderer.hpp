@@ -5,9 +5,11 @@
 // ones, requesting the rest), and assembles the per-frame seam (or skirt) batch. draw(): the
 // opaque pass draws every selected chunk (one indexed draw each, meshes uploaded on first use
 // and kept in an LRU GPU cache), then the seam batch with the same program, then the debug
-// overlays; the shadow pass draws depth into the active cascade. Shading: normals from the
-// full-resolution height texture, height/slope materials with procedural detail, sun, ambient,
-// fog (render/lib) and, when the host binds them, cascaded shadows.
+// overlays; the shadow pass draws depth into the active cascade. Shading: normals and curvature
+// from the full-resolution shape texture, the layered material of material.hpp (altitude bands
+// in metres for the climate set by set_climate, slope, curvature, tiling detail at four scales,
+// triplanar cliffs), sun, ambient, fog (render/lib) and, when the host binds them, cascaded
+// shadows.
 
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/result.hpp>
@@ -18,6 +20,7 @@
 #include <sylva/render/texture.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
+#include <sylva/terrain/material.hpp>
 #include <sylva/terrain/seams.hpp>
 #include <sylva/terrain/selection.hpp>
 #include <sylva/terrain/settings.hpp>
@@ -31,36 +34,13 @@
 
 namespace sylva::terrain {
 
-enum class DebugView : std::uint8_t { kShaded, kLodColors, kMorph, kFlat };
-constexpr std::array<EnumName<DebugView>, 4> enum_names(DebugView) {
+// kMaterials: unlit layer colours (snow white, rock and scree grey, dirt brown, sand yellow,
+// grass and meadow green), where the material put each layer.
+enum class DebugView : std::uint8_t { kShaded, kLodColors, kMorph, kFlat, kMaterials };
+constexpr std::array<EnumName<DebugView>, 5> enum_names(DebugView) {
   return {{{DebugView::kShaded, "shaded"}, {DebugView::kLodColors, "lod_colors"}, {DebugView::kMorph, "morph"},
-           {DebugView::kFlat, "flat"}}};
+           {DebugView::kFlat, "flat"}, {DebugView::kMaterials, "materials"}}};
 }
-
-struct MaterialSettings {
-  float sand_height = 0.08f;   // share of the height range below which sand shows
-  float snow_height = 0.78f;   // share of the height range above which snow lies on flat ground
-  float rock_slope = 0.35f;    // 1 - normal.y above which rock shows
-  float detail_frequency = 0.08f;  // procedural detail [cycles/m]
-  float detail_strength = 0.18f;   // albedo modulation by the detail noise
-  glm::vec3 sand_color{0.76f, 0.70f, 0.50f};
-  glm::vec3 grass_color{0.23f, 0.38f, 0.12f};
-  glm::vec3 rock_color{0.38f, 0.35f, 0.32f};
-  glm::vec3 snow_color{0.92f, 0.94f, 0.97f};
-
-  template <class V>
-  void visit(V& v) {
-    v(sand_height, "sand_height", {.min = 0.0, .max = 1.0, .help = "Height share below which sand shows"});
-    v(snow_height, "snow_height", {.min = 0.0, .max = 1.0, .help = "Height share above which snow lies"});
-    v(rock_slope, "rock_slope", {.min = 0.0, .max = 1.0, .help = "Slope (1 - normal.y) above which rock shows"});
-    v(detail_frequency, "detail_frequency", {.min = 0.0, .max = 100.0, .unit = "1/m", .help = "Detail noise frequency"});
-    v(detail_strength, "detail_strength", {.min = 0.0, .max = 1.0, .help = "Detail noise strength"});
-    v(sand_color, "sand_color", {.min = 0.0, .max = 1.0});
-    v(grass_color, "grass_color", {.min = 0.0, .max = 1.0});
-    v(rock_color, "rock_color", {.min = 0.0, .max = 1.0});
-    v(snow_color, "snow_color", {.min = 0.0, .max = 1.0});
-  }
-};
 
 struct TerrainRenderSettings {
   LodSettings lod;
@@ -76,7 +56,7 @@ struct TerrainRenderSettings {
   void visit(V& v) {
     v(lod, "lod");
     v(material, "material");
-    v(debug_view, "debug_view", {.help = "shaded, lod_colors, morph or flat"});
+    v(debug_view, "debug_view", {.help = "shaded, lod_colors, morph, flat or materials"});
     v(wireframe, "wireframe", {.help = "Draw triangle edges"});
     v(chunk_bounds, "chunk_bounds", {.help = "Draw the drawn chunks' bounding boxes"});
     v(receive_shadows, "receive_shadows", {.help = "Receive cascaded shadows", .rebuild = Rebuild::kGpu});
@@ -119,6 +99,10 @@ class TerrainRenderer final : public render::Drawable {
 
   void update(const render::FrameContext& frame) override;
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
+
+  // Latitude and season of the scene (the material's snow line); default Climate{}.
+  void set_climate(const Climate& climate) { climate_ = climate; }
+  const Climate& climate() const { return climate_; }
 
   TerrainRenderSettings& settings() { return settings_; }
   const TerrainRenderSettings& settings() const { return settings_; }
@@ -169,7 +153,11 @@ class TerrainRenderer final : public render::Drawable {
   bool shaded_with_shadows_ = false;
   render::Texture heights_;
   bool has_heights_ = false;
-  glm::vec2 height_range_{0.0f, 1.0f};
+  // Material: the tiling detail noise, the field's normal + curvature (when the heights fit on
+  // the GPU) and the curvature radius it was computed with.
+  render::Texture detail_, shape_;
+  float shape_radius_m_ = 0.0f;
+  Climate climate_;
   std::unordered_map<std::uint32_t, GpuMesh> gpu_;
   std::size_t gpu_bytes_ = 0;
   // Per-frame batches: seams or skirts (vertex = grid, height/target/error, skirt depth).

@@ -1,0 +1,68 @@
+#include "material_gpu.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::terrain {
+namespace {
+constexpr int kDetailSize = 256;
+constexpr std::uint32_t kDetailSeed = 19u;
+constexpr int kBandRows = 256;  // rows per compute + upload band (bounds the work memory)
+}  // namespace
+
+render::Texture make_detail_texture() {
+  render::TextureOptions options;
+  options.encoding = render::TextureEncoding::kFloat16;
+  options.wrap = GL_REPEAT;
+  // 4x anisotropic: the ground is seen at grazing angles, where isotropic mips blur the detail
+  // within a few metres of the camera (issue 19's "no blurry ground within 5 m").
+  options.max_anisotropy = 4.0f;
+  return render::Texture::from_image(make_detail_noise(kDetailSize, kDetailSeed), options).value();
+}
+
+void update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
+                          int x1, int z1) {
+  const int grow = static_cast<int>(std::ceil(std::min(radius_m / field.spacing(), 4096.0))) + 1;
+  x0 = std::max(x0 - grow, 0), z0 = std::max(z0 - grow, 0);
+  x1 = std::min(x1 + grow, field.columns()), z1 = std::min(z1 + grow, field.rows());
+  std::vector<float> band;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  for (int z = z0; z < z1; z += kBandRows) {
+    const int ze = std::min(z + kBandRows, z1);
+    compute_terrain_shape(field, radius_m, x0, z, x1, ze, band);
+    glTextureSubImage2D(texture.id(), 0, x0, z, x1 - x0, ze - z, GL_RGBA, GL_FLOAT, band.data());
+  }
+}
+
+Result<render::Texture> make_shape_texture(const HeightField& field, float radius_m) {
+  GLint max_size = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_size);
+  if (field.columns() <= 0 || field.rows() <= 0 || field.columns() > max_size || field.rows() > max_size) {
+    return make_error(ErrorCode::kLimit, fmt::format("terrain: a {}x{} shape texture exceeds GL_MAX_TEXTURE_SIZE {}",
+                                                     field.columns(), field.rows(), max_size));
+  }
+  render::Texture t = render::Texture::create_2d(field.columns(), field.rows(), GL_RGBA16F, 1);
+  t.set_filter(GL_LINEAR, GL_LINEAR);
+  t.set_wrap(GL_CLAMP_TO_EDGE);
+  update_shape_texture(t, field, radius_m, 0, 0, field.columns(), field.rows());
+  return t;
+}
+
+void set_material_uniforms(const render::Program& program, const MaterialSettings& m, const Climate& climate) {
+  const MaterialLines lines = material_lines(m, climate);
+  program.set("u_lines", glm::vec4(lines.snow, lines.rock, lines.tree, lines.water));
+  const float rock_slope = 1.0f - std::cos(glm::radians(m.rock_slope_deg));
+  program.set("u_layer", glm::vec4(m.beach_height_m, rock_slope, 1.0f / m.detail_scale_m, m.detail_strength));
+  program.set("u_pole", glm::vec2(0.0f, climate.latitude_deg < 0.0f ? 1.0f : -1.0f));
+  program.set("u_grass_color", m.grass_color);
+  program.set("u_meadow_color", m.meadow_color);
+  program.set("u_dirt_color", m.dirt_color);
+  program.set("u_scree_color", m.scree_color);
+  program.set("u_rock_color", m.rock_color);
+  program.set("u_snow_color", m.snow_color);
+  program.set("u_sand_color", m.sand_color);
+}
+
+}  // namespace sylva::terrain

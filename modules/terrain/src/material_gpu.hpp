@@ -1,0 +1,28 @@
+#pragma once
+// The GL side of the terrain material (material.hpp, shaders/material.glsl): its textures and
+// uniforms. Needs a current GL 4.5 context.
+
+#include <sylva/core/height_field.hpp>
+#include <sylva/core/result.hpp>
+#include <sylva/render/shader_library.hpp>
+#include <sylva/render/texture.hpp>
+#include <sylva/terrain/material.hpp>
+
+namespace sylva::terrain {
+
+// The tiling detail noise as a mipmapped RGBA16F texture (256^2, repeat, 4x anisotropic where
+// available), bound at unit 1.
+render::Texture make_detail_texture();
+
+// The field's shape (compute_terrain_shape) as an RGBA16F texture, texel (i, j) = sample (i, j),
+// linear, clamped, bound at unit 2. Errors: kLimit beyond GL_MAX_TEXTURE_SIZE (naming the size).
+Result<render::Texture> make_shape_texture(const HeightField& field, float radius_m);
+// Recomputes the samples an edit of [x0, x1) x [z0, z1) changes (the rectangle grown by the
+// radius) and uploads only those.
+void update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
+                          int x1, int z1);
+
+// The material's uniforms (u_lines, u_layer, u_pole, colours) on the bound program.
+void set_material_uniforms(const render::Program& program, const MaterialSettings& settings, const Climate& climate);
+
+}  // namespace sylva::terrain
