@@ -4,7 +4,7 @@
 // soft sheen; distance fog; the sun (diffuse, translucency, sheen) is multiplied by the render
 // core's cascaded shadows, looked up with the normal of the face towards the eye (render README
 // "How each module casts and receives"). Linear RGB out, like the rest of the render core.
-#include "render/lib/lighting.glsl"
+#include "grass/color.glsl"
 #include "render/lib/fog.glsl"
 #include "render/lib/shadows.glsl"
 
@@ -29,7 +29,9 @@ void main() {
   // Multisampled targets shade a partly covered pixel at its centre, which can lie off the blade:
   // the interpolants are then extrapolated (v < 0 below the root), and pow(v, 0.8) is NaN there.
   float v = clamp(te_uv.y, 0.0, 1.0);
-  vec3 albedo = mix(u_base_color, u_tip_color, pow(v, 0.8)) * te_color_mult;
+  // Dry tips: a per-blade random decorrelated from the ambient shade random (both from te_shade).
+  float dryness = grass_blade_dryness(fract(te_shade * 7.31));
+  vec3 albedo = grass_albedo(u_base_color, u_tip_color, v, dryness) * te_color_mult;
   float ao = mix(1.0 - u_shading.z, 1.0, smoothstep(0.0, 1.0, v));
   // A blade is not a flat card: its cross-section is curved and it sits in a canopy lit from
   // above, so the sun and the sky are gathered with the normal leaned towards up. With the bare

@@ -1,7 +1,9 @@
 #version 450 core
 // grass/clump.frag: strand-by-strand density and fade (a strand is drawn when its graded
-// threshold is below the fade), coloured like the blades.
-#include "render/lib/lighting.glsl"
+// threshold is below the fade), coloured and lit like the blades (grass/color.glsl): the strand's
+// luminance ramp stands for the height along a blade, the clump's colour carries the field's
+// patches and clump hue, `u_brightness` calibrates the mean to the blades' (far_field.hpp).
+#include "grass/color.glsl"
 #include "render/lib/fog.glsl"
 #include "render/lib/shadows.glsl"
 
@@ -10,6 +12,7 @@ layout(binding = 0) uniform sampler2D u_atlas;
 uniform vec3 u_base_color;
 uniform vec3 u_tip_color;
 uniform int u_receive_shadows;  // sun term times the render core's cascaded shadows
+uniform vec3 u_shading;         // x brightness (calibration), y ambient, z translucency (the blades' shading)
 
 in vec3 c_rel_pos;
 in vec2 c_uv;
@@ -23,11 +26,10 @@ out vec4 o_color;
 void main() {
   vec4 t = texture(u_atlas, c_uv);
   if (!(t.a < c_fade)) discard;
-  float lum = t.r;
-  vec3 albedo = mix(u_base_color, u_tip_color, clamp(lum * 1.2 - 0.1, 0.0, 1.0)) * c_color;
-  vec3 n = c_normal;
+  float along = clamp(t.r * 1.2 - 0.1, 0.0, 1.0);
+  vec3 albedo = grass_albedo(u_base_color, u_tip_color, along, GRASS_MEAN_DRYNESS) * c_color;
   float ao = mix(0.35, 1.0, smoothstep(0.0, 1.0, c_v));
-  float lit = u_receive_shadows != 0 ? sylva_shadow(c_rel_pos, n) : 1.0;
-  vec3 color = albedo * (sun_radiance() * (0.6 * max(dot(n, sun_direction()), 0.0) + 0.15) * lit + hemisphere_ambient(n) * 0.35) * ao;
+  float lit = u_receive_shadows != 0 ? sylva_shadow(c_rel_pos, c_normal) : 1.0;
+  vec3 color = albedo * grass_canopy_light(vec3(0.0, 1.0, 0.0), u_shading.z, lit, u_shading.y) * ao * u_shading.x;
   o_color = vec4(apply_fog(color, c_rel_pos), 1.0);
 }

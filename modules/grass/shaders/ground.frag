@@ -1,46 +1,59 @@
 #version 450 core
-// grass/ground.frag: seed 003 §2.5 far grass: a top-view grass texture whose (equalised noise)
-// alpha is thresholded by density * fade per pixel, so neighbouring areas of different density
-// join without seams and the layer appears texel by texel as it fades in.
+// grass/ground.frag: the ground layer. Seed 003 §2.5 far grass: a top-view grass texture whose
+// (equalised noise) alpha is thresholded by density * fade * coverage per pixel, so neighbouring
+// areas of different density join without seams and the layer appears texel by texel as it
+// fades in. With the under-layer on (far_field.hpp), texels below that threshold are not
+// discarded but drawn as the grass's undergrowth wherever the density map has grass (alpha <
+// density): the same colour family and light as the blades, a little darker, so gaps between
+// blades near the camera and between clumps further out show grass, not a different ground.
 #include "grass/far.glsl"
-#include "render/lib/lighting.glsl"
+#include "grass/color.glsl"
 #include "render/lib/fog.glsl"
 #include "render/lib/shadows.glsl"
 
 layout(binding = 0) uniform sampler2D u_ground;
 layout(binding = 1) uniform sampler2D u_density;
 
-uniform vec3 u_camera;
 uniform vec4 u_fades;        // mid, mid_fade, far, far_fade
 uniform float u_texture_scale;
 uniform vec2 u_origin_xz;    // blade-set origin modulo the texture repeat
 uniform vec2 u_map_min;      // density map rectangle, blade-set local x/z
 uniform vec2 u_map_size;
+uniform vec4 u_layer_rect;   // the layer's rectangle (map rectangle grown by the margin), local x/z: min, max
 uniform vec3 u_base_color;
 uniform vec3 u_tip_color;
 uniform int u_receive_shadows;  // sun term times the render core's cascaded shadows
 uniform vec3 u_coverage;     // x tau_side, y tau_top, z gain (far_field.hpp coverage model)
+uniform vec4 u_shading;      // x brightness (calibration), y ambient, z under-layer on (0/1), w under-layer shade
+uniform float u_translucency;  // the blades' shading.translucency
 
 in vec3 g_local;
 in vec3 g_rel_pos;
 in vec3 g_normal;
+in vec3 g_color;
 
 out vec4 o_color;
 
 void main() {
-  vec2 m = (g_local.xz - u_map_min) / u_map_size;
-  if (any(lessThan(m, vec2(0.0))) || any(greaterThan(m, vec2(1.0)))) discard;
+  if (any(lessThan(g_local.xz, u_layer_rect.xy)) || any(greaterThan(g_local.xz, u_layer_rect.zw))) discard;
+  // Outside the map rectangle (the layer's margin) the density continues the map's edge.
+  vec2 m = clamp((g_local.xz - u_map_min) / u_map_size, vec2(0.0), vec2(1.0));
   // Image rows run along +z and uploads flip rows: v = 1 at the rectangle's min z.
   float density = texture(u_density, vec2(m.x, 1.0 - m.y)).r;
-  float fade = grass_ground_fade(length(g_local - u_camera), u_fades);
+  float distance = length(g_rel_pos);
+  float fade = grass_ground_fade(distance, u_fades);
   vec4 t = texture(u_ground, (g_local.xz + u_origin_xz) / u_texture_scale);
   vec3 n = normalize(g_normal);
-  float s = clamp(abs(dot(normalize(g_rel_pos), n)), 0.05, 1.0);
+  float s = clamp(abs(dot(g_rel_pos / max(distance, 1e-6), n)), 0.05, 1.0);
   float cot_elevation = sqrt(max(1.0 - s * s, 0.0)) / s;
   float cover = 1.0 - exp(-u_coverage.z * (u_coverage.y + u_coverage.x * cot_elevation));
-  if (!(t.a < density * fade * cover)) discard;
-  vec3 albedo = mix(u_base_color, u_tip_color, 0.55) * t.rgb * 1.4;
+  bool top = t.a < density * fade * cover;
+  // 1.004: the largest 8-bit alpha is 1.0, which "< 1" would leave as a hole at full density.
+  bool under = u_shading.z > 0.5 && t.a < 1.004 * density * (1.0 - grass_ramp(distance, u_fades.z - u_fades.w, u_fades.z));
+  if (!top && !under) discard;
+  vec3 albedo = grass_mean_albedo(u_base_color, u_tip_color) * g_color * (t.rgb * 1.4);
+  if (!top) albedo *= u_shading.w;
   float lit = u_receive_shadows != 0 ? sylva_shadow(g_rel_pos, n) : 1.0;
-  vec3 color = albedo * (sun_radiance() * (0.5 * max(dot(n, sun_direction()), 0.0) + 0.1) * lit + hemisphere_ambient(n) * 0.35);
+  vec3 color = albedo * grass_canopy_light(n, u_translucency, lit, u_shading.y) * u_shading.x;
   o_color = vec4(apply_fog(color, g_rel_pos), 1.0);
 }

@@ -6,6 +6,7 @@
 #include <sylva/core/params.hpp>
 #include <sylva/core/rng.hpp>
 #include <sylva/grass/culling.hpp>
+#include <sylva/grass/field_color.hpp>
 #include <sylva/render/frame_context.hpp>
 
 #include <fmt/format.h>
@@ -25,6 +26,7 @@ namespace {
 constexpr GLuint kClumpsBinding = 5;
 constexpr GLuint kWindUboBinding = 1;
 constexpr float kPi = std::numbers::pi_v<float>;
+constexpr std::size_t kGroundFloats = 9;  // ground layer vertex: position, normal, field colour
 
 float ramp(float d, float a, float b) {
   if (!(b > a)) return d >= b ? 1.0f : 0.0f;
@@ -68,6 +70,28 @@ void box_distances(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi,
 }
 
 }  // namespace
+
+Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin) {
+  const Rect in = maps.rect();
+  if (!(margin > 0.0) || in.empty()) return maps;
+  const Rect out{in.min - margin, in.max + margin};
+  const glm::dvec2 texel = glm::max(maps.density_texel(), out.size() / 2048.0);
+  const int w = std::max(1, static_cast<int>(std::ceil(out.size().x / texel.x)));
+  const int h = std::max(1, static_cast<int>(std::ceil(out.size().y / texel.y)));
+  Image density(w, h, 1), height(w, h, 1), tint(w, h, 3);
+  // Sample points clamped a hair inside the original rectangle, where every map is defined.
+  const glm::dvec2 lo = in.min + 1e-6 * in.size(), hi = in.max - 1e-6 * in.size();
+  for (int j = 0; j < h; ++j) {
+    for (int i = 0; i < w; ++i) {
+      const glm::dvec2 p = glm::clamp(out.min + (glm::dvec2(i, j) + 0.5) * out.size() / glm::dvec2(w, h), lo, hi);
+      density.at(i, j, 0) = maps.density(p.x, p.y);
+      height.at(i, j, 0) = maps.height_scale(p.x, p.y);
+      const glm::vec3 t = maps.tint(p.x, p.y);
+      for (int c = 0; c < 3; ++c) tint.at(i, j, c) = t[c];
+    }
+  }
+  return GrassMaps::from_images(out, &density, &height, &tint);
+}
 
 float clump_fade(float d, float near_distance, const FarFieldSettings& s) {
   const float in = ramp(d, near_distance - s.clump_fade_in, near_distance);
@@ -116,7 +140,8 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
         const glm::vec3 root(static_cast<float>(wx - origin.x), static_cast<float>(ground.height(wx, wz) - origin.y),
                              static_cast<float>(wz - origin.z));
         const float h = std::max(mean_height * (0.8f + 0.4f * unit(p.hash, 21u)) * maps.height_scale(wx, wz), blade.min_height);
-        const glm::vec3 tint = maps.tint(wx, wz) * (1.0f + blade.color_variation * (2.0f * unit(p.hash, 22u) - 1.0f));
+        const glm::vec3 tint = maps.tint(wx, wz) * field_color(wx, wz, blade, field.seed) *
+                               (1.0f + blade.color_variation * (2.0f * unit(p.hash, 22u) - 1.0f));
         Clump c;
         c.root = glm::vec4(root, unit(p.hash, 23u) * kPi);
         c.size = glm::vec4(far.clump_width * (0.8f + 0.4f * unit(p.hash, 24u)), h, p.rank,
@@ -279,7 +304,10 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
                                   const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
   render::embedded::register_render_shaders();
   render::embedded::register_grass_shaders();
-  auto clumps = generate_clumps(field, blade, maps, ground, origin, far);
+  SYLVA_TRY(validate_params(far, "grass.far"));
+  auto clump_maps = extend_maps(maps, far.clump_margin);
+  if (!clump_maps) return clump_maps.error();
+  auto clumps = generate_clumps(field, blade, *clump_maps, ground, origin, far);
   if (!clumps) return clumps.error();
 
   FarField f;
@@ -304,39 +332,56 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
   f.clump_vao_ = render::VertexArray::create();
 
-  // Ground layer: chunks of 16 x 16 quads over the map rectangle, following the height field.
-  const double spacing = far.ground_spacing;
-  const Rect area = maps.rect();
-  std::vector<float> vertices;     // xyz local position, xyz normal
+  // Ground layer: chunks of 16 x 16 quads over the map rectangle and its margin, with the field's
+  // colour per vertex (its patches are metres wide). Vertices sit on the height field's own samples
+  // (every k-th, k = ground_spacing / spacing rounded, at least 1) and quads are split along the
+  // same diagonal as the scene's ground mesh: with k = 1 the layer is that mesh lifted by
+  // ground_offset exactly. A layer through bilinear heights at other points left the ground mesh
+  // of a 6.25 m hilly height field up to decimetres above it (the layer vanished in patches).
+  const Rect area{maps.rect().min - static_cast<double>(far.ground_margin), maps.rect().max + static_cast<double>(far.ground_margin)};
+  f.layer_rect_ = area;
+  const double sp = ground.spacing();
+  const int k = std::max(1, static_cast<int>(std::lround(far.ground_spacing / sp)));
+  auto grid = [&](double w, int count, bool up) {
+    const double g = w / sp;
+    return std::clamp(static_cast<int>(up ? std::ceil(g) : std::floor(g)), 0, count - 1);
+  };
+  const int gi0 = grid(area.min.x - ground.origin().x, ground.columns(), false);
+  const int gi1 = grid(area.max.x - ground.origin().x, ground.columns(), true);
+  const int gj0 = grid(area.min.y - ground.origin().y, ground.rows(), false);
+  const int gj1 = grid(area.max.y - ground.origin().y, ground.rows(), true);
+  std::vector<float> vertices;     // xyz local position, xyz normal, rgb field colour
   std::vector<std::uint32_t> indices;
   constexpr int kQuads = 16;
-  const double chunk = spacing * kQuads;
-  const int cx = static_cast<int>(std::ceil(area.size().x / chunk));
-  const int cz = static_cast<int>(std::ceil(area.size().y / chunk));
+  const int cx = (gi1 - gi0 + k * kQuads - 1) / (k * kQuads);
+  const int cz = (gj1 - gj0 + k * kQuads - 1) / (k * kQuads);
   if (static_cast<double>(cx) * cz * (kQuads + 1) * (kQuads + 1) > 2.0e7) {
-    return make_error(ErrorCode::kLimit, fmt::format("grass.far.ground_spacing: {} m gives more than 20 million ground vertices", spacing));
+    return make_error(ErrorCode::kLimit, fmt::format("grass.far.ground_spacing: {} m gives more than 20 million ground vertices", far.ground_spacing));
   }
   for (int j = 0; j < cz; ++j) {
     for (int i = 0; i < cx; ++i) {
       GroundChunk gc;
       gc.first_index = static_cast<std::uint32_t>(indices.size());
-      const auto base = static_cast<std::uint32_t>(vertices.size() / 6);
+      const auto base = static_cast<std::uint32_t>(vertices.size() / kGroundFloats);
       glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
       for (int b = 0; b <= kQuads; ++b) {
         for (int a = 0; a <= kQuads; ++a) {
-          const double wx = std::min(area.min.x + (i * kQuads + a) * spacing, area.max.x);
-          const double wz = std::min(area.min.y + (j * kQuads + b) * spacing, area.max.y);
-          const glm::vec3 n = ground.normal(wx, wz);
-          const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(ground.height(wx, wz) - origin.y),
+          const int si = std::min(gi0 + (i * kQuads + a) * k, gi1);
+          const int sj = std::min(gj0 + (j * kQuads + b) * k, gj1);
+          const double wx = ground.origin().x + si * sp, wz = ground.origin().y + sj * sp;
+          const glm::vec3 n = ground.sample_normal(si, sj);
+          const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(static_cast<double>(ground.sample(si, sj)) - origin.y),
                             static_cast<float>(wz - origin.z));
           const glm::vec3 q = p + n * far.ground_offset;
-          vertices.insert(vertices.end(), {q.x, q.y, q.z, n.x, n.y, n.z});
+          const glm::vec3 col = field_color(wx, wz, blade, field.seed);
+          vertices.insert(vertices.end(), {q.x, q.y, q.z, n.x, n.y, n.z, col.r, col.g, col.b});
           lo = glm::min(lo, q);
           hi = glm::max(hi, q);
         }
       }
       for (int b = 0; b < kQuads; ++b) {
         for (int a = 0; a < kQuads; ++a) {
+          // Split along the (i + 1, j) - (i, j + 1) diagonal, like the scene's ground mesh.
           const std::uint32_t v00 = base + static_cast<std::uint32_t>(b * (kQuads + 1) + a);
           const std::uint32_t v10 = v00 + 1, v01 = v00 + kQuads + 1, v11 = v01 + 1;
           indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
@@ -348,14 +393,15 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
       f.chunks_.push_back(gc);
     }
   }
-  if (vertices.empty()) vertices.assign(6, 0.0f);
+  if (vertices.empty()) vertices.assign(kGroundFloats, 0.0f);
   if (indices.empty()) indices.assign(3, 0u);
   f.ground_vertices_ = render::Buffer::immutable(std::span<const float>(vertices));
   f.ground_indices_ = render::Buffer::immutable(std::span<const std::uint32_t>(indices));
   f.ground_vao_ = render::VertexArray::create();
   f.ground_vao_.attribute(0, 0, 3, GL_FLOAT, 0);
   f.ground_vao_.attribute(1, 0, 3, GL_FLOAT, 3 * sizeof(float));
-  f.ground_vao_.vertex_buffer(0, f.ground_vertices_, 6 * sizeof(float));
+  f.ground_vao_.attribute(2, 0, 3, GL_FLOAT, 6 * sizeof(float));
+  f.ground_vao_.vertex_buffer(0, f.ground_vertices_, kGroundFloats * sizeof(float));
   f.ground_vao_.index_buffer(f.ground_indices_);
 
   // Textures: alpha holds thresholds, so the mip chains are coverage-preserving (see
@@ -376,8 +422,10 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
 }
 
 void FarField::set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
-                        const glm::vec3& tip_color) {
+                        const glm::vec3& tip_color, float ambient, float translucency) {
   near_distance_ = near_distance;
+  ambient_ = ambient;
+  translucency_ = translucency;
   wind_response_ = wind_response;
   mean_stiffness_ = mean_stiffness;
   base_color_ = base_color;
@@ -408,7 +456,8 @@ void FarField::update(const render::Camera& camera, glm::ivec2 viewport) {
     for (std::uint32_t i = 0; i < chunks_.size(); ++i) {
       const GroundChunk& c = chunks_[i];
       box_distances(camera_local_, c.bounds_min, c.bounds_max, nearest, farthest);
-      if (nearest >= s.far_distance || farthest <= s.mid_distance - s.mid_fade) continue;
+      const float starts = s.under_layer ? 0.0f : s.mid_distance - s.mid_fade;
+      if (nearest >= s.far_distance || farthest <= starts) continue;
       if (!box_visible(view, c.bounds_min, c.bounds_max)) continue;
       visible_chunks_.push_back(i);
     }
@@ -442,6 +491,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_base_color", base_color_);
     p.set("u_tip_color", tip_color_);
     p.set("u_receive_shadows", receive ? 1 : 0);
+    p.set("u_shading", glm::vec3(s.clump_brightness, ambient_, translucency_));
     atlas_.bind(0);
     clump_vao_.bind();
     p.use();
@@ -463,15 +513,19 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_origin_rel", origin_rel);
     p.set("u_origin_xz", glm::vec2(static_cast<float>(std::fmod(origin_.x, static_cast<double>(s.texture_scale))),
                                    static_cast<float>(std::fmod(origin_.z, static_cast<double>(s.texture_scale)))));
-    p.set("u_camera", camera_local_);
     p.set("u_fades", glm::vec4(s.mid_distance, s.mid_fade, far_fades.x, far_fades.y));
     p.set("u_texture_scale", s.texture_scale);
     p.set("u_coverage", glm::vec3(tau_side_, tau_top_, s.coverage_gain));
     p.set("u_map_min", glm::vec2(glm::dvec2(map_rect_.min) - glm::dvec2(origin_.x, origin_.z)));
     p.set("u_map_size", glm::vec2(map_rect_.size()));
+    p.set("u_layer_rect", glm::vec4(glm::dvec2(layer_rect_.min) - glm::dvec2(origin_.x, origin_.z),
+                                    glm::dvec2(layer_rect_.max) - glm::dvec2(origin_.x, origin_.z)));
     p.set("u_base_color", base_color_);
     p.set("u_tip_color", tip_color_);
     p.set("u_receive_shadows", receive ? 1 : 0);
+    p.set("u_shading", glm::vec4(s.ground_brightness, ambient_, s.under_layer ? 1.0f : 0.0f, s.under_shade));
+    p.set("u_lift_per_m", s.lift_per_m);
+    p.set("u_translucency", translucency_);
     ground_texture_.bind(0);
     density_.bind(1);
     ground_vao_.bind();

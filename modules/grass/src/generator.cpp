@@ -2,6 +2,7 @@
 
 #include <sylva/core/params.hpp>
 #include <sylva/core/rng.hpp>
+#include <sylva/grass/field_color.hpp>
 #include <sylva/grass/physics.hpp>
 
 #include <fmt/format.h>
@@ -220,7 +221,7 @@ void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, 
     glm::vec3 up(0.0f, 1.0f, 0.0f);
     if (field.up_normal_blend > 0.0f) up = glm::normalize(glm::mix(up, ground.normal(x, z), field.up_normal_blend));
     const glm::vec3 root(static_cast<float>(x - origin.x), static_cast<float>(y - origin.y), static_cast<float>(z - origin.z));
-    out.push_back(make_blade(blade, p.hash, root, up, maps.height_scale(x, z), maps.tint(x, z), p.rank));
+    out.push_back(make_blade(blade, p.hash, root, up, maps.height_scale(x, z), maps.tint(x, z) * field_color(x, z, blade, field.seed), p.rank));
   }
 }
 
@@ -369,8 +370,8 @@ Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const 
         if (len > 1e-6f && std::isfinite(len)) up = n / len;
       }
       const std::uint32_t bh = hash_u32(i, th);
-      Blade b = make_blade(blade, bh, root, up, 1.0f, glm::vec3(1.0f), unit(bh, kSaltRank));
       const glm::dvec3 world = origin + glm::dvec3(root);
+      Blade b = make_blade(blade, bh, root, up, 1.0f, field_color(world.x, world.z, blade, field.seed), unit(bh, kSaltRank));
       keys.push_back({{static_cast<std::int32_t>(std::floor(world.x / ts)), static_cast<std::int32_t>(std::floor(world.y / ts)),
                        static_cast<std::int32_t>(std::floor(world.z / ts))},
                       static_cast<std::uint32_t>(blades.size()), expected[t] / count});

@@ -128,7 +128,8 @@ class GrassInstance final : public ModuleInstance {
       // Per-frame far-field settings; the ones marked kOffline only change on a rebuild.
       far_->settings() = s.far;
       far_->set_near(s.render.cull.near_distance, s.render.physics.wind_response,
-                     0.5f * (s.blade.stiffness_min + s.blade.stiffness_max), s.render.base_color, s.render.tip_color);
+                     0.5f * (s.blade.stiffness_min + s.blade.stiffness_max), s.render.base_color, s.render.tip_color,
+                     s.render.shading.ambient, s.render.shading.translucency);
     }
   }
 

@@ -29,6 +29,16 @@
 // projected side area of randomly turned blades) and tau_top = 0.2 * that (leaning tips).
 // ground_coverage() is its CPU twin; the dolly test calibrates coverage_gain.
 //
+// Under-layer (not in seed 003). Seed 003 lets the terrain show between blades and between
+// clumps; any difference between that terrain and the grass then reads as a band where the
+// blades thin into clumps (measured 35..150 m). With `under_layer` the ground layer draws from
+// the camera on: where the threshold above rejects a texel but the density map has grass (alpha <
+// density), it draws undergrowth (the grass's mean colour times `under_shade`, same light). The
+// seed's far texture keeps its role: it is the top-view grass that takes over beyond the clumps.
+// All three representations share grass/color.glsl (albedo, dry tips, light) and the colour
+// field of field_color.hpp, and `clump_brightness` / `ground_brightness` calibrate their means
+// to the blades' (grass_band_gl_test measures the field's brightness in distance bins).
+//
 // Height fields only (a mesh field has no far field: draw its blades to near_distance).
 
 #include <sylva/core/height_field.hpp>
@@ -63,11 +73,23 @@ struct FarFieldSettings {
   float far_distance = 2000.0f;   // the ground layer ends [m]
   float far_fade = 200.0f;        // ground fade-out band before far_distance [m]
   float ground_offset = 0.03f;    // ground layer lift above the surface [m]
-  float ground_spacing = 2.0f;    // vertex spacing of the ground layer mesh [m]
+  float ground_spacing = 2.0f;    // vertex spacing of the ground layer mesh [m], rounded to height-field samples
   float texture_scale = 3.0f;     // world metres per repeat of the ground texture [m]
   float sway = 0.5f;              // clump sway relative to the blades' wind response
   float coverage_gain = 0.6f;     // calibration of the ground layer's coverage model (see below)
   bool receive_shadows = true;    // clumps and ground layer receive the render core's sun shadows
+  // Under-layer (header comment): the ground layer also draws from the camera on, as undergrowth.
+  bool under_layer = true;
+  float under_shade = 1.0f;       // undergrowth albedo relative to the layer's grass texels
+  // Brightness calibrations: the mean of each far representation against the blades' mean at
+  // the same place (measured, README "Colour and brightness across the LODs").
+  float clump_brightness = 0.8f;
+  float ground_brightness = 0.55f;
+  float lift_per_m = 0.0005f;     // extra ground-layer lift per metre of distance [m/m]
+  // Margins: clumps and the ground layer continue beyond the blades' rectangle with the density
+  // (and height, tint) of its edge, so a field of blades near the camera can run to the horizon.
+  float clump_margin = 0.0f;      // [m]
+  float ground_margin = 0.0f;     // [m]
 
   template <class V>
   void visit(V& v) {
@@ -90,8 +112,22 @@ struct FarFieldSettings {
     v(coverage_gain, "coverage_gain", {.min = 0.0f, .max = 10.0f,
                                        .help = "Scales the ground layer's coverage to match the blades"});
     v(receive_shadows, "receive_shadows", {.help = "Clumps and the ground layer receive the sun's cascaded shadows"});
+    v(under_layer, "under_layer", {.help = "The ground layer also draws near the camera, as undergrowth between the blades"});
+    v(under_shade, "under_shade", {.min = 0.0f, .max = 2.0f, .help = "Undergrowth brightness relative to the layer's grass"});
+    v(clump_brightness, "clump_brightness", {.min = 0.0f, .max = 4.0f, .help = "Clump brightness calibration against the blades"});
+    v(ground_brightness, "ground_brightness", {.min = 0.0f, .max = 4.0f,
+                                               .help = "Ground layer brightness calibration against the blades"});
+    v(lift_per_m, "lift_per_m", {.min = 0.0f, .max = 0.1f, .unit = "m/m", .help = "Ground layer lift per metre of distance"});
+    v(clump_margin, "clump_margin", {.min = 0.0f, .max = 10000.0f, .unit = "m",
+                                     .help = "Clumps continue this far beyond the grass area", .rebuild = Rebuild::kOffline});
+    v(ground_margin, "ground_margin", {.min = 0.0f, .max = 100000.0f, .unit = "m",
+                                       .help = "The ground layer continues this far beyond the grass area", .rebuild = Rebuild::kOffline});
   }
 };
+
+// `maps` over its rectangle grown by `margin` metres on every side; outside the original rectangle
+// every map continues its edge value. Texels keep the density map's size up to 2048 per side.
+Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin);
 
 // Fade weights in [0, 1] of the three representations at distance d (header comment).
 float clump_fade(float distance, float near_distance, const FarFieldSettings& s);
@@ -139,9 +175,10 @@ class FarField : public render::Drawable {
                                  const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far = {});
 
   FarFieldSettings& settings() { return settings_; }
-  // The blades' culling, wind response and colours (to match the near field).
+  // The blades' culling, wind response, colours and shading (ambient, translucency: ShadingSettings),
+  // so the far representations match the near field.
   void set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
-                const glm::vec3& tip_color);
+                const glm::vec3& tip_color, float ambient = 0.35f, float translucency = 0.5f);
 
   void update(const render::FrameContext& frame) override;
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
@@ -167,6 +204,8 @@ class FarField : public render::Drawable {
   float tau_top_ = 0.0f;
   glm::vec3 base_color_{0.045f, 0.16f, 0.035f};
   glm::vec3 tip_color_{0.28f, 0.55f, 0.12f};
+  float ambient_ = 0.35f;
+  float translucency_ = 0.5f;
   std::vector<GrassTile> clump_tiles_;
   std::vector<GroundChunk> chunks_;
   std::vector<std::uint32_t> visible_clump_tiles_;
@@ -188,6 +227,7 @@ class FarField : public render::Drawable {
   render::Program clump_program_;
   render::Program ground_program_;
   Rect map_rect_;
+  Rect layer_rect_;  // the ground layer's rectangle: map_rect_ grown by ground_margin
 };
 
 }  // namespace sylva::grass

@@ -50,6 +50,11 @@ struct BladeSettings {
   float stiffness_max = 80.0f;   // [1/s]
   float height_width_correlation = 0.5f;  // 0: independent randoms; 1: seed 001's single random for both
   float color_variation = 0.15f;  // per-blade multiplicative jitter of each channel (seed's r5..r7)
+  // Field colour (field_color.hpp): lush/dry patches and per-clump hue, shared by all three LODs.
+  float patch_variation = 0.35f;  // strength of the low-frequency lush/dry patches [0..1]
+  float patch_size = 14.0f;       // feature size of the patches [m]
+  float clump_variation = 0.12f;  // strength of the per-clump hue and brightness offset [0..1]
+  float clump_size = 0.7f;        // side of a clump cell [m]
 
   template <class V>
   void visit(V& v) {
@@ -65,6 +70,14 @@ struct BladeSettings {
     v(height_width_correlation, "height_width_correlation",
       {.min = 0.0f, .max = 1.0f, .help = "1 = tall blades are wide (seed 001), 0 = independent", .rebuild = Rebuild::kOffline});
     v(color_variation, "color_variation", {.min = 0.0f, .max = 1.0f, .help = "Per-blade colour jitter", .rebuild = Rebuild::kOffline});
+    v(patch_variation, "patch_variation", {.min = 0.0f, .max = 1.0f, .help = "Lush/dry colour patches across the field",
+                                           .rebuild = Rebuild::kOffline});
+    v(patch_size, "patch_size", {.min = 0.5f, .max = 1000.0f, .unit = "m", .help = "Size of the colour patches",
+                                 .rebuild = Rebuild::kOffline});
+    v(clump_variation, "clump_variation", {.min = 0.0f, .max = 1.0f, .help = "Hue and brightness offset per clump of blades",
+                                           .rebuild = Rebuild::kOffline});
+    v(clump_size, "clump_size", {.min = 0.05f, .max = 20.0f, .unit = "m", .help = "Side of a clump cell",
+                                 .rebuild = Rebuild::kOffline});
   }
 };
 
