@@ -143,6 +143,16 @@ class Parser {
     return make_error(code, fmt::format("{}:{}: {}", options_.source_name, line, what));
   }
 
+  // A repair of a seed-valid file: a warning naming the line (objt.hpp lists the repairs).
+  void warn(int line, const std::string& what) const {
+    std::string text = fmt::format("{}:{}: {}", options_.source_name, line, what);
+    if (options_.warnings) {
+      options_.warnings->push_back(std::move(text));
+    } else {
+      log_warn("{}", text);
+    }
+  }
+
   Status lex() {
     int line_no = 0;
     std::optional<Record> open;     // the block being read
@@ -299,11 +309,14 @@ class Parser {
     const bool good = unit(f.r) && unit(f.s) && unit(f.t) && std::fabs(glm::dot(f.r, f.t)) <= kTol &&
                       glm::length(glm::cross(f.t, f.r) - f.s) <= 2.0f * kTol;
     if (good) return ok_status();
+    const bool left_handed = glm::dot(glm::cross(f.t, f.r), f.s) < 0.0f;
+    if (left_handed && options_.strict)
+      return error(line('s'), fmt::format("{} {}: field 's': the frame is left-handed (s = -(t x r))", what, r.id));
     BranchFrame g = f;
     if (!orthonormalize(g))
       return error(line('r'), fmt::format("{} {}: field 'r': the vector is parallel to t", what, r.id));
-    log_warn("{}:{}: {} {}: frame is not orthonormal and right-handed; re-orthonormalised keeping t and r",
-             options_.source_name, r.line, what, r.id);
+    warn(r.line, left_handed ? fmt::format("{} {}: frame is left-handed; s flipped to t x r", what, r.id)
+                             : fmt::format("{} {}: frame is not orthonormal; re-orthonormalised keeping t and r", what, r.id));
     f = g;
     return ok_status();
   }
@@ -351,7 +364,13 @@ Result<TreeModel> Parser::build() {
     const auto it = branch_index.find(p);
     if (it == branch_index.end())
       return error(line_of(r, 'p'), fmt::format("branch {}: field 'p': parent branch {} does not exist", r.id, p));
-    if (it->second == i) return error(line_of(r, 'p'), fmt::format("branch {}: field 'p': a branch cannot be its own parent (cycle {} -> {})", r.id, r.id, r.id));
+    if (it->second == i) {
+      // The seed leaves the trunk's parent open; a file may name the trunk itself.
+      if (options_.strict)
+        return error(line_of(r, 'p'), fmt::format("branch {}: field 'p': a branch cannot be its own parent (cycle {} -> {})", r.id, r.id, r.id));
+      warn(line_of(r, 'p'), fmt::format("branch {}: field 'p': the branch names itself as its parent; read as a root (level 0)", r.id));
+      continue;
+    }
     parent[static_cast<std::size_t>(i)] = it->second;
   }
   std::vector<int> state(static_cast<std::size_t>(nb), 0);  // 0 new, 1 on the current walk, 2 done
@@ -397,15 +416,16 @@ Result<TreeModel> Parser::build() {
     const auto l = static_cast<int>(num(r, 'l'));
     if (l != expected) {
       const int p = parent[static_cast<std::size_t>(i)];
-      return error(line_of(r, 'l'),
-                   p < 0 ? fmt::format("branch {}: field 'l': level {} but a root (p < 0) has level 0", r.id, l)
-                         : fmt::format("branch {}: field 'l': level {} but its parent {} has level {}", r.id, l,
-                                       branch_recs[static_cast<std::size_t>(p)]->id, expected - 1));
+      const std::string what = p < 0 ? fmt::format("branch {}: field 'l': level {} but a root has level 0", r.id, l)
+                                      : fmt::format("branch {}: field 'l': level {} but its parent {} has level {}", r.id, l,
+                                                    branch_recs[static_cast<std::size_t>(p)]->id, expected - 1);
+      if (options_.strict) return error(line_of(r, 'l'), what);
+      warn(line_of(r, 'l'), fmt::format("{}; level {} used", what, expected));
     }
-    if (l >= kMaxLevels)
+    if (expected >= kMaxLevels)
       return error(line_of(r, 'l'),
-                   fmt::format("branch {}: field 'l': level {} exceeds the supported {} levels (trunk + {})", r.id, l,
-                               kMaxLevels, kMaxLevels - 1),
+                   fmt::format("branch {}: level {} (from its parent chain) exceeds the supported {} levels (trunk + {})",
+                               r.id, expected, kMaxLevels, kMaxLevels - 1),
                    ErrorCode::kLimit);
   }
 
@@ -443,10 +463,12 @@ Result<TreeModel> Parser::build() {
     const glm::vec3 k = vec(r, 'k');
     const glm::vec3 expected_end = b.axis_point(1.0f);
     const float miss = glm::length(k - expected_end);
-    if (!(miss <= 1.0e-3f + 0.01f * b.length))
-      return error(line_of(r, 'k'),
-                   fmt::format("branch {}: field 'k': end point ({}, {}, {}) is {:.4g} m from z + d t = ({}, {}, {})", r.id,
-                               k.x, k.y, k.z, miss, expected_end.x, expected_end.y, expected_end.z));
+    if (!(miss <= 1.0e-3f + 0.01f * b.length)) {
+      const std::string what = fmt::format("branch {}: field 'k': end point ({}, {}, {}) is {:.4g} m from z + d t = ({}, {}, {})",
+                                           r.id, k.x, k.y, k.z, miss, expected_end.x, expected_end.y, expected_end.z);
+      if (options_.strict) return error(line_of(r, 'k'), what);
+      warn(line_of(r, 'k'), what + "; k ignored, the branch ends at z + d t");
+    }
     if (r.fields.count('w') != 0) {
       b.radius_base = static_cast<float>(num(r, 'w', 0));
       b.radius_tip = static_cast<float>(num(r, 'w', 1));

@@ -144,6 +144,7 @@ struct Malformed {
   std::string text;
   std::vector<std::string> expected;  // substrings of the message
   ErrorCode code = ErrorCode::kParse;
+  bool strict_only = false;           // a seed-valid file: refused only with ObjtReadOptions::strict
 };
 
 // Replaces the first occurrence of `from` in the seed example.
@@ -161,7 +162,7 @@ TEST(Objt, MalformedFilesNameTheLineAndField) {
       {"missing leaf field", edited("    x    0.9\n", ""), {"leaf 5", "missing field 'x'"}},
       {"bad parent index", edited("    p    0\n", "    p    42\n"), {":22:", "field 'p'", "parent branch 42 does not exist"}},
       {"bad leaf parent", edited("    p    1\n    x    0.9", "    p    9\n    x    0.9"), {"leaf 5", "field 'p'", "parent branch 9 does not exist"}},
-      {"self parent", edited("    p    0\n", "    p    1\n"), {"field 'p'", "own parent"}},
+      {"self parent", edited("    p    0\n", "    p    1\n"), {"field 'p'", "own parent"}, ErrorCode::kParse, true},
       {"cycle",
        R"(B 1 {
  l 1
@@ -188,8 +189,8 @@ B 2 {
 )",
        {"field 'p'", "form a cycle", "1 -> 2 -> 1"}},
       {"duplicate id", edited("B 1 {", "B 0 {"), {":14:", "identifier 0 is used twice (first at line 3)"}},
-      {"level mismatch", edited("    l    1 ", "    l    2 "), {":15:", "field 'l'", "its parent 0 has level 0"}},
-      {"root level", edited("    l    0\n", "    l    1\n"), {":4:", "field 'l'", "a root"}},
+      {"level mismatch", edited("    l    1 ", "    l    2 "), {":15:", "field 'l'", "its parent 0 has level 0"}, ErrorCode::kParse, true},
+      {"root level", edited("    l    0\n", "    l    1\n"), {":4:", "field 'l'", "a root"}, ErrorCode::kParse, true},
       {"not a number", edited("    d    2\n", "    d    two\n"), {":16:", "field 'd'", "'two' is not a number"}},
       {"wrong count", edited("    z    0 3 0\n", "    z    0 3\n"), {":17:", "field 'z' expects 3 values, got 2"}},
       {"unknown field", edited("    x    0\n", "    x    0\n    q 1\n"), {":13:", "unknown field 'q'"}},
@@ -197,7 +198,9 @@ B 2 {
       {"unterminated", seed_example_objt().substr(0, seed_example_objt().rfind('}')), {"leaf 5", "not closed"}},
       {"x out of range", edited("    x    0.6\n", "    x    1.5\n"), {"field 'x'", "outside [0, 1]"}},
       {"negative length", edited("    d    2\n", "    d    -2\n"), {"field 'd'", "negative"}},
-      {"inconsistent end", edited("    k    2 3 0\n", "    k    2 4 0\n"), {":18:", "field 'k'"}},
+      {"inconsistent end", edited("    k    2 3 0\n", "    k    2 4 0\n"), {":18:", "field 'k'"}, ErrorCode::kParse, true},
+      {"left-handed frame", edited("    s    0 0 1\n    t    1 0 0\n    p    0", "    s    0 0 -1\n    t    1 0 0\n    p    0"),
+       {":20:", "field 's'", "left-handed"}, ErrorCode::kParse, true},
       {"zero frame", edited("    t    1 0 0\n", "    t    0 0 0\n"), {"field 't'", "zero"}},
       {"parallel frame", edited("    r    0 1 0\n    s    0 0 1\n    t    1 0 0\n    p    0",
                                 "    r    1 0 0\n    s    0 0 1\n    t    1 0 0\n    p    0"),
@@ -209,11 +212,44 @@ B 2 {
       {"leaf size", edited("    x    0.9\n", "    x    0.9\n    w    0 0.1\n"), {"field 'w'", "must be positive"}},
   };
   for (const Malformed& c : cases) {
-    Result<TreeModel> m = parse_objt(c.text);
+    ObjtReadOptions strict;
+    strict.strict = true;
+    Result<TreeModel> m = parse_objt(c.text, strict);
     ASSERT_FALSE(m.ok()) << c.what;
     EXPECT_EQ(m.error().code, c.code) << c.what << ": " << m.error().message;
     for (const std::string& part : c.expected)
       EXPECT_NE(m.error().message.find(part), std::string::npos) << c.what << ": '" << part << "' not in: " << m.error().message;
+  }
+}
+
+// Issue #16: what the seed leaves open or its tools may write loads, repaired, with a warning
+// naming the line and the repair; the strict option refuses the same files (test above).
+TEST(Objt, SeedValidFilesLoadWithRepairWarnings) {
+  struct Lenient {
+    const char* what;
+    std::string text;
+    std::vector<std::string> expected;  // substrings of the one warning
+  };
+  const std::vector<Lenient> cases = {
+      {"trunk is its own parent", edited("    p    -1\n", "    p    0\n"), {":11:", "branch 0", "names itself", "root"}},
+      {"level off the chain", edited("    l    1 ", "    l    2 "), {":15:", "field 'l'", "level 1 used"}},
+      {"end point off z + d t", edited("    k    2 3 0\n", "    k    2 4 0\n"), {":18:", "field 'k'", "k ignored"}},
+      {"left-handed frame", edited("    s    0 0 1\n    t    1 0 0\n    p    0", "    s    0 0 -1\n    t    1 0 0\n    p    0"),
+       {":14:", "branch 1", "left-handed", "s flipped"}},
+  };
+  const Result<TreeModel> reference = parse_objt(seed_example_objt());
+  ASSERT_TRUE(reference.ok()) << reference.error().describe();
+  for (const Lenient& c : cases) {
+    std::vector<std::string> warnings;
+    ObjtReadOptions options;
+    options.warnings = &warnings;
+    Result<TreeModel> m = parse_objt(c.text, options);
+    ASSERT_TRUE(m.ok()) << c.what << ": " << m.error().describe();
+    ASSERT_EQ(warnings.size(), 1u) << c.what;
+    for (const std::string& part : c.expected)
+      EXPECT_NE(warnings[0].find(part), std::string::npos) << c.what << ": '" << part << "' not in: " << warnings[0];
+    // Repaired to the seed example itself: same hierarchy, levels and geometry.
+    expect_same_model(*m, *reference);
   }
 }
 
@@ -227,7 +263,7 @@ TEST(Objt, TooDeepIsALimitError) {
   Result<TreeModel> m = parse_objt(text);
   ASSERT_FALSE(m.ok());
   EXPECT_EQ(m.error().code, ErrorCode::kLimit);
-  EXPECT_NE(m.error().message.find("level 4 exceeds"), std::string::npos) << m.error().message;
+  EXPECT_NE(m.error().message.find("level 4 (from its parent chain) exceeds"), std::string::npos) << m.error().message;
 }
 
 TEST(Objt, SkewedFramesAreReorthonormalisedWithAWarning) {

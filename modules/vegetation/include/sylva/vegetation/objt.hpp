@@ -32,13 +32,18 @@
 //  - syntax: unknown record or field, wrong number of values, non-numeric values, unterminated
 //    block, duplicate field, missing required field (named, with the block's line);
 //  - references: duplicate identifiers, a parent that does not exist, cycles in the parent links
-//    (the cycle is listed), a level that is not the parent's level + 1, more than kMaxLevels levels
-//    (kLimit);
+//    (the cycle is listed), more than kMaxLevels levels (kLimit);
 //  - values: non-finite numbers, d < 0, x outside [0, 1], negative radii, non-positive leaf sizes,
-//    zero or parallel frame vectors, an end point k that disagrees with z + d t by more than
-//    1 mm + 1 % of d.
-// Frames that are not orthonormal and right-handed within 1e-5 are re-orthonormalised (keeping t
-// and the direction of r) with a warning naming the line.
+//    zero or parallel frame vectors.
+// Files as the seed wrote them load (issue #16): what the seed leaves open or what its own tools
+// may have written is repaired, each with a warning "file:line: ..." that says what was done:
+//  - a branch naming itself as its parent (the seed leaves the trunk's p open) is a root;
+//  - a level `l` that does not match the parent chain takes the chain's level;
+//  - an end point `k` more than 1 mm + 1 % of d away from z + d t is ignored (the end is z + d t:
+//    the animation uses the frame and the length);
+//  - a frame that is not orthonormal and right-handed within 1e-5 is re-orthonormalised keeping t
+//    and the direction of r (a left-handed frame gets s = t x r).
+// ObjtReadOptions::strict turns the first three and left-handed frames into errors instead.
 
 #include <sylva/core/result.hpp>
 #include <sylva/vegetation/tree_model.hpp>
@@ -46,12 +51,16 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace sylva::vegetation {
 
 struct ObjtReadOptions {
   std::string source_name = "<objt>";  // used in messages (load_objt sets the file name)
   float max_length_error = 0.009f;     // bound for the branch amplitude limits (bending.hpp)
+  bool strict = false;                 // refuse what is otherwise repaired with a warning (above)
+  // Where repair warnings go ("file:line: ..."); not owned; null = the log (log_warn).
+  std::vector<std::string>* warnings = nullptr;
 };
 
 Result<TreeModel> parse_objt(std::string_view text, const ObjtReadOptions& options = {});
