@@ -11,6 +11,7 @@ struct PlantPartGpu {
 };
 layout(std430, binding = 2) readonly buffer VoxelPlantParts { PlantPartGpu voxel_parts[]; };
 uniform uint u_instance_base;
+uniform int u_front_faces_only;  // 1: 18 vertices per instance, the three faces turned to the eye
 
 out vec3 v_rel_pos;
 out vec3 v_normal;
@@ -54,6 +55,13 @@ void main() {
   int k = gl_VertexID % 6;
   int axis = face >> 1;
   int sign = (face & 1) != 0 ? -1 : 1;
+  if (u_front_faces_only != 0) {
+    // 18 vertices: per axis the one face whose side of the cube the eye is on (the eye in the
+    // part's frame: rotate (eye - centre) back). For a convex cube these are all that can show.
+    vec3 eye_local = quat_rotate(vec4(-rot.xyz, rot.w), -u_chunk_offset - part.center_size.xyz);
+    axis = face;
+    sign = eye_local[axis] >= 0.0 ? 1 : -1;
+  }
   ivec2 corner = kVoxelCorners[voxel_corner(k, sign, false)];
   int u = (axis + 1) % 3;
   int v = (axis + 2) % 3;

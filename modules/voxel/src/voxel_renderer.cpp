@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sylva::render::embedded {
 void register_voxel_shaders();
@@ -67,6 +68,12 @@ double horizontal_distance(const render::Aabb& box, const glm::dvec3& p) {
   return std::sqrt(dx * dx + dz * dz);
 }
 
+// Distance from a point to a box (0 inside).
+double distance(const render::Aabb& box, const glm::dvec3& p) {
+  const glm::dvec3 d = glm::max(glm::max(box.min - p, glm::dvec3(0.0)), p - box.max);
+  return glm::length(d);
+}
+
 // Sets a uniform only when the program uses it: the opaque variants compile the alpha cut-off
 // away and plants have no AO, and Program::set would warn about every such inactive name.
 template <class T>
@@ -105,6 +112,10 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   if (settings.texture_size < 4 || settings.texture_size > 256) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("voxel.render.texture_size: {} outside [4, 256]", settings.texture_size));
+  }
+  if (!(settings.leaf_back_faces_within >= 0.0f && settings.leaf_back_faces_within <= 1.0e6f)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.leaf_back_faces_within: {} outside [0, 1e6] blocks",
+                                                               settings.leaf_back_faces_within));
   }
   if (!(settings.sky_light >= 0.0f && settings.sky_light <= 8.0f)) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.sky_light: {} outside [0, 8]", settings.sky_light));
@@ -418,7 +429,7 @@ void VoxelRenderer::bind_common(const render::Program& program, const render::Fr
 
 void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads,
                                 const render::Program& plants, bool alpha_cut, const glm::mat4& view_projection,
-                                const glm::dvec3& origin, render::PassStats& stats) {
+                                const glm::dvec3& origin, double full_cubes_within, render::PassStats& stats) {
   quads.use();
   quads.set("u_view_projection", view_projection);
   for (ChunkGpu* gpu : chunks) {
@@ -440,10 +451,13 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
     if (count == 0) continue;
     plants.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
     plants.set("u_instance_base", alpha_cut ? gpu->plant_opaque : 0u);
+    // All six faces, or only the three turned toward the eye (plant.vert): half the vertices.
+    const bool full = distance(gpu->box, origin) < full_cubes_within;
+    plants.set("u_front_faces_only", full ? 0 : 1);
     gpu->plants.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
-    glDrawArraysInstanced(GL_TRIANGLES, 0, 36, static_cast<GLsizei>(count));
+    glDrawArraysInstanced(GL_TRIANGLES, 0, full ? 36 : 18, static_cast<GLsizei>(count));
     ++stats.draw_calls;
-    stats.triangles += 12ull * count;
+    stats.triangles += (full ? 12ull : 6ull) * count;
     stats.instances += count;
     stats_.plant_parts_drawn += count;
   }
@@ -550,11 +564,13 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   const glm::dvec3 eye = frame.camera.position();
   bind_common(opaque_program_, &frame);
   bind_common(plant_opaque_program_, &frame);
-  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, stats);
+  // Opaque plant cubes are convex and back-face culled: the three faces turned to the eye are
+  // all that can show. Leaf cubes show their far faces through their holes, near the camera.
+  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, stats);
   glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
   bind_common(alpha_program_, &frame);
   bind_common(plant_alpha_program_, &frame);
-  draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, stats);
+  draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, settings_.leaf_back_faces_within, stats);
   bind_common(tuft_program_, &frame);
   draw_tufts(visible_, vp, eye, stats);
   bind_common(horizon_program_, &frame);
@@ -574,10 +590,12 @@ void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm
   glDisable(GL_CULL_FACE);
   bind_common(depth_program_, nullptr);
   bind_common(plant_depth_opaque_program_, nullptr);
-  draw_chunks(chunks, depth_program_, plant_depth_opaque_program_, false, relative_view_projection, origin, stats);
+  // Every face: a light's view is no eye position, and leaves cast through both their sides.
+  constexpr double kAll = std::numeric_limits<double>::infinity();
+  draw_chunks(chunks, depth_program_, plant_depth_opaque_program_, false, relative_view_projection, origin, kAll, stats);
   bind_common(depth_alpha_program_, nullptr);
   bind_common(plant_depth_program_, nullptr);
-  draw_chunks(chunks, depth_alpha_program_, plant_depth_program_, true, relative_view_projection, origin, stats);
+  draw_chunks(chunks, depth_alpha_program_, plant_depth_program_, true, relative_view_projection, origin, kAll, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
 }
 

@@ -66,6 +66,7 @@ struct VoxelRenderSettings {
   float specular_scale = 1.0f;
   bool frustum_culling = true;
   bool draw_plants = true;
+  float leaf_back_faces_within = 48.0f;  // blocks: nearer leaf cubes also draw the faces turned away
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -87,6 +88,7 @@ struct VoxelRenderSettings {
     v(specular_scale, "specular_scale", {.min = 0.0, .max = 8.0, .help = "Multiplier of every specular map"});
     v(frustum_culling, "frustum_culling", {.help = "Skip chunks outside the view frustum"});
     v(draw_plants, "draw_plants", {.help = "Draw the L-system plants"});
+    v(leaf_back_faces_within, "leaf_back_faces_within", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Leaf cubes nearer than this also draw their far faces (seen through their holes); farther ones only the three faces turned to the camera"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(sky_light, "sky_light", {.min = 0.0, .max = 8.0, .help = "Multiplier of the sky and ground ambient light on every face"});
@@ -169,7 +171,8 @@ class VoxelRenderer final : public render::Drawable {
   void draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
   void bind_common(const render::Program& program, const render::FrameContext* frame) const;
   void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
-                   bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
+                   bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin,
+                   double full_cubes_within, render::PassStats& stats);
   void draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
                        const glm::dvec3& origin, render::PassStats& stats);
   // Binds `fallback` (an all-zero "disabled" block) at uniform binding `index` unless use_host
