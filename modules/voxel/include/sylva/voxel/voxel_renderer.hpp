@@ -29,8 +29,10 @@
 //    position (tufts.hpp), so they stand in no grid rows. They receive shadows but cast none.
 //  * View distance: geometry fades into the sky at the horizon between (1 - fade_share) x and 1 x
 //    the view distance (horizontal, from the camera); chunks wholly beyond it are not drawn and a
-//    horizon skirt in the same colour covers what lies farther, so the edge of the loaded area and
-//    the void behind it never show.
+//    horizon skirt in the same colour (a disc under the lowest loaded block) covers what lies
+//    farther, so the edge of the loaded area and the void behind it never show.
+//  * Plant cubes draw only the three faces turned to the eye (18 vertices) when the rest cannot
+//    show: opaque parts always, leaf parts beyond leaf_back_faces_within.
 // One block = 1 world unit (metre).
 
 #include <sylva/core/result.hpp>
@@ -72,9 +74,12 @@ struct VoxelRenderSettings {
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
   float sky_light = 1.5f;           // multiplier of the render core's sky / ground ambient, [0, 8]
   float bounce = 0.25f;             // albedo of the sunlit ground lighting shaded faces, [0, 1]
-  float view_distance = 0.0f;       // blocks, horizontal; 0 = the loaded area's inscribed radius around the camera
+  // Blocks, horizontal, [0, 1e6]: 0 = no fade, no skirt, no distance culling; otherwise the fade
+  // ends at this distance or, for a camera inside the loaded area, at the area's inscribed radius
+  // around the camera if that is nearer (the scene module uses 1e5: the area's edge).
+  float view_distance = 0.0f;
   float fade_share = 0.3f;          // share of the view distance over which geometry fades into the sky, (0, 1]
-  bool horizon_skirt = true;        // cover what lies beyond the view distance with the horizon colour
+  bool horizon_skirt = true;        // with a view distance: a disc under the world in the horizon colour hides the void
 
   template <class V>
   void visit(V& v) {
@@ -93,9 +98,9 @@ struct VoxelRenderSettings {
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(sky_light, "sky_light", {.min = 0.0, .max = 8.0, .help = "Multiplier of the sky and ground ambient light on every face"});
     v(bounce, "bounce", {.min = 0.0, .max = 1.0, .help = "Sun light bounced off the ground onto shaded faces (ground albedo)"});
-    v(view_distance, "view_distance", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Horizontal distance where the world has faded into the sky (0 = edge of the loaded area)"});
+    v(view_distance, "view_distance", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Horizontal distance where the world has faded into the sky (0 = no fade; capped by the loaded area's edge)"});
     v(fade_share, "fade_share", {.min = 0.01, .max = 1.0, .help = "Share of the view distance over which the world fades into the sky"});
-    v(horizon_skirt, "horizon_skirt", {.help = "Fill the view below the horizon beyond the view distance with the horizon colour"});
+    v(horizon_skirt, "horizon_skirt", {.help = "With a view distance: a disc under the world in the horizon colour hides the void past its edge"});
     v(texture_size, "texture_size", {.min = 4, .max = 256, .unit = "texels", .help = "Block texture resolution", .rebuild = Rebuild::kGpu});
   }
 };
@@ -116,7 +121,7 @@ struct VoxelFrameStats {
   std::size_t quads_drawn = 0;
   std::size_t plant_parts_drawn = 0;
   std::size_t tufts_drawn = 0;
-  float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame
+  float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame (0: no fade)
   std::size_t point_lights = 0;
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
 };
