@@ -1,5 +1,6 @@
 #include <sylva/terrain/chunk_tree.hpp>
 
+#include "chunk_build.hpp"
 #include "parallel.hpp"
 #include "rtin.hpp"
 
@@ -90,13 +91,6 @@ void ChunkTree::compute_nodes() {
     n.present = c.present ? 1 : 0;
   }
 }
-
-// Builds a ChunkTree; a friend so it can fill the private members.
-class ChunkTreeBuilder {
- public:
-  static Result<ChunkTree> build(const HeightField& field, const ChunkTreeSettings& settings,
-                                 const BuildControl& control);
-};
 
 namespace {
 
@@ -291,9 +285,8 @@ Result<ChunkTree> ChunkTree::build(const HeightField& field, const ChunkTreeSett
   return ChunkTreeBuilder::build(field, settings, control);
 }
 
-Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkTreeSettings& settings,
-                                          const BuildControl& control) {
-  Stopwatch total_watch;
+Result<ChunkTree> ChunkTreeBuilder::layout(int columns, int rows, double spacing, glm::dvec2 origin,
+                                           const ChunkTreeSettings& settings) {
   SYLVA_TRY(validate_params(settings, "terrain.tree"));
   const std::uint32_t n = static_cast<std::uint32_t>(settings.leaf_dimension - 1);
   if (!is_pow2(n)) {
@@ -301,6 +294,52 @@ Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkT
                       fmt::format("terrain.tree.leaf_dimension: {} is not 2^k+1 (e.g. 17, 33, 65)",
                                   settings.leaf_dimension));
   }
+  ChunkTree tree;
+  tree.settings_ = settings;
+  tree.n_ = n;
+  tree.columns_ = columns;
+  tree.rows_ = rows;
+  tree.spacing_ = spacing;
+  tree.origin_ = origin;
+  const std::uint32_t need = static_cast<std::uint32_t>(std::max(columns, rows) - 1);
+  int levels = 1;
+  while ((static_cast<std::uint64_t>(n) << (levels - 1)) < need) ++levels;
+  tree.levels_ = levels;
+  tree.root_n_ = n << (levels - 1);
+  const double grid_points = std::pow(static_cast<double>(tree.root_n_) + 1.0, 2.0);
+  if (grid_points * 8.0 > settings.max_build_bytes || tree.root_n_ > (1u << 20)) {
+    return make_error(ErrorCode::kLimit,
+                      fmt::format("terrain: a {}x{} field needs a {}^2 build grid ({:.2f} GB), above "
+                                  "terrain.tree.max_build_bytes = {:.2f} GB",
+                                  columns, rows, tree.root_n_ + 1, grid_points * 8.0 / 1e9,
+                                  settings.max_build_bytes / 1e9));
+  }
+  // Chunk slots for every level; presence: the chunk's low corner lies inside the field extent
+  // (or on the field's first row/column, so a 1-sample-wide field still has its chunks).
+  std::uint32_t offset = 0;
+  for (int l = 0; l < levels; ++l) {
+    tree.level_offset_.push_back(offset);
+    offset += (1u << l) * (1u << l);
+  }
+  tree.chunks_.resize(offset);
+  for (int l = 0; l < levels; ++l) {
+    const std::uint32_t side_chunks = 1u << l, size = tree.chunk_size(l);
+    for (std::uint32_t z = 0; z < side_chunks; ++z) {
+      for (std::uint32_t x = 0; x < side_chunks; ++x) {
+        Chunk& c = tree.chunks_[tree.index(l, x, z)];
+        c.key = ChunkKey{l, x, z};
+        const std::int64_t x0 = static_cast<std::int64_t>(x) * size, z0 = static_cast<std::int64_t>(z) * size;
+        c.present = (x0 == 0 || x0 < columns - 1) && (z0 == 0 || z0 < rows - 1);
+      }
+    }
+  }
+  return tree;
+}
+
+Result<std::unique_ptr<detail::TreeGrids>> ChunkTreeBuilder::prepare(const HeightField& field,
+                                                                     const ChunkTreeSettings& settings,
+                                                                     const BuildControl& control) {
+  SYLVA_TRY(validate_params(settings, "terrain.tree"));
   if (field.columns() < 1 || field.rows() < 1 ||
       field.samples().size() != static_cast<std::size_t>(field.columns()) * static_cast<std::size_t>(field.rows())) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -327,69 +366,59 @@ Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkT
                                     bad, first % cols, first / cols));
     }
   }
-
-  ChunkTree tree;
-  tree.settings_ = settings;
-  tree.n_ = n;
-  tree.columns_ = field.columns();
-  tree.rows_ = field.rows();
-  tree.spacing_ = field.spacing();
-  tree.origin_ = field.origin();
-  const std::uint32_t need = static_cast<std::uint32_t>(std::max(field.columns(), field.rows()) - 1);
-  int levels = 1;
-  while ((static_cast<std::uint64_t>(n) << (levels - 1)) < need) ++levels;
-  tree.levels_ = levels;
-  tree.root_n_ = n << (levels - 1);
-  const double grid_points = std::pow(static_cast<double>(tree.root_n_) + 1.0, 2.0);
-  if (grid_points * 8.0 > settings.max_build_bytes || tree.root_n_ > (1u << 20)) {
-    return make_error(ErrorCode::kLimit,
-                      fmt::format("terrain: a {}x{} field needs a {}^2 build grid ({:.2f} GB), above "
-                                  "terrain.tree.max_build_bytes = {:.2f} GB",
-                                  field.columns(), field.rows(), tree.root_n_ + 1, grid_points * 8.0 / 1e9,
-                                  settings.max_build_bytes / 1e9));
+  auto grids = std::make_unique<detail::TreeGrids>();
+  {
+    Result<ChunkTree> tree = layout(field.columns(), field.rows(), field.spacing(), field.origin(), settings);
+    if (!tree) return tree.error();
+    grids->tree = std::move(tree.value());
   }
+  ChunkTree& tree = grids->tree;
   const int threads = detail::resolve_threads(settings.threads);
   tree.report_.threads = threads;
 
   // Padded height grid.
   Stopwatch watch;
-  HeightGrid hg = padded_heights(field, tree.root_n_, threads);
-  const ErrorGrid errors = detail::compute_errors(hg, threads);
+  grids->heights = padded_heights(field, tree.root_n_, threads);
+  grids->errors = detail::compute_errors(grids->heights, threads);
   tree.report_.error_grid_ms = watch.lap_ms();
   if (control.cancel != nullptr && control.cancel->load()) {
     return make_error(ErrorCode::kCancelled, "terrain: chunk tree build cancelled");
   }
+  grids->rule = make_rule(grids->errors, tree.levels_, tree.n_, settings, field.spacing());
+  for (std::uint32_t i = 0; i < tree.chunks_.size(); ++i)
+    if (tree.chunks_[i].present) grids->present.push_back(i);
+  return grids;
+}
 
-  const ActiveRule rule = make_rule(errors, levels, n, settings, field.spacing());
+void ChunkTreeBuilder::build_chunk(const detail::TreeGrids& grids, Chunk& chunk) {
+  const ChunkTree& tree = grids.tree;
+  const ChunkBuildContext ctx{&tree, &grids.heights, &grids.rule, tree.columns_, tree.rows_,
+                              tree.settings_.keep_meshes, tree.settings_.optimize_vertex_cache};
+  sylva::terrain::build_chunk(ctx, chunk);
+}
 
-  // Chunk slots for every level; presence: the chunk's low corner lies inside the field extent
-  // (or on the field's first row/column, so a 1-sample-wide field still has its chunks).
-  std::uint32_t offset = 0;
-  for (int l = 0; l < levels; ++l) {
-    tree.level_offset_.push_back(offset);
-    offset += (1u << l) * (1u << l);
-  }
-  tree.chunks_.resize(offset);
-  std::vector<std::uint32_t> present;
-  for (int l = 0; l < levels; ++l) {
-    const std::uint32_t side_chunks = 1u << l, size = tree.chunk_size(l);
-    for (std::uint32_t z = 0; z < side_chunks; ++z) {
-      for (std::uint32_t x = 0; x < side_chunks; ++x) {
-        Chunk& c = tree.chunks_[tree.index(l, x, z)];
-        c.key = ChunkKey{l, x, z};
-        const std::int64_t x0 = static_cast<std::int64_t>(x) * size, z0 = static_cast<std::int64_t>(z) * size;
-        c.present = (x0 == 0 || x0 < field.columns() - 1) && (z0 == 0 || z0 < field.rows() - 1);
-        if (c.present) present.push_back(tree.index(l, x, z));
-      }
-    }
-  }
+void ChunkTreeBuilder::finish(ChunkTree& tree) {
+  tree.compute_error_bounds();
+  tree.fill_level_report();
+  tree.compute_nodes();
+}
 
-  ChunkBuildContext ctx{&tree, &hg, &rule, field.columns(), field.rows(), settings.keep_meshes,
-                        settings.optimize_vertex_cache};
+Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkTreeSettings& settings,
+                                          const BuildControl& control) {
+  Stopwatch total_watch;
+  Result<std::unique_ptr<detail::TreeGrids>> prepared = prepare(field, settings, control);
+  if (!prepared) return prepared.error();
+  std::unique_ptr<detail::TreeGrids>& grids = prepared.value();
+  // Chunks are built in place: each call writes only its own slot and reads the tree's geometry.
+  ChunkTree& tree = grids->tree;
+  const int threads = tree.report_.threads;
+  const std::vector<std::uint32_t>& present = grids->present;
+  Stopwatch watch;
+
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
   const bool finished = detail::parallel_for(present.size(), threads, [&](std::size_t i) {
-    build_chunk(ctx, tree.chunks_[present[i]]);
+    build_chunk(*grids, tree.chunks_[present[i]]);
     const std::size_t d = ++done;
     if (control.progress && (d % 64 == 0 || d == present.size())) {
       std::lock_guard<std::mutex> lock(progress_mutex);
@@ -414,7 +443,7 @@ Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkT
   tree.compute_nodes();
   tree.report_.total_ms = total_watch.elapsed_ms();
   if (control.progress) control.progress(1.0f);
-  return tree;
+  return std::move(tree);
 }
 
 

@@ -18,6 +18,8 @@
 #include <fstream>
 #include <memory>
 #include <mutex>
+#include <string>
+#include <string_view>
 
 namespace sylva::terrain {
 
@@ -25,6 +27,41 @@ inline constexpr std::uint32_t kChunkFileVersion = 1;
 
 // Writes the tree (which must hold its meshes) through a temporary file and a rename.
 Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree);
+
+// Writes a chunk file chunk by chunk, so a tree too big for memory can be saved (bake.hpp): blobs
+// go to a temporary file beside the target as they come, the directory and header at finish(),
+// then fsync + rename. Nothing appears at the target unless finish() succeeds; an unfinished
+// writer (error, cancellation, destruction) removes its temporary. For the same chunks the bytes
+// equal save_chunk_file's (which uses it).
+class ChunkFileWriter {
+ public:
+  // `layout`: the tree's geometry, settings and chunk slots (ChunkTreeBuilder::layout or a built
+  // tree). Errors: kIo naming `path` (missing folder, read-only target, cannot create).
+  static Result<std::unique_ptr<ChunkFileWriter>> create(const std::filesystem::path& path, const ChunkTree& layout);
+  ~ChunkFileWriter();
+  ChunkFileWriter(const ChunkFileWriter&) = delete;
+  ChunkFileWriter& operator=(const ChunkFileWriter&) = delete;
+
+  // Slot `index` (strictly increasing over the calls; skipped slots stay absent): its metadata
+  // (present, error, error_bound, min/max y, counts) and, when present, its mesh or encoded blob.
+  // Errors: kIo naming the file (disk full); the temporary is then removed.
+  Status add(std::uint32_t index, const Chunk& chunk, const ChunkMesh& mesh);
+  Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob);
+  // Directory, header, fsync, rename over the target. Errors: kIo naming the file.
+  Status finish();
+  // Stops and removes the temporary (no-op once finished).
+  void abandon();
+
+ private:
+  ChunkFileWriter() = default;
+  Status write_failed();
+  std::filesystem::path path_, temp_;
+  std::ofstream out_;
+  std::string header_, directory_;
+  std::uint64_t offset_ = 128;
+  std::int64_t last_ = -1;
+  bool done_ = false;
+};
 
 class ChunkFile {
  public:
