@@ -1,5 +1,7 @@
 #include <sylva/scene/forest_placement.hpp>
 
+#include <sylva/core/noise.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -35,6 +37,29 @@ float sample_density(const MapGrid& g, glm::dvec2 world) {
   return static_cast<float>(a * (1.0 - fy) + b * fy);
 }
 
+FbmSettings clearing_noise(const ForestPlacement& p) {
+  return {.octaves = 4, .persistence = 0.5f, .lacunarity = 2.0f,
+          .frequency = 1.0f / std::max(p.clearing_size, 1.0f), .seed = p.seed ^ 0x51ea4u};
+}
+
+// The noise value below which the area is open: its `clearings` quantile over a 64x64 lattice
+// of the whole area (deterministic, independent of the region being placed).
+float clearing_threshold(const ForestPlacement& p) {
+  constexpr int kSide = 64;
+  std::vector<float> values;
+  values.reserve(kSide * kSide);
+  const FbmSettings noise = clearing_noise(p);
+  for (int j = 0; j < kSide; ++j) {
+    for (int i = 0; i < kSide; ++i) {
+      const glm::dvec2 t((i + 0.5) / kSide, (j + 0.5) / kSide);
+      values.push_back(fbm2(p.area_min + t * (p.area_max - p.area_min), noise));
+    }
+  }
+  const auto k = static_cast<std::size_t>(std::clamp(p.clearings, 0.0f, 0.95f) * float(values.size() - 1));
+  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
+  return values[k];
+}
+
 }  // namespace
 
 double forest_cell_size(const ForestPlacement& p) {
@@ -62,13 +87,18 @@ std::vector<PlacedTree> place_trees(const ForestPlacement& p, const MapGrid* den
   // Guard against absurd regions (the scene validates trees_per_hectare and the area).
   const std::int64_t cells = static_cast<std::int64_t>(cmax.x - cmin.x + 1) * static_cast<std::int64_t>(cmax.y - cmin.y + 1);
   if (cells > 50'000'000) return out;
+  const bool clearings = p.clearings > 0.0f;
+  const float threshold = clearings ? clearing_threshold(p) : 0.0f;
+  const FbmSettings noise = clearing_noise(p);
   for (int k = cmin.y; k <= cmax.y; ++k) {
     for (int i = cmin.x; i <= cmax.x; ++i) {
       const double jx = margin + unit(hash(p.seed, i, k, 1)) * (c - 2.0 * margin);
       const double jz = margin + unit(hash(p.seed, i, k, 2)) * (c - 2.0 * margin);
       const glm::dvec2 xz(i * c + jx, k * c + jz);
       if (xz.x < p.area_min.x || xz.x >= p.area_max.x || xz.y < p.area_min.y || xz.y >= p.area_max.y) continue;
-      const float d = density ? std::clamp(sample_density(*density, xz), 0.0f, 1.0f) : 1.0f;
+      float d = density ? std::clamp(sample_density(*density, xz), 0.0f, 1.0f) : 1.0f;
+      // Soft edges: the stand thins over a band of the noise rather than ending on a contour.
+      if (clearings) d *= glm::smoothstep(threshold - 0.04f, threshold + 0.04f, fbm2(xz, noise));
       if (!(unit(hash(p.seed, i, k, 3)) < d)) continue;
       PlacedTree t;
       t.position = {xz.x, ground ? ground->height(xz.x, xz.y) : 0.0, xz.y};

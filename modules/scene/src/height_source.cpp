@@ -91,7 +91,9 @@ Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optio
           const float w = static_cast<float>(glm::smoothstep(0.12, 0.55, r));
           const float hills = fbm2(p, s.noise);
           const float ridges = ridged2(p * 0.8, s.noise);
-          h = s.height * ((0.05f + 0.4f * w) * hills + w * 0.9f * ridges * ridges);
+          // Swells of a few metres at four times the frequency keep the meadow from looking planed.
+          const float swells = fbm2(p * 4.0, s.noise);
+          h = s.height * ((0.05f + 0.4f * w) * hills + w * 0.9f * ridges * ridges + 0.015f * swells);
           break;
         }
       }

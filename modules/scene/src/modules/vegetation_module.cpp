@@ -59,6 +59,8 @@ struct ForestSectionSettings {
   float scale_min = 0.8f;
   float scale_max = 1.2f;
   std::uint32_t seed = 1;
+  float clearings = 0.0f;
+  float clearing_size = 150.0f;
   int map_resolution = 128;
   vegetation::SpeciesPreset species = vegetation::SpeciesPreset::kBroadleaf;
   std::uint32_t species_seed = 1;
@@ -77,6 +79,8 @@ struct ForestSectionSettings {
     v(scale_min, "scale_min", {.min = 0.05, .max = 20.0, .help = "Smallest random tree scale", .rebuild = Rebuild::kOffline});
     v(scale_max, "scale_max", {.min = 0.05, .max = 20.0, .help = "Largest random tree scale", .rebuild = Rebuild::kOffline});
     v(seed, "seed", {.min = 0.0, .max = 4294967295.0, .help = "Placement seed", .rebuild = Rebuild::kOffline});
+    v(clearings, "clearings", {.min = 0.0, .max = 0.95, .help = "Share of the area left open in natural clearings", .rebuild = Rebuild::kOffline});
+    v(clearing_size, "clearing_size", {.min = 1.0, .max = 1.0e5, .unit = "m", .help = "Feature size of the clearings", .rebuild = Rebuild::kOffline, .log_scale = true});
     v(map_resolution, "map_resolution", {.min = 1, .max = 8192, .help = "Texels of a new density map along the longer side", .rebuild = Rebuild::kOffline});
     v(species, "species", {.help = "broadleaf, conifer, birch or shrub", .rebuild = Rebuild::kOffline});
     v(species_seed, "species_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the generated tree", .rebuild = Rebuild::kOffline});
@@ -294,7 +298,7 @@ class ForestInstance final : public ModuleInstance {
 
   ForestPlacement placement() const {
     const ForestSectionSettings& s = settings();
-    return {s.area_min, s.area_max, s.trees_per_hectare, s.min_spacing, s.scale_min, s.scale_max, s.seed};
+    return {s.area_min, s.area_max, s.trees_per_hectare, s.min_spacing, s.scale_min, s.scale_max, s.seed, s.clearings, s.clearing_size};
   }
 
   Status density_map() {

@@ -31,6 +31,12 @@ struct ForestPlacement {
   float scale_min = 0.8f;             // random uniform scale range
   float scale_max = 1.2f;
   std::uint32_t seed = 1;
+  // Natural clearings: the share of the area [0, 0.95] left open where a low-frequency fBm of
+  // the position (feature size clearing_size metres) is lowest, with soft thinning edges. The
+  // noise threshold is the share's quantile over the whole area, so placing a sub-rectangle gives
+  // the same trees as placing the whole forest.
+  float clearings = 0.0f;
+  float clearing_size = 150.0f;
 };
 
 struct PlacedTree {
