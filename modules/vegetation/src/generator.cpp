@@ -42,7 +42,7 @@ glm::vec3 apply_gravitropism(const glm::vec3& d, float g) {
 float crown_profile(CrownShape shape, float xn) {
   switch (shape) {
     case CrownShape::kConical:
-      return 1.0f - 0.85f * xn;
+      return 1.0f - 0.92f * xn;  // to a narrow spire (spruce, fir)
     case CrownShape::kSpherical:
       return 0.3f + 0.7f * std::sin(std::numbers::pi_v<float> * (0.12f + 0.8f * xn));
     case CrownShape::kColumnar:
@@ -271,15 +271,15 @@ TreeSpecies species_preset(SpeciesPreset preset, std::uint32_t seed) {
       s.trunk_length = 14.0f;
       s.trunk_lean_deg = 1.5f;
       s.crown_shape = CrownShape::kConical;
-      s.level1 = {.count = 45, .count_variation = 0.1f, .start = 0.15f, .end = 0.97f, .per_node = 5, .roll_deg = 36.0f,
-                  .angle_deg = 85.0f, .angle_variation_deg = 6.0f, .length_ratio = 0.27f, .length_variation = 0.12f,
-                  .length_profile = 1.0f, .gravitropism = -0.25f};
-      s.level2 = {.count = 10, .count_variation = 0.2f, .start = 0.15f, .end = 0.92f, .per_node = 2, .roll_deg = 90.0f,
+      s.level1 = {.count = 56, .count_variation = 0.1f, .start = 0.16f, .end = 0.96f, .per_node = 4, .roll_deg = 45.0f,
+                  .angle_deg = 85.0f, .angle_variation_deg = 6.0f, .length_ratio = 0.28f, .length_variation = 0.12f,
+                  .length_profile = 1.0f, .gravitropism = -0.3f};
+      s.level2 = {.count = 10, .count_variation = 0.2f, .start = 0.12f, .end = 0.92f, .per_node = 2, .roll_deg = 90.0f,
                   .angle_deg = 55.0f, .angle_variation_deg = 10.0f, .length_ratio = 0.35f, .length_variation = 0.2f,
                   .length_profile = 0.5f, .gravitropism = -0.1f};
-      s.leaves = {.levels = 2, .per_metre = 13.0f, .max_per_branch = 40, .start = 0.05f, .width = 0.55f, .length = 0.7f,
+      s.leaves = {.levels = 2, .per_metre = 14.0f, .max_per_branch = 40, .start = 0.05f, .width = 0.5f, .length = 0.65f,
                   .size_variation = 0.15f, .arrangement = LeafArrangement::kSpiral, .petiole_angle_deg = 60.0f,
-                  .droop = 0.1f, .phototropism = 0.2f, .orientation_jitter = 1.0f, .terminal_leaf = true};
+                  .droop = 0.15f, .phototropism = 0.5f, .orientation_jitter = 0.7f, .terminal_leaf = true};
       s.leaf_shape = LeafShape::kNeedles;
       s.twig_radius = 0.006f;
       s.da_vinci_exponent = 2.2f;

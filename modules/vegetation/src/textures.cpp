@@ -570,8 +570,10 @@ std::vector<SeasonKey> season_keys(SeasonPalette palette) {
               {0.80f, {0.62f, 0.42f, 0.05f, 1.0f}}, {0.84f, {0.45f, 0.30f, 0.06f, 1.0f}},
               {0.88f, {0.35f, 0.25f, 0.08f, 0.0f}}};
     case SeasonPalette::kEvergreen:
-      return {{0.00f, {0.06f, 0.14f, 0.06f, 1.0f}}, {0.35f, {0.10f, 0.24f, 0.07f, 1.0f}},
-              {0.55f, {0.07f, 0.19f, 0.06f, 1.0f}}, {0.85f, {0.06f, 0.15f, 0.06f, 1.0f}}};
+      // Spruce and fir needles are dark (linear albedo about 0.04-0.12 in green), lighter with the
+      // fresh shoots of early summer.
+      return {{0.00f, {0.035f, 0.085f, 0.04f, 1.0f}}, {0.35f, {0.07f, 0.16f, 0.05f, 1.0f}},
+              {0.55f, {0.045f, 0.12f, 0.04f, 1.0f}}, {0.85f, {0.035f, 0.09f, 0.04f, 1.0f}}};
   }
   return {};
 }
