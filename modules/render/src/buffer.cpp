@@ -15,6 +15,7 @@ Buffer Buffer::immutable(std::size_t bytes, const void* data, bool updatable) {
   b.size_ = bytes;
   b.immutable_ = true;
   b.updatable_ = updatable;
+  b.memory_ = GpuMemoryRecord(GpuMemoryKind::kBuffer, bytes);
   // Zero-sized storage is invalid in GL; keep one byte so the name is still a valid buffer.
   glNamedBufferStorage(id, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 1)), bytes > 0 ? data : nullptr,
                        updatable ? GL_DYNAMIC_STORAGE_BIT : 0);
@@ -28,6 +29,7 @@ Buffer Buffer::dynamic(std::size_t bytes, GLenum usage) {
   b.handle_ = GlHandle<BufferDeleter>(id);
   b.size_ = bytes;
   b.usage_ = usage;
+  b.memory_ = GpuMemoryRecord(GpuMemoryKind::kBuffer, bytes);
   glNamedBufferData(id, static_cast<GLsizeiptr>(std::max<std::size_t>(bytes, 1)), nullptr, usage);
   return b;
 }
@@ -46,6 +48,7 @@ void Buffer::upload(std::size_t bytes, const void* data) {
     const std::size_t capacity = std::max(bytes, size_ + size_ / 2);
     glNamedBufferData(id(), static_cast<GLsizeiptr>(capacity), nullptr, usage_);
     size_ = capacity;
+    memory_.set_bytes(capacity);
   }
   if (bytes > 0) glNamedBufferSubData(id(), 0, static_cast<GLsizeiptr>(bytes), data);
 }

@@ -54,18 +54,6 @@ Status attach(GLuint fbo, const std::vector<Texture>& color, const Texture& dept
   return ok_status();
 }
 
-// Bytes per texel of the formats render targets use; unknown formats count as the widest.
-std::uint64_t texel_bytes(GLenum format) {
-  switch (format) {
-    case GL_R8: return 1;
-    case GL_RG8: case GL_R16F: return 2;
-    case GL_RGBA8: case GL_SRGB8_ALPHA8: case GL_R32F: case GL_RG16F: case GL_R11F_G11F_B10F:
-    case GL_RGB10_A2: case GL_DEPTH_COMPONENT32F: case GL_DEPTH_COMPONENT24: case GL_DEPTH24_STENCIL8: return 4;
-    case GL_RGBA16F: case GL_RG32F: return 8;
-    default: return 16;
-  }
-}
-
 }  // namespace
 
 std::uint64_t Framebuffer::estimated_bytes(const FramebufferDesc& desc) {
@@ -130,6 +118,12 @@ Result<Framebuffer> Framebuffer::create(const FramebufferDesc& desc) {
     }
     if (desc.depth_format != GL_NONE) fb.resolve_depth_ = Texture::create_2d(desc.width, desc.height, desc.depth_format);
     SYLVA_TRY(attach(fb.resolve_fbo_.get(), fb.resolve_color_, fb.resolve_depth_, "MSAA resolve"));
+  }
+  for (Texture* t : {&fb.depth_, &fb.resolve_depth_}) {
+    if (*t) t->set_memory_kind(GpuMemoryKind::kRenderTarget);
+  }
+  for (auto* list : {&fb.color_, &fb.resolve_color_}) {
+    for (Texture& t : *list) t.set_memory_kind(GpuMemoryKind::kRenderTarget);
   }
   // Storage is allocated by the calls above; an implementation out of memory says so only
   // through a GL error, which must not turn into a black picture later.

@@ -61,6 +61,7 @@ Status ShadowMaps::allocate(int layers, int resolution) {
                                                      resolution, std::min(max_size, 8192), max_size));
   }
   Texture depth = Texture::create_2d_array(resolution, resolution, layers, GL_DEPTH_COMPONENT32F);
+  depth.set_memory_kind(GpuMemoryKind::kRenderTarget);
   std::vector<GlHandle<FramebufferDeleter>> fbos;
   for (int i = 0; i < layers; ++i) {
     GLuint fbo = 0;

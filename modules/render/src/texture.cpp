@@ -38,6 +38,16 @@ GLuint create_texture(GLenum target) {
   return id;
 }
 
+// Bytes of a texture's storage: every mip level (sides halved, at least 1), layer and sample.
+std::uint64_t texture_storage_bytes(int width, int height, int layers, int levels, int samples, GLenum format) {
+  std::uint64_t texels = 0;
+  for (int l = 0; l < levels; ++l) {
+    texels += static_cast<std::uint64_t>(std::max(width >> l, 1)) * static_cast<std::uint64_t>(std::max(height >> l, 1));
+  }
+  return texels * static_cast<std::uint64_t>(std::max(layers, 1)) * static_cast<std::uint64_t>(std::max(samples, 1)) *
+         texel_bytes(format);
+}
+
 }  // namespace
 
 int mip_levels(int width, int height) {
@@ -67,6 +77,7 @@ Texture Texture::create_2d(int width, int height, GLenum format, int levels) {
   t.height_ = height;
   t.levels_ = levels;
   glTextureStorage2D(t.id(), levels, format, width, height);
+  t.memory_ = GpuMemoryRecord(GpuMemoryKind::kTexture, texture_storage_bytes(width, height, 1, levels, 1, format));
   t.set_filter(levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
   t.set_wrap(GL_CLAMP_TO_EDGE);
   return t;
@@ -84,6 +95,7 @@ Texture Texture::create_2d_multisample(int width, int height, GLenum format, int
   t.height_ = height;
   t.samples_ = std::min(samples, static_cast<int>(max_samples));
   glTextureStorage2DMultisample(t.id(), t.samples_, format, width, height, GL_TRUE);
+  t.memory_ = GpuMemoryRecord(GpuMemoryKind::kTexture, texture_storage_bytes(width, height, 1, 1, t.samples_, format));
   return t;
 }
 
@@ -99,6 +111,7 @@ Texture Texture::create_2d_array(int width, int height, int layers, GLenum forma
   t.layers_ = layers;
   t.levels_ = levels;
   glTextureStorage3D(t.id(), levels, format, width, height, layers);
+  t.memory_ = GpuMemoryRecord(GpuMemoryKind::kTexture, texture_storage_bytes(width, height, layers, levels, 1, format));
   t.set_filter(levels > 1 ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR, GL_LINEAR);
   t.set_wrap(GL_CLAMP_TO_EDGE);
   return t;

@@ -7,6 +7,7 @@
 // Sizes are in bytes. Bind points are the caller's business (bind_base helpers below).
 
 #include <sylva/render/gl_handle.hpp>
+#include <sylva/render/gpu_memory.hpp>
 
 #include <epoxy/gl.h>
 
@@ -61,6 +62,7 @@ class Buffer {
 
  private:
   GlHandle<BufferDeleter> handle_;
+  GpuMemoryRecord memory_;  // its bytes in the tracked GPU memory (gpu_memory.hpp)
   std::size_t size_ = 0;
   bool immutable_ = false;
   bool updatable_ = false;

@@ -8,6 +8,7 @@
 #include <sylva/core/image.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/render/gl_handle.hpp>
+#include <sylva/render/gpu_memory.hpp>
 
 #include <epoxy/gl.h>
 
@@ -67,6 +68,10 @@ class Texture {
   int levels() const { return levels_; }
   int samples() const { return samples_; }
   explicit operator bool() const { return static_cast<bool>(handle_); }
+  // Bytes of its storage (every level, layer and sample) as tracked (gpu_memory.hpp), and the
+  // kind it is counted as: a texture until a framebuffer attaches it as a render target.
+  std::uint64_t storage_bytes() const { return memory_.bytes(); }
+  void set_memory_kind(GpuMemoryKind kind) { memory_.set_kind(kind); }
 
   void bind(GLuint unit) const;
   void set_filter(GLenum min_filter, GLenum mag_filter) const;
@@ -78,6 +83,7 @@ class Texture {
 
  private:
   GlHandle<TextureDeleter> handle_;
+  GpuMemoryRecord memory_;
   GLenum target_ = GL_TEXTURE_2D;
   GLenum format_ = GL_RGBA8;
   int width_ = 0;
