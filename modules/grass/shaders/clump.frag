@@ -30,6 +30,6 @@ void main() {
   vec3 albedo = grass_albedo(u_base_color, u_tip_color, along, GRASS_MEAN_DRYNESS) * c_color;
   float ao = mix(0.35, 1.0, smoothstep(0.0, 1.0, c_v));
   float lit = u_receive_shadows != 0 ? sylva_shadow(c_rel_pos, c_normal) : 1.0;
-  vec3 color = albedo * grass_canopy_light(vec3(0.0, 1.0, 0.0), u_shading.z, lit, u_shading.y) * ao * u_shading.x;
+  vec3 color = albedo * grass_canopy_light(normalize(c_rel_pos), u_shading.z, lit, u_shading.y) * ao * u_shading.x;
   o_color = vec4(apply_fog(color, c_rel_pos), 1.0);
 }

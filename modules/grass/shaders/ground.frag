@@ -54,6 +54,6 @@ void main() {
   vec3 albedo = grass_mean_albedo(u_base_color, u_tip_color) * g_color * (t.rgb * 1.4);
   if (!top) albedo *= u_shading.w;
   float lit = u_receive_shadows != 0 ? sylva_shadow(g_rel_pos, n) : 1.0;
-  vec3 color = albedo * grass_canopy_light(n, u_translucency, lit, u_shading.y) * u_shading.x;
+  vec3 color = albedo * grass_canopy_light(g_rel_pos / max(distance, 1e-6), u_translucency, lit, u_shading.y) * u_shading.x;
   o_color = vec4(apply_fog(color, g_rel_pos), 1.0);
 }

@@ -83,8 +83,8 @@ struct FarFieldSettings {
   float under_shade = 1.0f;       // undergrowth albedo relative to the layer's grass texels
   // Brightness calibrations: the mean of each far representation against the blades' mean at
   // the same place (measured, README "Colour and brightness across the LODs").
-  float clump_brightness = 0.8f;
-  float ground_brightness = 0.55f;
+  float clump_brightness = 0.65f;
+  float ground_brightness = 0.46f;
   float lift_per_m = 0.0005f;     // extra ground-layer lift per metre of distance [m/m]
   // Margins: clumps and the ground layer continue beyond the blades' rectangle with the density
   // (and height, tint) of its edge, so a field of blades near the camera can run to the horizon.
@@ -203,7 +203,7 @@ class FarField : public render::Drawable {
   float tau_side_ = 0.0f;
   float tau_top_ = 0.0f;
   glm::vec3 base_color_{0.045f, 0.16f, 0.035f};
-  glm::vec3 tip_color_{0.28f, 0.55f, 0.12f};
+  glm::vec3 tip_color_{0.32f, 0.50f, 0.13f};
   float ambient_ = 0.35f;
   float translucency_ = 0.5f;
   std::vector<GrassTile> clump_tiles_;

@@ -77,7 +77,7 @@ struct GrassRenderSettings {
   ShadingSettings shading;
   BladeShape shape = BladeShape::kQuadratic;
   glm::vec3 base_color{0.045f, 0.16f, 0.035f};  // linear RGB at the root
-  glm::vec3 tip_color{0.28f, 0.55f, 0.12f};     // linear RGB at the tip
+  glm::vec3 tip_color{0.32f, 0.50f, 0.13f};     // linear RGB at the tip (a less saturated, warmer green reads as grass under tone mapping)
   bool simulate = true;                         // physics on/off (off: blades keep their pose)
   bool cast_shadows = true;                     // draw into the sun's shadow cascades
   int shadow_cascades = 2;                      // cast into cascades 0 .. shadow_cascades - 1 only

@@ -51,7 +51,7 @@ struct BladeSettings {
   float height_width_correlation = 0.5f;  // 0: independent randoms; 1: seed 001's single random for both
   float color_variation = 0.15f;  // per-blade multiplicative jitter of each channel (seed's r5..r7)
   // Field colour (field_color.hpp): lush/dry patches and per-clump hue, shared by all three LODs.
-  float patch_variation = 0.35f;  // strength of the low-frequency lush/dry patches [0..1]
+  float patch_variation = 0.5f;   // strength of the low-frequency lush/dry patches [0..1]
   float patch_size = 14.0f;       // feature size of the patches [m]
   float clump_variation = 0.12f;  // strength of the per-clump hue and brightness offset [0..1]
   float clump_size = 0.7f;        // side of a clump cell [m]
