@@ -1,0 +1,84 @@
+#include "bake_run.hpp"
+
+#include <sylva/core/timer.hpp>
+#include <sylva/terrain/bake.hpp>
+
+#include <fmt/format.h>
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <mutex>
+
+namespace sylva::bake {
+
+namespace {
+
+// Peak resident memory of this process [MiB] (getrusage: ru_maxrss is in KiB on Linux).
+double peak_rss_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+// One line per whole percent: "sylva-bake: 42 % (12.3 s, ETA 17.0 s)".
+struct ProgressPrinter {
+  std::ostream& err;
+  bool quiet;
+  Stopwatch watch;
+  std::mutex mutex;
+  int last = -1;
+  void operator()(float f) {
+    if (quiet) return;
+    std::lock_guard<std::mutex> lock(mutex);
+    const int percent = static_cast<int>(std::floor(f * 100.0f));
+    if (percent <= last) return;
+    last = percent;
+    const double s = watch.elapsed_ms() / 1000.0;
+    const std::string eta = f > 0.0f ? fmt::format("{:.1f} s", s * (1.0 - f) / f) : std::string("?");
+    err << fmt::format("sylva-bake: {} % ({:.1f} s, ETA {})\n", percent, s, eta) << std::flush;
+  }
+};
+
+int fail(std::ostream& err, const Error& e) {
+  err << "sylva-bake: " << e.describe() << "\n";
+  return e.code == ErrorCode::kCancelled ? 130 : 1;
+}
+
+}  // namespace
+
+int run_bake(const BakeCommand& command, const std::atomic<bool>& cancel, std::ostream& out, std::ostream& err) {
+  Stopwatch watch;
+  ProgressPrinter printer{err, command.quiet, {}, {}, -1};
+  terrain::BuildControl control;
+  control.cancel = &cancel;
+  control.progress = [&](float f) { printer(f); };
+  Result<terrain::BakeReport> report = make_error(ErrorCode::kInvalidArgument, "nothing to do");
+  if (command.kind == BakeCommand::Kind::kMerge) {
+    report = terrain::merge_bake_shares(command.shares, command.out, control);
+  } else {
+    Result<ElevationRaster> raster = read_elevation(command.source, command.settings.elevation);
+    if (!raster) return fail(err, raster.error());
+    if (cancel.load()) return fail(err, make_error(ErrorCode::kCancelled, "cancelled; nothing was written"));
+    if (!command.quiet) {
+      err << fmt::format("sylva-bake: {} ({}): {} x {} samples, spacing {} m\n", command.source.string(),
+                         raster->reader, raster->field.columns(), raster->field.rows(), raster->field.spacing());
+    }
+    terrain::BakeOptions options;
+    options.tree = command.settings.tree;
+    options.share = command.share;
+    options.shares = command.shares_total;
+    options.control = control;
+    report = command.shares_total > 1 ? terrain::bake_share(raster->field, command.out, options)
+                                      : terrain::bake_chunk_file(raster->field, command.out, options);
+  }
+  if (!report) return fail(err, report.error());
+  out << fmt::format("sylva-bake: wrote {} ({} chunks, {} triangles, {:.1f} MB) in {:.1f} s "
+                     "(grids {:.1f} s, meshes {:.1f} s, merge {:.1f} s), peak RSS {:.0f} MiB\n",
+                     command.out.string(), report->chunks, report->triangles, static_cast<double>(report->bytes) / 1e6,
+                     watch.elapsed_ms() / 1000.0, report->prepare_ms / 1000.0, report->meshes_ms / 1000.0,
+                     report->merge_ms / 1000.0, peak_rss_mib());
+  return 0;
+}
+
+}  // namespace sylva::bake

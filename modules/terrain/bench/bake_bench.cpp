@@ -1,0 +1,86 @@
+// Out-of-core bake (bake.hpp) against the in-memory ChunkTree::build (+ save_chunk_file) of the same
+// field, in one run. Both cores (threads = 0), default tree settings (leaf 33). The bake runs
+// first, so the process's peak RSS after it is the bake's own; the in-memory rows report the peak
+// after them (max RSS only grows). Field size via --benchmark_filter=.../4097 or /16385.
+#include <sylva/terrain/bake.hpp>
+#include <sylva/terrain/chunk_file.hpp>
+#include <sylva/terrain/height_source.hpp>
+
+#include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
+
+#include <filesystem>
+#include <map>
+
+namespace sylva::terrain {
+namespace {
+
+const HeightField& field(int size) {
+  static std::map<int, HeightField> cache;
+  auto it = cache.find(size);
+  if (it == cache.end()) {
+    GeneratedFieldSettings g;
+    g.size = size;
+    g.spacing = 2.0;
+    g.height_scale = 900.0f;
+    g.feature_size = 2000.0f;
+    g.fbm.octaves = 9;
+    it = cache.emplace(size, generate_height_field(g).value()).first;
+  }
+  return it->second;
+}
+
+double peak_rss_mib() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
+std::filesystem::path out_file(const char* name) {
+  return std::filesystem::temp_directory_path() / fmt::format("sylva_bake_bench_{}_{}", ::getpid(), name);
+}
+
+void BM_Bake(benchmark::State& state) {
+  const HeightField& f = field(static_cast<int>(state.range(0)));
+  const auto out = out_file("baked.sylvaterrain");
+  BakeReport report;
+  for (auto _ : state) {
+    auto r = bake_chunk_file(f, out, BakeOptions{});
+    if (!r) {
+      state.SkipWithError(r.error().describe().c_str());
+      return;
+    }
+    report = *r;
+  }
+  state.counters["peak_rss_mib"] = peak_rss_mib();
+  state.counters["grids_ms"] = report.prepare_ms;
+  state.counters["meshes_ms"] = report.meshes_ms;
+  state.counters["merge_ms"] = report.merge_ms;
+  state.counters["file_mb"] = static_cast<double>(report.bytes) / 1e6;
+  state.counters["triangles"] = static_cast<double>(report.triangles);
+  std::filesystem::remove(out);
+}
+BENCHMARK(BM_Bake)->Arg(4097)->Arg(16385)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+
+void BM_InMemoryBuild(benchmark::State& state) {
+  const HeightField& f = field(static_cast<int>(state.range(0)));
+  const auto out = out_file("memory.sylvaterrain");
+  const bool save = state.range(1) != 0;
+  for (auto _ : state) {
+    auto tree = ChunkTree::build(f, ChunkTreeSettings{});
+    if (!tree) {
+      state.SkipWithError(tree.error().describe().c_str());
+      return;
+    }
+    if (save && !save_chunk_file(out, *tree).ok()) state.SkipWithError("save failed");
+    state.counters["triangles"] = static_cast<double>(tree->report().triangles());
+  }
+  state.counters["peak_rss_mib"] = peak_rss_mib();
+  std::filesystem::remove(out);
+}
+BENCHMARK(BM_InMemoryBuild)->Args({4097, 0})->Args({4097, 1})->Args({16385, 0})->Unit(benchmark::kSecond)
+    ->Iterations(1)->UseRealTime();
+
+}  // namespace
+}  // namespace sylva::terrain
