@@ -122,7 +122,8 @@ Texel texel(TextureId id, int x, int y, int size, std::uint32_t salt) {
       break;
     }
     case TextureId::kBirchBark: {
-      t.rgb = glm::vec3(0.88f + 0.08f * r);
+      // Real birch bark reflects ~0.5-0.6; at 0.9 it burned out white in sunlight once tone mapped.
+      t.rgb = glm::vec3(0.6f + 0.08f * r) * glm::vec3(1.0f, 0.98f, 0.94f);
       // Short dark horizontal marks.
       const int band = y / 3;
       if (rnd(band, 0, salt + 4) > 0.55f && std::abs(u - rnd(band, 1, salt + 4)) < 0.18f) t.rgb = glm::vec3(0.15f);
