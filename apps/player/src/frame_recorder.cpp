@@ -43,6 +43,7 @@ nlohmann::json FrameRecorder::to_json(int frames, glm::ivec2 size) const {
   j["size"] = {size.x, size.y};
   if (!scene_name_.empty()) j["scene"] = scene_name_;
   if (!settings_.is_null()) j["settings"] = settings_;
+  if (!memory_.is_null()) j["memory"] = memory_;
   j["cpu_ms"] = summarize(cpu_ms_);
   j["gpu_ms"] = summarize(gpu_ms_);
   j["wall_ms"] = summarize(wall_ms_);

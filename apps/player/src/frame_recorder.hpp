@@ -44,6 +44,8 @@ class FrameRecorder {
   // The scene's effective render settings ("render", "sun", "environment" sections with every
   // default filled in), so a figure can be read beside what produced it (make gallery).
   void set_settings(nlohmann::json settings) { settings_ = std::move(settings); }
+  // Memory at the end of the run (scene::memory_report()).
+  void set_memory(nlohmann::json memory) { memory_ = std::move(memory); }
 
   nlohmann::json to_json(int frames, glm::ivec2 size) const;
   // Writes atomically (core write_file_atomic).
@@ -64,6 +66,7 @@ class FrameRecorder {
   std::map<std::string, nlohmann::json> modules_;
   std::string scene_name_;
   nlohmann::json settings_;
+  nlohmann::json memory_;
 };
 
 }  // namespace sylva::player

@@ -12,6 +12,7 @@
 #include <sylva/render/gl_debug.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
+#include <sylva/scene/frame_stats.hpp>
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
@@ -186,6 +187,7 @@ int run_player(const PlayerOptions& options, std::ostream& out, std::ostream& er
   if (auto last = profiler.flush()) recorder.add_gpu_frame(*last);
   const nlohmann::json facts = scene.module_stats();
   for (const auto& [module, info] : facts.items()) recorder.set_module_info(module, info);
+  recorder.set_memory(scene::memory_report());
 
   int status = 0;
   if (options.screenshot_path) {

@@ -93,6 +93,18 @@ TEST(PlayerHeadless, DefaultSceneRendersSkyAboveGroundAndWritesStats) {
   const nlohmann::json& ground = modules.contains("ground") ? modules["ground"] : modules["terrain"];
   EXPECT_GT(ground["triangles"].get<std::uint64_t>(), 0u);
   EXPECT_GT(ground["passes"]["opaque"]["samples"].get<std::uint64_t>(), 0u);
+  // The effective settings the picture was made with, and the memory it took (issue #20).
+  EXPECT_GE((*json)["settings"]["render"]["msaa_samples"].get<int>(), 1);
+  const nlohmann::json& memory = (*json)["memory"];
+  EXPECT_GT(memory["peak_rss_bytes"].get<std::uint64_t>(), 10u << 20) << memory.dump();
+  std::uint64_t owned = 0, targets = 0;
+  for (const auto& [owner, bytes] : memory["gpu_bytes"].items()) {
+    owned += bytes["total"].get<std::uint64_t>();
+    targets += bytes["render_targets"].get<std::uint64_t>();
+  }
+  EXPECT_EQ(owned, memory["gpu_total_bytes"].get<std::uint64_t>()) << memory.dump();
+  EXPECT_GE(targets, 160u * 96u * 4u) << "at least the 160x96 RGBA8 target the frame was read from";
+  EXPECT_GE(memory["gpu_peak_bytes"].get<std::uint64_t>(), memory["gpu_total_bytes"].get<std::uint64_t>());
 }
 
 TEST(PlayerHeadless, PlaysShippedScenesAlongCameraPaths) {

@@ -37,4 +37,11 @@ SceneFrameStats split_frame_stats(const render::FrameStats& frame);
 // {"gpu_ms", "primitives", "samples", "triangles", "draw_calls", "instances"}.
 nlohmann::json pass_stats_json(const render::PassStats& s);
 
+// Memory now (issue #20): tracked GPU bytes per owner (the scene attributes each module's
+// allocations to its name; render/gpu_memory.hpp) split into buffers, textures and render
+// targets, their total and peak, and the process's peak resident set size (getrusage):
+//   {"gpu_bytes": {"<owner>": {"buffers", "textures", "render_targets", "total", "peak"}},
+//    "gpu_total_bytes", "gpu_peak_bytes", "peak_rss_bytes"}
+nlohmann::json memory_report();
+
 }  // namespace sylva::scene
