@@ -1,8 +1,10 @@
 // Sun direction, fog maths and the lighting uniform block (lighting.hpp, lighting_uniforms.hpp).
 #include <sylva/render/lighting.hpp>
 #include <sylva/render/lighting_uniforms.hpp>
+#include <sylva/render/sky.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace sylva::render {
@@ -15,11 +17,17 @@ struct LightingBlock {
   glm::vec4 ambient;         // rgb
   glm::vec4 horizon;         // rgb
   glm::vec4 zenith;          // rgb
-  glm::vec4 ground;          // rgb
+  glm::vec4 ground;          // rgb ambient of downward faces
   glm::vec4 fog;             // rgb colour, a = density [1/m]
   glm::vec4 params;          // x = height falloff [1/m], y = camera height [m], z = time [s]
+  glm::vec4 rayleigh;        // rgb = air scattering at sea level [1/m], w = 1 / scale height [1/m]
+  glm::vec4 mie;             // x = aerosol extinction [1/m], y = 1 / scale height, z = g, w = cos(sun radius)
+  std::array<glm::vec4, SkyTable::kRows * SkyTable::kCols * 2> sky;  // SkyTable::cells
 };
-static_assert(sizeof(LightingBlock) == 8 * 16);
+static_assert(sizeof(LightingBlock) == (10 + SkyTable::kRows * SkyTable::kCols * 2) * 16);
+
+// The sun's angular radius seen from the Earth: 0.2666 deg.
+constexpr float kCosSunRadius = 0.99998918f;
 
 }  // namespace
 
@@ -52,6 +60,11 @@ void LightingUniforms::update(const Lighting& l, double camera_height, double ti
   // Time wraps after a day so float keeps millisecond resolution in shaders.
   b.params = glm::vec4(std::max(l.fog_height_falloff, 0.0f), static_cast<float>(camera_height),
                        static_cast<float>(std::fmod(time, 86400.0)), 0.0f);
+  const AtmosphereSettings& a = l.atmosphere;
+  b.rayleigh = glm::vec4(glm::max(a.rayleigh_scattering, glm::vec3(0.0f)), 1.0f / std::max(a.rayleigh_scale_height, 1.0f));
+  b.mie = glm::vec4(std::max(a.mie_scattering + a.mie_absorption, 0.0f), 1.0f / std::max(a.mie_scale_height, 1.0f),
+                    std::clamp(a.mie_g, -0.99f, 0.99f), kCosSunRadius);
+  b.sky = sky_table(l).cells;
   buffer_.update(0, sizeof(b), &b);
 }
 

@@ -1,6 +1,8 @@
 // Sun and sky from the time of day; see time_of_day.hpp.
 #include <sylva/render/time_of_day.hpp>
 
+#include <sylva/render/sky.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -50,18 +52,12 @@ Lighting lighting_for_time_of_day(const TimeOfDaySettings& s, const Lighting& ba
   out.sun_color = transmittance / std::max(transmittance.x, 1e-6f);  // hue only, red channel = 1
   out.sun_intensity = intensity * transmittance.x * day;
 
-  // Sky gradient from the same sun: clear-day blues scaled by the light reaching the ground,
-  // a horizon that takes the sun's reddened colour at low elevations, a dim night floor.
-  const glm::vec3 day_zenith{0.22f, 0.42f, 0.75f};
-  const glm::vec3 day_horizon{0.72f, 0.80f, 0.88f};
-  const float height = smoothstep01(0.0f, 0.5f, std::max(elevation, 0.0f));  // 0 at sunset, 1 by ~30 deg
-  const glm::vec3 sunset_horizon = glm::vec3(1.0f, 0.55f, 0.3f) * (0.35f + 0.65f * out.sun_color);
+  // Sky, ambient and fog from the atmosphere lit by the same sun, with a dim night floor.
+  derive_sky_lighting(out);
   const glm::vec3 night{0.004f, 0.006f, 0.012f};
-  const float light = day * (0.25f + 0.75f * height);
-  out.zenith_color = glm::max(day_zenith * light, night);
-  out.horizon_color = glm::max(glm::mix(sunset_horizon * 0.8f, day_horizon, height) * light, night);
-  out.ground_color = glm::max(glm::vec3(0.30f, 0.28f, 0.25f) * light, night * 0.5f);
-  out.ambient = glm::max(0.5f * (out.zenith_color + out.horizon_color) * 0.7f, night);
+  out.zenith_color = glm::max(out.zenith_color, night);
+  out.horizon_color = glm::max(out.horizon_color, night);
+  out.ambient = glm::max(out.ambient, night);
   out.fog_color = out.horizon_color;
   return out;
 }

@@ -13,13 +13,18 @@ namespace {
 TEST(SettingsParams, LightingFieldsAreParameters) {
   Lighting lighting;
   const std::vector<ParamDescriptor> params = describe_params(lighting, "lighting");
-  EXPECT_EQ(params.size(), 10u);
+  EXPECT_EQ(params.size(), 18u);  // 10 lighting fields + 8 of the atmosphere
   ASSERT_TRUE(set_param(lighting, "fog_density", "0.002").ok());
   EXPECT_FLOAT_EQ(lighting.fog_density, 0.002f);
   Status bad = set_param(lighting, "fog_density", "5");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("fog_density"), std::string::npos) << bad.error().message;
   EXPECT_TRUE(validate_params(lighting).ok());
+  ASSERT_TRUE(set_param(lighting, "atmosphere.mie_g", "0.7").ok());
+  EXPECT_FLOAT_EQ(lighting.atmosphere.mie_g, 0.7f);
+  Status bad_g = set_param(lighting, "atmosphere.mie_g", "1.5");
+  ASSERT_FALSE(bad_g.ok());
+  EXPECT_NE(bad_g.error().message.find("mie_g"), std::string::npos) << bad_g.error().message;
 }
 
 TEST(SettingsParams, FlySettingsAreParameters) {

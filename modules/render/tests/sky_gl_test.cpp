@@ -1,5 +1,6 @@
-// The sky renderer and the shared GLSL lighting library agree with their CPU twins: sky
-// gradient colours per pixel direction, the sun disk where the sun is, and fog transmittance.
+// The sky renderer and the shared GLSL lighting library agree with their CPU twins: the
+// atmosphere's radiance per pixel direction (above and below the horizon), the sun disk where
+// the sun is, the haze transmittance, and aerial perspective fading into the sky's colour.
 #include "support/render_test_support.hpp"
 
 #include <sylva/render/camera.hpp>
@@ -10,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace sylva::render {
@@ -29,28 +31,25 @@ glm::vec3 pixel_direction(const Camera& cam, int x, int row) {
   return glm::normalize(glm::vec3(p) / p.w);
 }
 
-TEST_F(SkyTest, GradientMatchesCpuTwin) {
+// Float target: the sky is HDR radiance, compared with the CPU twin to 0.5 % + 1e-4.
+void expect_sky_matches_cpu(const Camera& cam, const Lighting& lighting, const char* name) {
   Result<SkyRenderer> sky = SkyRenderer::create();
   ASSERT_TRUE(sky.ok()) << sky.error().describe();
-  Framebuffer fb = test::make_target(kW, kH);
-  Camera cam;
-  cam.set_aspect(kW, kH);
-  cam.set_position({1.0e6, 50.0, -2.0e6});  // position must not matter for the sky
-  cam.set_yaw_pitch(0.3f, 0.1f);
-  Lighting lighting;
-  lighting.sun_direction = -cam.forward();  // sun behind the camera: pure gradient in view
-  fb.bind();
-  fb.clear({1, 0, 1, 1});
+  Result<Framebuffer> fb = Framebuffer::create({.width = kW, .height = kH, .color_formats = {GL_RGBA32F}});
+  ASSERT_TRUE(fb.ok());
+  fb->bind();
+  fb->clear({1, 0, 1, 1}, 0.0f);
   sky->draw(cam, lighting);
-  Result<Image> image = read_color(fb);
+  Result<Image> image = read_color(*fb);
   ASSERT_TRUE(image.ok());
-  test::save_for_inspection(*image, "sky_gradient");
+  test::save_for_inspection(*image, name);
   int checked = 0;
   for (int row = 0; row < kH; row += 3) {
     for (int x = 0; x < kW; x += 5) {
-      const glm::vec3 expected = sky_gradient(lighting, pixel_direction(cam, x, row));
+      const glm::vec3 expected = sky_radiance(lighting, pixel_direction(cam, x, row));
       for (int c = 0; c < 3; ++c) {
-        ASSERT_NEAR(image->at(x, row, c), expected[c], 2.5f / 255.0f) << x << "," << row << " channel " << c;
+        ASSERT_NEAR(image->at(x, row, c), expected[c], 5.0e-3f * expected[c] + 1.0e-4f) << x << "," << row << " channel " << c;
+        ASSERT_GT(expected[c], 0.0f);
       }
       ++checked;
     }
@@ -58,8 +57,53 @@ TEST_F(SkyTest, GradientMatchesCpuTwin) {
   EXPECT_GT(checked, 300);
   // No magenta left: the sky covers every pixel at depth 0.
   EXPECT_EQ(test::count_color(*image, 1, 0, 1), 0);
-  // Top is nearer the zenith colour than the bottom (blue channel higher relative to red).
-  EXPECT_GT(image->at(kW / 2, 0, 2) - image->at(kW / 2, 0, 0), image->at(kW / 2, kH - 1, 2) - image->at(kW / 2, kH - 1, 0));
+}
+
+TEST_F(SkyTest, AtmosphereMatchesCpuTwin) {
+  Camera cam;
+  cam.set_aspect(kW, kH);
+  cam.set_position({1.0e6, 50.0, -2.0e6});  // position must not matter for the sky
+  cam.set_yaw_pitch(0.3f, 0.1f);
+  Lighting lighting;
+  const glm::vec3 back = -cam.forward();
+  lighting.sun_direction = glm::normalize(glm::vec3(back.x, 0.5f, back.z));  // behind, no disk in view
+  expect_sky_matches_cpu(cam, lighting, "sky_atmosphere");
+  // Toward a low sun, half the view below the horizon: the Mie glow and the haze below.
+  lighting.sun_direction = sun_direction(0.4f, 0.08f);
+  cam.set_yaw_pitch(0.5f, 0.0f);
+  expect_sky_matches_cpu(cam, lighting, "sky_atmosphere_low_sun");
+}
+
+TEST_F(SkyTest, NoDarkBandBelowTheHorizon) {
+  Result<SkyRenderer> sky = SkyRenderer::create();
+  ASSERT_TRUE(sky.ok());
+  Result<Framebuffer> fb = Framebuffer::create({.width = kW, .height = kH, .color_formats = {GL_RGBA32F}});
+  ASSERT_TRUE(fb.ok());
+  Camera cam;
+  cam.set_aspect(kW, kH);
+  cam.set_yaw_pitch(0.0f, -0.6f);  // looking down: most of the view is below the horizon
+  Lighting lighting;
+  fb->bind();
+  fb->clear({0, 0, 0, 1}, 0.0f);
+  sky->draw(cam, lighting);
+  Result<Image> image = read_color(*fb);
+  ASSERT_TRUE(image.ok());
+  // Every pixel below the horizon shows the horizon's haze of its azimuth (not a ground colour).
+  int below = 0;
+  for (int row = 0; row < kH; ++row) {
+    for (int x = 0; x < kW; ++x) {
+      glm::vec3 d = pixel_direction(cam, x, row);
+      if (d.y >= 0.0f) continue;
+      ++below;
+      d.y = 0.0f;
+      const glm::vec3 horizon = sky_radiance(lighting, glm::normalize(d));
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_GT(horizon[c], 0.05f);
+        ASSERT_NEAR(image->at(x, row, c), horizon[c], 5.0e-3f * horizon[c]) << x << "," << row;
+      }
+    }
+  }
+  EXPECT_GT(below, kW * kH / 2);
 }
 
 TEST_F(SkyTest, SunDiskWhereTheSunIs) {
@@ -109,14 +153,19 @@ TEST_F(SkyTest, SkyOnlyWhereNothingWasDrawn) {
   EXPECT_EQ(func, GL_GREATER);  // state restored
 }
 
-TEST_F(SkyTest, FogTransmittanceMatchesCpu) {
-  embedded::register_render_shaders();
+// A full-screen triangle at depth 0.5 for the probe shaders, as "rtest/fullscreen.vert".
+void register_fullscreen_vert() {
   register_shader_source("rtest/fullscreen.vert",
                          "#version 450 core\n"
                          "void main() {\n"
                          "  vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2)) * 2.0 - 1.0;\n"
                          "  gl_Position = vec4(p, 0.5, 1.0);\n"
                          "}\n");
+}
+
+TEST_F(SkyTest, FogTransmittanceMatchesCpu) {
+  embedded::register_render_shaders();
+  register_fullscreen_vert();
   register_shader_source("rtest/fog_probe.frag",
                          "#version 450 core\n"
                          "#include \"render/lib/fog.glsl\"\n"
@@ -149,6 +198,50 @@ TEST_F(SkyTest, FogTransmittanceMatchesCpu) {
   EXPECT_FLOAT_EQ(image->at(0, 0, 2), 2.0e-4f);  // std140 block layout reaches the shader
   EXPECT_FLOAT_EQ(image->at(0, 0, 3), 12.5f);
   EXPECT_LT(image->at(63, 0, 0), 0.01f);  // 2^15.9 m of fog is opaque
+}
+
+// Aerial perspective: a black surface far away takes exactly the sky's colour of its
+// direction (the horizon's haze below it), a near one stays nearly black, and blue fades first.
+TEST_F(SkyTest, AerialPerspectiveFadesIntoTheSky) {
+  embedded::register_render_shaders();
+  register_fullscreen_vert();
+  register_shader_source("rtest/aerial_probe.frag",
+                         "#version 450 core\n"
+                         "#include \"render/lib/fog.glsl\"\n"
+                         "uniform vec3 u_dir;\n"
+                         "out vec4 o_value;\n"
+                         "void main() {\n"
+                         "  float d = exp2(gl_FragCoord.x * 0.5);  // 1 m .. 2^32 m across the row\n"
+                         "  o_value = vec4(apply_fog(vec3(0.0), u_dir * d), d);\n"
+                         "}\n");
+  Program probe = test::build_or_fail({"rtest/fullscreen.vert", "rtest/aerial_probe.frag"});
+  ASSERT_TRUE(probe);
+  Result<Framebuffer> fb = Framebuffer::create({.width = 64, .height = 1, .color_formats = {GL_RGBA32F}});
+  ASSERT_TRUE(fb.ok());
+  Lighting lighting;
+  lighting.fog_density = 0.0f;  // the air alone
+  LightingUniforms uniforms = LightingUniforms::create();
+  uniforms.update(lighting, 100.0, 0.0);
+  uniforms.bind();
+  VertexArray vao = VertexArray::create();
+  for (const glm::vec3 dir : {glm::normalize(glm::vec3(0.3f, 0.0f, -1.0f)), glm::normalize(glm::vec3(-1.0f, -0.05f, 0.2f))}) {
+    fb->bind();
+    glDisable(GL_DEPTH_TEST);
+    probe.use();
+    probe.set("u_dir", dir);
+    vao.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    Result<Image> image = read_color(*fb);
+    ASSERT_TRUE(image.ok());
+    const glm::vec3 sky = sky_radiance(lighting, dir);
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_LT(image->at(0, 0, c), 1.0e-3f * sky[c] + 1.0e-6f) << "1 m of air is clear";
+      EXPECT_NEAR(image->at(63, 0, c), sky[c], 2.0e-3f * sky[c]) << "far away: the sky's own colour";
+    }
+    // At 10 km the blue haze is further along than the red.
+    const int x10km = static_cast<int>(std::round(2.0 * std::log2(10000.0)));
+    EXPECT_GT(image->at(x10km, 0, 2) / sky.b, image->at(x10km, 0, 0) / sky.r);
+  }
 }
 
 TEST(SunDirection, AzimuthAndElevation) {

@@ -1,5 +1,8 @@
 #include <sylva/scene/environment.hpp>
 
+#include <sylva/render/atmosphere.hpp>
+#include <sylva/render/sky.hpp>
+
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
@@ -33,21 +36,19 @@ render::Lighting make_lighting(const SunSettings& sun, const EnvironmentSettings
   render::Lighting l;
   // Below the horizon the light still comes from just above it (the sky glow), never from below.
   l.sun_direction = render::sun_direction(glm::radians(pos.azimuth_deg), glm::radians(std::max(pos.elevation_deg, 0.5f)));
-  // Daylight factor: full above 10 deg, fading to 0 at -4 deg (civil twilight).
-  const float day = std::clamp((pos.elevation_deg + 4.0f) / 14.0f, 0.0f, 1.0f);
-  // Reddening near the horizon: less blue and green through the longer air path.
-  const float low = 1.0f - std::clamp(pos.elevation_deg / 25.0f, 0.0f, 1.0f);
-  const glm::vec3 redden(1.0f, 1.0f - 0.35f * low, 1.0f - 0.65f * low);
-  l.sun_color = sun.color * redden;
-  l.sun_intensity = sun.intensity * day * day;
-  const float sky = 0.08f + 0.92f * day;
-  l.ambient = render::Lighting{}.ambient * (sky * sun.ambient);
-  l.horizon_color = render::Lighting{}.horizon_color * sky * glm::mix(glm::vec3(1.0f), glm::vec3(1.0f, 0.8f, 0.7f), low * day);
-  l.zenith_color = render::Lighting{}.zenith_color * sky;
-  l.ground_color = render::Lighting{}.ground_color * sky;
-  l.fog_color = render::Lighting{}.fog_color * sky;
+  // Twilight: the disk's light fades out between +2 and -4 deg (civil twilight); above that the
+  // atmosphere alone dims and reddens it.
+  const float day = std::clamp((pos.elevation_deg + 4.0f) / 6.0f, 0.0f, 1.0f);
+  // sun.color is the colour straight overhead: scale the transmittance toward the sun by the
+  // zenith's (its luminance), so `intensity` is the overhead brightness and a low sun is orange.
+  const glm::vec3 toward_sun = render::atmosphere_transmittance(l.atmosphere, 0.0f, l.sun_direction);
+  const glm::vec3 overhead = render::atmosphere_transmittance(l.atmosphere, 0.0f, {0.0f, 1.0f, 0.0f});
+  const float overhead_luminance = glm::dot(overhead, glm::vec3(0.2126f, 0.7152f, 0.0722f));
+  l.sun_color = sun.color * toward_sun / std::max(overhead_luminance, 1.0e-6f);
+  l.sun_intensity = sun.intensity * day;
   l.fog_density = sun.fog_density;
   l.fog_height_falloff = sun.fog_height_falloff;
+  render::derive_sky_lighting(l, sun.ambient);
   return l;
 }
 

@@ -427,7 +427,9 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
   gpu_->shadows.bind();
   colour->bind();
   render::apply_reversed_z_state();
-  colour->clear(glm::vec4(lighting_.fog_color, 1.0f), 0.0f);
+  // The sky pass covers every pixel left at depth 0, so the clear colour is never meant to be
+  // seen; the horizon colour hides a gap best, magenta (debug) shows it.
+  colour->clear(debug_.show_holes ? glm::vec4(1.0f, 0.0f, 1.0f, 1.0f) : glm::vec4(lighting_.fog_color, 1.0f), 0.0f);
 
   draw_pass(render::Pass::kOpaque, profiler);
   profiler.begin("sky");

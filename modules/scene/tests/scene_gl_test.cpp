@@ -172,7 +172,8 @@ TEST_F(SceneGl, FlatGroundIsNotSnow) {
   const float r = image->at(32, 30, 0), g = image->at(32, 30, 1), b = image->at(32, 30, 2);
   EXPECT_GT(g, r) << "grass green, not snow white";
   EXPECT_GT(g, b);
-  EXPECT_LT(b, 0.5f * g);
+  // sRGB-encoded (tone mapping on by default) channel ratios are flatter than linear ones.
+  EXPECT_LT(b, 0.7f * g);
 }
 
 // Invariant: a map edit rebuilds exactly the chunks whose samples or normals it changes.
@@ -404,8 +405,8 @@ TEST_F(SceneGl, ShadowsAndToneMapping) {
   };
   if (!find_module("voxel")) GTEST_SKIP() << "the test uses a voxel world as the shadow caster";
   Target t = make_target(96, 54);
-  auto lit = make_scene(with(R"({"shadows": {"enabled": false}})"));
-  auto shadowed = make_scene(with(R"({"shadows": {"enabled": true, "max_distance": 200}})"));
+  auto lit = make_scene(with(R"({"shadows": {"enabled": false}, "tone_map": false})"));
+  auto shadowed = make_scene(with(R"({"shadows": {"enabled": true, "max_distance": 200}, "tone_map": false})"));
   auto toned = make_scene(with(R"({"shadows": {"enabled": false}, "tone_map": true})"));
   ASSERT_TRUE(lit && shadowed && toned);
   auto picture = [&](Scene& s) {

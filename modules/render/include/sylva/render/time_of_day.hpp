@@ -3,8 +3,8 @@
 // (rises due east at 6 h, highest at noon due south when `noon_elevation` < 90 deg, sets due
 // west at 18 h, below the horizon at night), its colour is white sunlight attenuated by
 // Rayleigh-like extinction along the air mass (Kasten & Young 1989), so it reddens at the
-// horizon, and the analytic sky gradient (sky.hpp / sky.glsl), ambient and fog colours are
-// derived from the same sun so the sky, the lighting and the fog always agree.
+// horizon, and the ambient, sky and fog colours are derived from the atmosphere lit by the
+// same sun (derive_sky_lighting, sky.hpp) so the sky, the lighting and the fog always agree.
 // GL-free; the result is a render::Lighting ready for LightingUniforms and SkyRenderer.
 // Colours are linear HDR RGB: tone map them (tone_mapping.hpp) before display.
 

@@ -21,13 +21,12 @@ struct SunSettings {
   float azimuth_deg = 35.0f;    // compass heading of the sun: 0 = toward -z (north), 90 = +x (east)
   float elevation_deg = 28.0f;  // above the horizon; 90 = straight up
   float intensity = 3.0f;       // multiplier of the sun colour at full daylight
-  // Multiplier of the render core's sky ambient. Above 1 by default because the modules write
-  // display values (tone mapping off, SceneRenderSettings): with the core's linear ambient
-  // (~0.3) a surface facing away from the sun or in shadow came out near black (scenes/ground.json).
-  float ambient = 1.6f;
-  glm::vec3 color{1.0f, 0.95f, 0.85f};  // linear RGB at high elevation (reddened toward the horizon)
-  float fog_density = 4.0e-4f;  // exponential distance fog [1/m]
-  float fog_height_falloff = 0.0f;  // fog thinning with height [1/m], 0 = uniform
+  // Multiplier of the sky light (ambient) the atmosphere gives (render::derive_sky_lighting).
+  // 1 = physical; the old display-value compensation of 1.6 is gone with tone mapping on.
+  float ambient = 1.0f;
+  glm::vec3 color{1.0f, 1.0f, 1.0f};  // linear RGB straight overhead; the atmosphere reddens it lower
+  float fog_density = 4.0e-4f;  // ground haze on top of the air's own aerial perspective [1/m]
+  float fog_height_falloff = 0.0f;  // haze thinning with height [1/m], 0 = uniform
 
   template <class V>
   void visit(V& v) {
@@ -60,12 +59,14 @@ struct EnvironmentSettings {
 // module casts into and receives from, and the HDR -> display tone mapping at the end.
 struct SceneRenderSettings {
   render::ShadowSettings shadows;      // render/shadow_cascades.hpp
-  // Render into an HDR target and tone-map it (ACES + sRGB by default). Off by default: the
-  // modules' materials (terrain, grass, trees, voxels) are authored as display values, and through
-  // the HDR path they come out washed out (measured on scenes/forest.json); switch it on per
-  // scene once materials are linear.
-  bool tone_map = false;
-  render::ToneMapSettings tone;        // render/tone_mapping.hpp
+  // Render into an HDR target and tone-map it (ACES + sRGB, issue 19). Materials are linear
+  // albedos; the sky and sun are physical (render/atmosphere.hpp). Off: modules' linear HDR
+  // values are written to the display unencoded (only for tests that read raw values).
+  bool tone_map = true;
+  // Exposure kExposure: a white Lambertian face under the default overhead sun (intensity 3)
+  // maps to ~1.1 before the curve (ACES ~0.82), mid-grey albedo 0.18 to ~0.2 (ACES ~0.3, sRGB ~0.58).
+  static constexpr float kExposure = 0.36f;
+  render::ToneMapSettings tone{.exposure = kExposure};  // render/tone_mapping.hpp
   // Samples per pixel of the colour passes: 1 = off; 2, 4, 8 = MSAA, resolved (before tone
   // mapping) into the caller's target. Leaves and slices switch to alpha-to-coverage on
   // multisampled targets (vegetation AlphaMode::kAuto), so their edges get fractional coverage.
@@ -75,7 +76,7 @@ struct SceneRenderSettings {
   void visit(V& v) {
     v(shadows, "shadows");
     v(msaa_samples, "msaa_samples", {.min = 1, .max = 8, .help = "Samples per pixel (1 off, 2, 4 or 8 MSAA)"});
-    v(tone_map, "tone_map", {.help = "Render in HDR and tone-map to the display (off: modules write display values directly)"});
+    v(tone_map, "tone_map", {.help = "Render in HDR and tone-map to the display (off: raw linear values)"});
     v(tone, "tone");
   }
 };

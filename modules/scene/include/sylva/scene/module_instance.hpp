@@ -32,6 +32,7 @@ struct DebugView {
   bool lod_colors = false;    // modules with LOD tint each level (ground: each chunk)
   bool chunk_bounds = false;  // boxes of the modules' chunks / tiles, drawn as lines
   bool freeze_culling = false;  // keep the last culling result while the camera moves
+  bool show_holes = false;  // clear to magenta instead of the horizon colour: pixels nothing drew stand out
 
   template <class V>
   void visit(V& v) {
@@ -39,6 +40,7 @@ struct DebugView {
     v(lod_colors, "lod_colors", {.help = "Tint geometry by level of detail"});
     v(chunk_bounds, "chunk_bounds", {.help = "Draw the bounding boxes of chunks and tiles"});
     v(freeze_culling, "freeze_culling", {.help = "Keep the current culling while the camera moves"});
+    v(show_holes, "show_holes", {.help = "Clear to magenta so pixels that nothing (not even the sky) drew stand out"});
   }
 };
 
