@@ -5,7 +5,7 @@
 
 namespace sylva::terrain {
 
-Result<BakeReport> bake_chunk_file(const HeightField& field, const std::filesystem::path& out,
+Result<BakeReport> bake_chunk_file(HeightField field, const std::filesystem::path& out,
                                    const BakeOptions& options) {
   SYLVA_TRY(check_replaceable(out));
   BakeOptions one = options;
@@ -21,7 +21,7 @@ Result<BakeReport> bake_chunk_file(const HeightField& field, const std::filesyst
       std::filesystem::remove(p, ec);
     }
   } remove_share{share};
-  Result<BakeReport> meshed = bake_share(field, share, one);
+  Result<BakeReport> meshed = bake_share(std::move(field), share, one);
   if (!meshed) return meshed.error();
   BuildControl merge_control = options.control;
   if (options.control.progress) merge_control.progress = [&](float f) { options.control.progress(0.9f + 0.1f * f); };

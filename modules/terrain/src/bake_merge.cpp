@@ -6,6 +6,7 @@
 #include "bake_share_format.hpp"
 #include "chunk_blob.hpp"
 #include "chunk_build.hpp"
+#include "parallel.hpp"
 
 #include <sylva/core/timer.hpp>
 
@@ -178,60 +179,94 @@ Result<BakeReport> merge_bake_shares(const std::vector<std::filesystem::path>& p
   Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(out, tree);
   if (!writer) return writer.error();
   BakeReport report;
-  std::string blob;
+  // Batches of blobs: read in slot order, verified and patched on every thread, written in slot
+  // order (the output does not depend on the thread count).
+  struct Item {
+    const Share* share;
+    std::uint32_t slot;
+    std::string blob, error;
+    std::uint64_t checksum = 0;
+  };
+  std::vector<Item> batch;
+  std::size_t batch_bytes = 0;
+  const int threads = detail::resolve_threads(0);
   const std::uint32_t levels = static_cast<std::uint32_t>(tree.levels());
+
+  // Verifies one blob against its share's directory and patches morph_error, the only field the
+  // bounds decide; an error names the share file and the chunk.
+  auto patch = [&](Item& it) {
+    const Chunk& c = tree.chunk(it.slot);
+    const char* e = it.share->directory.data() + static_cast<std::size_t>(it.slot - it.share->first) * detail::kShareEntryBytes;
+    auto corrupt = [&](const std::string& what) {
+      it.error = fmt::format("{}: chunk {} (level {} at {}, {}): {}", it.share->name(), it.slot, c.key.level, c.key.x,
+                             c.key.z, what);
+    };
+    std::string& blob = it.blob;
+    if (fnv1a64(blob.data(), blob.size()) != get_le<std::uint64_t>(e, detail::kSeChecksum)) return corrupt("checksum mismatch");
+    const auto nv = get_le<std::uint32_t>(blob.data(), 0);
+    if (nv != c.vertex_count || 24 + static_cast<std::uint64_t>(nv) * detail::kChunkVertexBytes > blob.size()) {
+      return corrupt("its vertex count does not match its size");
+    }
+    const std::uint32_t size = tree.chunk_size(c.key.level);
+    const std::uint64_t x0 = std::uint64_t{c.key.x} * size, z0 = std::uint64_t{c.key.z} * size;
+    for (std::uint32_t k = 0; k < nv; ++k) {
+      const std::size_t at = 24 + static_cast<std::size_t>(k) * detail::kChunkVertexBytes;
+      ChunkVertex v;
+      v.gx = get_le<std::uint32_t>(blob.data(), at);
+      v.gz = get_le<std::uint32_t>(blob.data(), at + 4);
+      v.intro_level = get_le<std::uint8_t>(blob.data(), at + 20);
+      if (v.intro_level > c.key.level || v.intro_level >= levels || v.gx < x0 || v.gx > x0 + size || v.gz < z0 ||
+          v.gz > z0 + size) {
+        return corrupt(fmt::format("vertex {} at ({}, {}) of level {} lies outside the chunk", k, v.gx, v.gz,
+                                   v.intro_level));
+      }
+      put_le(blob, at + detail::kMorphErrorOffset, ChunkTreeBuilder::morph_error(tree, v));
+    }
+    it.checksum = fnv1a64(blob.data(), blob.size());
+  };
+  auto flush = [&]() -> Status {
+    const bool finished = detail::parallel_for(batch.size(), threads, [&](std::size_t k) { patch(batch[k]); },
+                                               control.cancel);
+    if (!finished) {
+      return make_error(ErrorCode::kCancelled, fmt::format("{}: bake cancelled; nothing was written", out.string()));
+    }
+    for (Item& it : batch) {
+      if (!it.error.empty()) return make_error(ErrorCode::kCorrupt, it.error);
+      const Chunk& c = tree.chunk(it.slot);
+      SYLVA_TRY((*writer)->add(it.slot, c, std::string_view(it.blob), it.checksum));
+      ++report.chunks;
+      report.triangles += c.triangle_count;
+    }
+    if (control.progress && !batch.empty()) {
+      control.progress(static_cast<float>(batch.back().slot) / static_cast<float>(slot_count));
+    }
+    batch.clear();
+    batch_bytes = 0;
+    return ok_status();
+  };
   for (const Share& s : shares) {
+    const std::uint64_t dir_offset = get_le<std::uint64_t>(s.header.data(), detail::kShDirOffset);
     for (std::uint32_t i = s.first; i < s.end; ++i) {
       const Chunk& c = tree.chunk(i);
       if (!c.present) continue;
-      if (control.cancel != nullptr && control.cancel->load()) {
-        return make_error(ErrorCode::kCancelled, fmt::format("{}: bake cancelled; nothing was written", out.string()));
-      }
       const char* e = s.directory.data() + static_cast<std::size_t>(i - s.first) * detail::kShareEntryBytes;
+      const auto offset = get_le<std::uint64_t>(e, detail::kSeOffset), bytes = get_le<std::uint64_t>(e, detail::kSeBytes);
       auto corrupt = [&](const std::string& what) {
         return make_error(ErrorCode::kCorrupt, fmt::format("{}: chunk {} (level {} at {}, {}): {}", s.name(), i,
                                                            c.key.level, c.key.x, c.key.z, what));
       };
-      const auto offset = get_le<std::uint64_t>(e, detail::kSeOffset), bytes = get_le<std::uint64_t>(e, detail::kSeBytes);
-      const std::uint64_t dir_offset = get_le<std::uint64_t>(s.header.data(), detail::kShDirOffset);
       if (offset < detail::kShareHeaderBytes || bytes > dir_offset || offset > dir_offset - bytes || bytes < 24) {
         return corrupt("points outside the data");
       }
-      blob.resize(bytes);
+      Item& it = batch.emplace_back(Item{&s, i, std::string(bytes, '\0'), {}, 0});
       s.in->seekg(static_cast<std::streamoff>(offset));
-      s.in->read(blob.data(), static_cast<std::streamsize>(bytes));
+      s.in->read(it.blob.data(), static_cast<std::streamsize>(bytes));
       if (!*s.in) return corrupt("cannot read its data (file changed or truncated)");
-      if (fnv1a64(blob.data(), blob.size()) != get_le<std::uint64_t>(e, detail::kSeChecksum)) {
-        return corrupt("checksum mismatch");
-      }
-      const auto nv = get_le<std::uint32_t>(blob.data(), 0);
-      if (nv != c.vertex_count || 24 + static_cast<std::uint64_t>(nv) * detail::kChunkVertexBytes > bytes) {
-        return corrupt("its vertex count does not match its size");
-      }
-      // morph_error (the only field the bounds decide) is patched in place.
-      const std::uint32_t size = tree.chunk_size(c.key.level);
-      const std::uint64_t x0 = std::uint64_t{c.key.x} * size, z0 = std::uint64_t{c.key.z} * size;
-      for (std::uint32_t k = 0; k < nv; ++k) {
-        const std::size_t at = 24 + static_cast<std::size_t>(k) * detail::kChunkVertexBytes;
-        ChunkVertex v;
-        v.gx = get_le<std::uint32_t>(blob.data(), at);
-        v.gz = get_le<std::uint32_t>(blob.data(), at + 4);
-        v.intro_level = get_le<std::uint8_t>(blob.data(), at + 20);
-        if (v.intro_level > c.key.level || v.intro_level >= levels || v.gx < x0 || v.gx > x0 + size || v.gz < z0 ||
-            v.gz > z0 + size) {
-          return corrupt(fmt::format("vertex {} at ({}, {}) of level {} lies outside the chunk", k, v.gx, v.gz,
-                                     v.intro_level));
-        }
-        put_le(blob, at + detail::kMorphErrorOffset, ChunkTreeBuilder::morph_error(tree, v));
-      }
-      SYLVA_TRY((*writer)->add(i, c, std::string_view(blob)));
-      ++report.chunks;
-      report.triangles += c.triangle_count;
-      if (control.progress && (report.chunks % 256 == 0)) {
-        control.progress(static_cast<float>(i) / static_cast<float>(slot_count));
-      }
+      batch_bytes += bytes;
+      if (batch_bytes >= (std::size_t{64} << 20)) SYLVA_TRY(flush());
     }
   }
+  SYLVA_TRY(flush());
   SYLVA_TRY((*writer)->finish());
   std::error_code ec;
   report.bytes = std::filesystem::file_size(out, ec);

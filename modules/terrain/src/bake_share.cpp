@@ -44,14 +44,14 @@ Status check_options(const BakeOptions& o) {
 
 }  // namespace
 
-Result<BakeReport> bake_share(const HeightField& field, const std::filesystem::path& share_file,
+Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& share_file,
                               const BakeOptions& options) {
   SYLVA_TRY(check_options(options));
   BakeReport report;
   Stopwatch watch;
   ChunkTreeSettings settings = options.tree;
   settings.keep_meshes = true;
-  auto prepared = ChunkTreeBuilder::prepare(field, settings, options.control);
+  auto prepared = ChunkTreeBuilder::prepare(std::move(field), settings, options.control);
   if (!prepared) return prepared.error();
   const detail::TreeGrids& grids = *prepared.value();
   const ChunkTree& layout = grids.tree;
@@ -84,15 +84,18 @@ Result<BakeReport> bake_share(const HeightField& field, const std::filesystem::p
   const std::size_t batch = std::max<std::size_t>(static_cast<std::size_t>(threads), options.batch_bytes / chunk_bytes);
   std::vector<Chunk> chunks;
   std::vector<std::string> blobs;
+  std::vector<std::uint64_t> sums;
   for (std::size_t b = 0; b < mine.size(); b += batch) {
     const std::size_t count = std::min(batch, mine.size() - b);
     chunks.assign(count, Chunk{});
     blobs.assign(count, std::string());
+    sums.assign(count, 0);
     const bool finished = detail::parallel_for(count, threads, [&](std::size_t k) {
       Chunk& c = chunks[k];
       c = layout.chunk(mine[b + k]);
       ChunkTreeBuilder::build_chunk(grids, c);
       blobs[k] = detail::encode_chunk_mesh(c.mesh);
+      sums[k] = fnv1a64(blobs[k].data(), blobs[k].size());
       c.mesh = ChunkMesh{};
     }, options.control.cancel);
     if (!finished) return make_error(ErrorCode::kCancelled, fmt::format("{}: bake cancelled; no share was written", name));
@@ -108,7 +111,7 @@ Result<BakeReport> bake_share(const HeightField& field, const std::filesystem::p
       put_le(directory, at + detail::kSeVertices, c.vertex_count);
       put_le(directory, at + detail::kSeOffset, offset);
       put_le(directory, at + detail::kSeBytes, static_cast<std::uint64_t>(blob.size()));
-      put_le(directory, at + detail::kSeChecksum, fnv1a64(blob.data(), blob.size()));
+      put_le(directory, at + detail::kSeChecksum, sums[k]);
       out.write(blob.data(), static_cast<std::streamsize>(blob.size()));
       offset += blob.size();
       report.triangles += c.triangle_count;

@@ -33,8 +33,10 @@ class ChunkTreeBuilder {
  public:
   static Result<ChunkTree> build(const HeightField& field, const ChunkTreeSettings& settings,
                                  const BuildControl& control);
-  // Errors as ChunkTree::build (invalid settings or field, kLimit, kCancelled).
-  static Result<std::unique_ptr<detail::TreeGrids>> prepare(const HeightField& field, const ChunkTreeSettings& settings,
+  // Errors as ChunkTree::build (invalid settings or field, kLimit, kCancelled). Consumes the
+  // field: it is released once its samples are in the padded grid (moved there when the field is
+  // exactly the root grid), before the error grid is allocated.
+  static Result<std::unique_ptr<detail::TreeGrids>> prepare(HeightField&& field, const ChunkTreeSettings& settings,
                                                             const BuildControl& control);
   // The empty tree of a field of columns x rows samples: levels, chunk slots with keys and
   // presence (no metadata). Errors: invalid settings, kLimit (grid above max_build_bytes).

@@ -84,6 +84,10 @@ Status ChunkFileWriter::write_failed() {
 }
 
 Status ChunkFileWriter::add(std::uint32_t index, const Chunk& c, std::string_view blob) {
+  return add(index, c, blob, c.present ? fnv1a64(blob.data(), blob.size()) : 0);
+}
+
+Status ChunkFileWriter::add(std::uint32_t index, const Chunk& c, std::string_view blob, std::uint64_t checksum) {
   SYLVA_ASSERT(!done_ && static_cast<std::int64_t>(index) > last_ && index < directory_.size() / kEntryBytes,
                "chunk {} after {} ({} slots, finished {})", index, last_, directory_.size() / kEntryBytes, done_);
   last_ = index;
@@ -100,7 +104,7 @@ Status ChunkFileWriter::add(std::uint32_t index, const Chunk& c, std::string_vie
   if (!out_) return write_failed();
   put_le(directory_, at + 40, offset_);
   put_le(directory_, at + 48, static_cast<std::uint64_t>(blob.size()));
-  put_le(directory_, at + 56, fnv1a64(blob.data(), blob.size()));
+  put_le(directory_, at + 56, checksum);
   offset_ += blob.size();
   return ok_status();
 }

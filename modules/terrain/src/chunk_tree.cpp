@@ -119,6 +119,21 @@ HeightGrid padded_heights(const HeightField& field, std::uint32_t root_n, int th
   return hg;
 }
 
+// The padded grid from a field the caller gave up: the field is released as soon as its samples
+// are in the grid (moved when it is exactly the root grid, as a 2^k+1 square is), so the error
+// grid is allocated without a third full-size array alive (bake.hpp; 16k^2 fields).
+HeightGrid take_padded_heights(HeightField&& field, std::uint32_t root_n, int threads) {
+  HeightGrid hg;
+  if (field.columns() == field.rows() && static_cast<std::uint32_t>(field.columns()) == root_n + 1) {
+    hg.n = static_cast<std::int32_t>(root_n);
+    hg.h = std::move(field.samples());
+  } else {
+    hg = padded_heights(field, root_n, threads);
+  }
+  field = HeightField{};
+  return hg;
+}
+
 ActiveRule make_rule(const ErrorGrid& errors, int levels, std::uint32_t n, const ChunkTreeSettings& settings,
                      double spacing) {
   ActiveRule rule;
@@ -336,7 +351,7 @@ Result<ChunkTree> ChunkTreeBuilder::layout(int columns, int rows, double spacing
   return tree;
 }
 
-Result<std::unique_ptr<detail::TreeGrids>> ChunkTreeBuilder::prepare(const HeightField& field,
+Result<std::unique_ptr<detail::TreeGrids>> ChunkTreeBuilder::prepare(HeightField&& field,
                                                                      const ChunkTreeSettings& settings,
                                                                      const BuildControl& control) {
   SYLVA_TRY(validate_params(settings, "terrain.tree"));
@@ -378,13 +393,14 @@ Result<std::unique_ptr<detail::TreeGrids>> ChunkTreeBuilder::prepare(const Heigh
 
   // Padded height grid.
   Stopwatch watch;
-  grids->heights = padded_heights(field, tree.root_n_, threads);
+  const double spacing = field.spacing();
+  grids->heights = take_padded_heights(std::move(field), tree.root_n_, threads);
   grids->errors = detail::compute_errors(grids->heights, threads);
   tree.report_.error_grid_ms = watch.lap_ms();
   if (control.cancel != nullptr && control.cancel->load()) {
     return make_error(ErrorCode::kCancelled, "terrain: chunk tree build cancelled");
   }
-  grids->rule = make_rule(grids->errors, tree.levels_, tree.n_, settings, field.spacing());
+  grids->rule = make_rule(grids->errors, tree.levels_, tree.n_, settings, spacing);
   for (std::uint32_t i = 0; i < tree.chunks_.size(); ++i)
     if (tree.chunks_[i].present) grids->present.push_back(i);
   return grids;
@@ -406,7 +422,9 @@ void ChunkTreeBuilder::finish(ChunkTree& tree) {
 Result<ChunkTree> ChunkTreeBuilder::build(const HeightField& field, const ChunkTreeSettings& settings,
                                           const BuildControl& control) {
   Stopwatch total_watch;
-  Result<std::unique_ptr<detail::TreeGrids>> prepared = prepare(field, settings, control);
+  // A copy for prepare to consume: the caller keeps its field (memory as before: the copy becomes
+  // the padded grid, or is released before the error grid is allocated).
+  Result<std::unique_ptr<detail::TreeGrids>> prepared = prepare(HeightField(field), settings, control);
   if (!prepared) return prepared.error();
   std::unique_ptr<detail::TreeGrids>& grids = prepared.value();
   // Chunks are built in place: each call writes only its own slot and reads the tree's geometry.

@@ -53,9 +53,11 @@ struct BakeReport {
   std::uint64_t bytes = 0;       // size of the file written [B]
 };
 
-// Bakes share options.share of options.shares into `share_file`. Errors: invalid options or
-// field (as ChunkTree::build), kIo naming the file (cannot write, disk full), kCancelled.
-Result<BakeReport> bake_share(const HeightField& field, const std::filesystem::path& share_file,
+// Bakes share options.share of options.shares into `share_file`. The field is taken by value
+// and released as soon as it is in the height grid (std::move a big one in: for a (2^k+1)^2
+// field the bake then holds 8 bytes per sample, not 12). Errors: invalid options or field (as
+// ChunkTree::build), kIo naming the file (cannot write, disk full), kCancelled.
+Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& share_file,
                               const BakeOptions& options);
 
 // Joins the shares 0..N-1 of one bake (any order on the command line) into the chunk file `out`.
@@ -66,7 +68,7 @@ Result<BakeReport> merge_bake_shares(const std::vector<std::filesystem::path>& s
                                      const std::filesystem::path& out, const BuildControl& control = {});
 
 // One process: bake_share(0 of 1) into a temporary beside `out`, then merge_bake_shares.
-Result<BakeReport> bake_chunk_file(const HeightField& field, const std::filesystem::path& out,
+Result<BakeReport> bake_chunk_file(HeightField field, const std::filesystem::path& out,
                                    const BakeOptions& options);
 
 }  // namespace sylva::terrain

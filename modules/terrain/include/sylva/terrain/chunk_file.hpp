@@ -47,6 +47,8 @@ class ChunkFileWriter {
   // Errors: kIo naming the file (disk full); the temporary is then removed.
   Status add(std::uint32_t index, const Chunk& chunk, const ChunkMesh& mesh);
   Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob);
+  // The same with the blob's fnv1a64 computed by the caller (on another thread).
+  Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob, std::uint64_t checksum);
   // Directory, header, fsync, rename over the target. Errors: kIo naming the file.
   Status finish();
   // Stops and removes the temporary (no-op once finished).
