@@ -8,6 +8,7 @@
 #include <sylva/core/log.hpp>
 #include <sylva/core/timer.hpp>
 #include <sylva/render/gl_debug.hpp>
+#include <sylva/render/gpu_memory.hpp>
 #include <sylva/render/readback.hpp>
 
 #include <fmt/format.h>
@@ -16,8 +17,23 @@
 #include <cmath>
 #include <ostream>
 
+#include <sys/resource.h>
+
 namespace sylva::bench {
 namespace {
+
+// Memory columns (issue #20): tracked GPU memory in total and per owner (render/gpu_memory.hpp;
+// the scene attributes each module's allocations to its name) and the process's peak RSS, in MiB.
+void add_memory_metrics(std::map<std::string, double>& metrics) {
+  constexpr double kMiB = 1.0 / (1024.0 * 1024.0);
+  metrics["memory.gpu_mib"] = static_cast<double>(render::gpu_memory_total()) * kMiB;
+  for (const auto& [owner, usage] : render::gpu_memory_usage()) {
+    if (usage.total() > 0) metrics["memory.gpu_mib." + owner] = static_cast<double>(usage.total()) * kMiB;
+  }
+  rusage self{};
+  ::getrusage(RUSAGE_SELF, &self);
+  metrics["memory.peak_rss_mib"] = static_cast<double>(self.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB
+}
 
 Status apply_assignments(const std::vector<ParamDescriptor>& params, const std::vector<Assignment>& list,
                          const char* option) {
@@ -94,6 +110,7 @@ Status render_path(BenchTarget& target, const RunSpec& spec, const std::string& 
     rec.frame_ms = frame_ms;
     rec.counts = out.counts;
     rec.metrics = out.metrics;
+    add_memory_metrics(rec.metrics);
     RenderedFrame frame{to_rgb(*color), std::move(*depth)};
     SYLVA_TRY(on_frame(rec, frame));
     records.push_back(std::move(rec));

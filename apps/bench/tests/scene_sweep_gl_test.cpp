@@ -56,6 +56,11 @@ TEST(BenchSceneSweep, GroundSceneResolutionSweep) {
   EXPECT_GT(j["settings"][0]["totals"]["fragments"].get<std::uint64_t>(), 0u);
   // Per-module GPU time is recorded as a metric.
   EXPECT_TRUE(j["settings"][0]["metrics"].contains("ground.gpu_ms")) << j["settings"][0]["metrics"].dump();
+  // Memory columns (issue #20): tracked GPU memory and the process's peak RSS.
+  const nlohmann::json& m = j["settings"][0]["metrics"];
+  ASSERT_TRUE(m.contains("memory.gpu_mib") && m.contains("memory.peak_rss_mib")) << m.dump();
+  EXPECT_GT(m["memory.gpu_mib"]["max"].get<double>(), 0.0);
+  EXPECT_GT(m["memory.peak_rss_mib"]["max"].get<double>(), 10.0);
   auto html = sylva::read_file(out / "report.html");
   ASSERT_TRUE(html.ok());
   EXPECT_NE(html->find("ground.resolution=33"), std::string::npos);
