@@ -63,9 +63,11 @@ struct SceneRenderSettings {
   // albedos; the sky and sun are physical (render/atmosphere.hpp). Off: modules' linear HDR
   // values are written to the display unencoded (only for tests that read raw values).
   bool tone_map = true;
-  // Exposure kExposure: a white Lambertian face under the default overhead sun (intensity 3)
-  // maps to ~1.1 before the curve (ACES ~0.82), mid-grey albedo 0.18 to ~0.2 (ACES ~0.3, sRGB ~0.58).
-  static constexpr float kExposure = 0.36f;
+  // Exposure kExposure, photographic ("sunny 16"): albedo 0.18 lit by the default sun
+  // (intensity 3) at 45 deg plus the sky reaches ~0.19 before the curve, ~0.57 in sRGB (middle
+  // grey); a white face under the overhead sun ~1.5 (sRGB ~0.95); the clear zenith sky with a
+  // 28 deg sun (40, 73, 124)/255 (measured, ground.json looking up).
+  static constexpr float kExposure = 0.5f;
   render::ToneMapSettings tone{.exposure = kExposure};  // render/tone_mapping.hpp
   // Samples per pixel of the colour passes: 1 = off; 2, 4, 8 = MSAA, resolved (before tone
   // mapping) into the caller's target. Leaves and slices switch to alpha-to-coverage on
