@@ -2,6 +2,7 @@
 
 #include <sylva/core/assert.hpp>
 #include <sylva/render/shadow_maps.hpp>
+#include <sylva/vegetation/slice_bake.hpp>
 
 #include <fmt/format.h>
 
@@ -41,6 +42,31 @@ Status check_leaf_maps(const LeafTextures& t) {
   if (w <= 0 || (w & (w - 1)) != 0 || h <= 0 || (h & (h - 1)) != 0)
     return make_error(ErrorCode::kInvalidArgument, fmt::format("leaf textures: {}x{} is not a power-of-two size", w, h));
   return ok_status();
+}
+
+// A leaf map with the texels outside the outline (alpha of `outline` = 0) set to their nearest
+// texel inside (jump flooding, slice_bake.hpp), so the GL mipmaps average leaf values only: a
+// distant leaf keeps its translucency (rho and the HL2 coefficients) and its normals instead of
+// blending in the empty texels' zero rho and flat normals. Without it back-lit LOD0 crowns of the
+// small-card presets (birch, shrub) were 25-40 % darker than their slices (crown_gl_test).
+Image padded_outside_outline(const Image& img, const Image& outline) {
+  const int n = img.width();
+  if (img.height() != n || outline.width() != n || outline.height() != n) return img;
+  const std::size_t count = static_cast<std::size_t>(n) * static_cast<std::size_t>(n);
+  std::vector<std::uint8_t> covered(count);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x)
+      covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)] =
+          outline.at(x, y, 3) > 0.0f ? 1 : 0;
+  const std::vector<std::int32_t> source = nearest_covered(covered, n);
+  Image out = img;
+  for (std::size_t i = 0; i < count; ++i) {
+    if (covered[i] != 0 || source[i] < 0) continue;
+    const int x = static_cast<int>(i % static_cast<std::size_t>(n));
+    const int y = static_cast<int>(i / static_cast<std::size_t>(n));
+    for (int c = 0; c < img.channels(); ++c) out.at(x, y, c) = img.at(source[i] % n, source[i] / n, c);
+  }
+  return out;
 }
 
 }  // namespace
@@ -137,11 +163,13 @@ Result<TreeAsset> TreeAsset::create(const TreeMesh& mesh, const TreeTextureSet& 
 
   render::TextureOptions lin;
   lin.wrap = GL_CLAMP_TO_EDGE;
-  const Image normals[2] = {tex.leaves.front.normal, tex.leaves.back.normal};
+  const Image normals[2] = {padded_outside_outline(tex.leaves.front.normal, tex.leaves.front.color),
+                            padded_outside_outline(tex.leaves.back.normal, tex.leaves.back.color)};
   Result<render::Texture> ln = render::Texture::from_images(normals, lin);
   if (!ln.ok()) return ln.error();
   a.leaf_normal_ = std::move(ln).value();
-  const Image trans[2] = {tex.leaves.front.translucency, tex.leaves.back.translucency};
+  const Image trans[2] = {padded_outside_outline(tex.leaves.front.translucency, tex.leaves.front.color),
+                          padded_outside_outline(tex.leaves.back.translucency, tex.leaves.back.color)};
   Result<render::Texture> lt = render::Texture::from_images(trans, lin);
   if (!lt.ok()) return lt.error();
   a.leaf_translucency_ = std::move(lt).value();

@@ -155,13 +155,14 @@ TEST_F(CrownGl, SlicesKeepTheCrownsCoverageAndColour) {
                   "(%.3f %.3f %.3f), largest channel difference %.3f, luminance ratio %.3f\n",
                   name_of(preset), light, level, d, st[level].closure, st[0].closure, ratio, ck.r, ck.g, ck.b, c0.r, c0.g, c0.b,
                   dc, lumk / std::max(lum0, 1e-9));
-      // The README's bounds: closure within 10 %, mean colour within 0.11 per channel (linear)
-      // and luminance within -30 % / +45 % (the slices' reduced leaf model, README "Not done").
+      // The README's bounds: closure within 10 %, mean colour within 0.1 per channel (linear)
+      // and luminance within -35 % / +20 % (the slices' reduced leaf model: the back-lit conifer
+      // at LOD2 is the darkest, README "Full crowns").
       EXPECT_GT(ratio, 0.9) << name_of(preset) << " " << light << " LOD" << level;
       EXPECT_LT(ratio, 1.1) << name_of(preset) << " " << light << " LOD" << level;
-      EXPECT_LT(dc, 0.11) << name_of(preset) << " " << light << " LOD" << level;
-      EXPECT_GT(lumk / lum0, 0.7) << name_of(preset) << " " << light << " LOD" << level;
-      EXPECT_LT(lumk / lum0, 1.45) << name_of(preset) << " " << light << " LOD" << level;
+      EXPECT_LT(dc, 0.1) << name_of(preset) << " " << light << " LOD" << level;
+      EXPECT_GT(lumk / lum0, 0.65) << name_of(preset) << " " << light << " LOD" << level;
+      EXPECT_LT(lumk / lum0, 1.2) << name_of(preset) << " " << light << " LOD" << level;
     }
   }
 }
