@@ -26,6 +26,7 @@ uniform int u_receive_shadows;  // sun term times the render core's cascaded sha
 uniform vec3 u_coverage;     // x tau_side, y tau_top, z gain (far_field.hpp coverage model)
 uniform vec4 u_shading;      // x brightness (calibration), y ambient, z under-layer on (0/1), w under-layer shade
 uniform float u_translucency;  // the blades' shading.translucency
+uniform float u_max_slope_deg; // far_field.hpp slope_keep()
 
 in vec3 g_local;
 in vec3 g_rel_pos;
@@ -40,6 +41,11 @@ void main() {
   vec2 m = clamp((g_local.xz - u_map_min) / u_map_size, vec2(0.0), vec2(1.0));
   // Image rows run along +z and uploads flip rows: v = 1 at the rectangle's min z.
   float density = texture(u_density, vec2(m.x, 1.0 - m.y)).r;
+  // slope_keep() of far_field.cpp: no far grass on cliffs.
+  if (u_max_slope_deg < 90.0) {
+    float slope = degrees(acos(clamp(normalize(g_normal).y, -1.0, 1.0)));
+    density *= 1.0 - grass_ramp(slope, u_max_slope_deg - 8.0, u_max_slope_deg);
+  }
   float distance = length(g_rel_pos);
   float fade = grass_ground_fade(distance, u_fades);
   vec4 t = texture(u_ground, (g_local.xz + u_origin_xz) / u_texture_scale);

@@ -93,6 +93,12 @@ Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin) {
   return GrassMaps::from_images(out, &density, &height, &tint);
 }
 
+float slope_keep(float normal_y, float max_slope_deg) {
+  if (max_slope_deg >= 90.0f) return 1.0f;
+  const float slope = std::acos(std::clamp(normal_y, -1.0f, 1.0f)) * (180.0f / kPi);
+  return 1.0f - ramp(slope, max_slope_deg - 8.0f, max_slope_deg);
+}
+
 float clump_fade(float d, float near_distance, const FarFieldSettings& s) {
   const float in = ramp(d, near_distance - s.clump_fade_in, near_distance);
   const float out = 1.0f - ramp(d, s.mid_distance - s.mid_fade, s.mid_distance);
@@ -137,6 +143,7 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
       glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
       for (const TilePoint& p : points) {
         const double wx = p.position.x, wz = p.position.y;
+        if (!(unit(p.hash, 27u) < slope_keep(ground.normal(wx, wz).y, far.max_slope_deg))) continue;
         const glm::vec3 root(static_cast<float>(wx - origin.x), static_cast<float>(ground.height(wx, wz) - origin.y),
                              static_cast<float>(wz - origin.z));
         const float h = std::max(mean_height * (0.8f + 0.4f * unit(p.hash, 21u)) * maps.height_scale(wx, wz), blade.min_height);
@@ -525,6 +532,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_receive_shadows", receive ? 1 : 0);
     p.set("u_shading", glm::vec4(s.ground_brightness, ambient_, s.under_layer ? 1.0f : 0.0f, s.under_shade));
     p.set("u_lift_per_m", s.lift_per_m);
+    p.set("u_max_slope_deg", s.max_slope_deg);
     p.set("u_translucency", translucency_);
     ground_texture_.bind(0);
     density_.bind(1);

@@ -3,7 +3,8 @@
 //    shift the field's mean colour (the far layers' calibration relies on it); it varies in
 //    patches (dry yellow-green against lush green) and per clump cell; it is deterministic,
 //    bounded, and (1, 1, 1) for non-finite input or zero variation;
-//  - extended maps keep the original maps inside the rectangle and continue their edge outside.
+//  - extended maps keep the original maps inside the rectangle and continue their edge outside;
+//  - far grass (clumps, ground layer) thins out between max_slope_deg - 8 and max_slope_deg.
 #include <sylva/grass/far_field.hpp>
 #include <sylva/grass/field_color.hpp>
 
@@ -82,6 +83,15 @@ TEST(GrassFieldColor, ExtendedMapsContinueTheEdge) {
   const auto same = extend_maps(*maps, 0.0);
   ASSERT_TRUE(same.ok());
   EXPECT_EQ(same->rect().max, maps->rect().max);
+}
+
+TEST(GrassFieldColor, FarGrassThinsOutOnSteepSlopes) {
+  auto y = [](float deg) { return std::cos(deg * 3.14159265f / 180.0f); };
+  EXPECT_EQ(slope_keep(1.0f, 40.0f), 1.0f);
+  EXPECT_EQ(slope_keep(y(31.0f), 40.0f), 1.0f);
+  EXPECT_NEAR(slope_keep(y(36.0f), 40.0f), 0.5f, 1e-3f);
+  EXPECT_EQ(slope_keep(y(41.0f), 40.0f), 0.0f);
+  EXPECT_EQ(slope_keep(y(80.0f), 90.0f), 1.0f);  // 90 degrees: grass on any slope
 }
 
 }  // namespace

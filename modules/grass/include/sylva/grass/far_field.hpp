@@ -90,6 +90,9 @@ struct FarFieldSettings {
   // (and height, tint) of its edge, so a field of blades near the camera can run to the horizon.
   float clump_margin = 0.0f;      // [m]
   float ground_margin = 0.0f;     // [m]
+  // No far grass on cliffs: clumps and the ground layer thin out between max_slope_deg - 8 and
+  // max_slope_deg of ground slope, so margins that reach mountains leave their rock bare.
+  float max_slope_deg = 40.0f;    // [deg]; 90 = grass on any slope
 
   template <class V>
   void visit(V& v) {
@@ -122,12 +125,17 @@ struct FarFieldSettings {
                                      .help = "Clumps continue this far beyond the grass area", .rebuild = Rebuild::kOffline});
     v(ground_margin, "ground_margin", {.min = 0.0f, .max = 100000.0f, .unit = "m",
                                        .help = "The ground layer continues this far beyond the grass area", .rebuild = Rebuild::kOffline});
+    v(max_slope_deg, "max_slope_deg", {.min = 8.0f, .max = 90.0f, .unit = "deg",
+                                       .help = "Clumps and the ground layer thin out on slopes steeper than this", .rebuild = Rebuild::kOffline});
   }
 };
 
 // `maps` over its rectangle grown by `margin` metres on every side; outside the original rectangle
 // every map continues its edge value. Texels keep the density map's size up to 2048 per side.
 Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin);
+
+// Share in [0, 1] of far grass kept on ground whose normal has this y (max_slope_deg above).
+float slope_keep(float normal_y, float max_slope_deg);
 
 // Fade weights in [0, 1] of the three representations at distance d (header comment).
 float clump_fade(float distance, float near_distance, const FarFieldSettings& s);
