@@ -71,6 +71,7 @@ Result<BakeCommand> parse_bake_args(const std::vector<std::string>& args) {
       if (!t) return t.error();
       cmd.share = t->first;
       cmd.shares_total = t->second;
+      cmd.tiled = true;
     } else if (a == "--set" && cmd.kind == BakeCommand::Kind::kTerrain) {
       auto v = value();
       if (!v) return v.error();

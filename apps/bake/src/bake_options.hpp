@@ -36,6 +36,7 @@ struct BakeCommand {
   std::filesystem::path out;
   TerrainBakeSettings settings;
   int share = 0, shares_total = 1;            // --tiles I/N
+  bool tiled = false;                         // --tiles given: write a share (even for 0/1)
   bool quiet = false;                         // no progress lines
 };
 

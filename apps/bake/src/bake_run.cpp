@@ -69,7 +69,7 @@ int run_bake(const BakeCommand& command, const std::atomic<bool>& cancel, std::o
     options.share = command.share;
     options.shares = command.shares_total;
     options.control = control;
-    report = command.shares_total > 1 ? terrain::bake_share(std::move(raster->field), command.out, options)
+    report = command.tiled ? terrain::bake_share(std::move(raster->field), command.out, options)
                                       : terrain::bake_chunk_file(std::move(raster->field), command.out, options);
   }
   if (!report) return fail(err, report.error());

@@ -15,6 +15,7 @@ TEST(BakeOptions, TerrainWithTilesAndSettings) {
   EXPECT_EQ(c->out, "x.sylvaterrain");
   EXPECT_EQ(c->share, 2);
   EXPECT_EQ(c->shares_total, 3);
+  EXPECT_TRUE(c->tiled);
   EXPECT_EQ(c->settings.tree.leaf_dimension, 65);
   EXPECT_EQ(c->settings.elevation.spacing, 5.0);
   EXPECT_TRUE(c->quiet);
@@ -25,6 +26,7 @@ TEST(BakeOptions, MergeTakesEveryShare) {
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_EQ(c->kind, BakeCommand::Kind::kMerge);
   EXPECT_EQ(c->shares.size(), 3u);
+  EXPECT_FALSE(parse_bake_args({"terrain", "a.tif", "--out", "x"})->tiled);
 }
 
 TEST(BakeOptions, MistakesAreNamed) {

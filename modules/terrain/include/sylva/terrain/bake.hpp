@@ -40,7 +40,7 @@ struct BakeOptions {
   int shares = 1;                // 1..1024; shares split the present chunks into contiguous runs
   // Meshes held at once while baking, at most about this many bytes (at least one chunk per
   // thread): the "memory budget" on top of the grids (8 bytes per root-grid point).
-  std::size_t batch_bytes = std::size_t{256} << 20;
+  std::size_t batch_bytes = std::size_t{64} << 20;
   BuildControl control;          // progress in [0, 1] and cancellation (checked between chunks)
 };
 
