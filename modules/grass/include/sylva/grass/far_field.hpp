@@ -83,8 +83,8 @@ struct FarFieldSettings {
   float under_shade = 1.0f;       // undergrowth albedo relative to the layer's grass texels
   // Brightness calibrations: the mean of each far representation against the blades' mean at
   // the same place (measured, README "Colour and brightness across the LODs").
-  float clump_brightness = 0.65f;
-  float ground_brightness = 0.46f;
+  float clump_brightness = 0.635f;
+  float ground_brightness = 0.45f;
   float lift_per_m = 0.0005f;     // extra ground-layer lift per metre of distance [m/m]
   // Margins: clumps and the ground layer continue beyond the blades' rectangle with the density
   // (and height, tint) of its edge, so a field of blades near the camera can run to the horizon.
