@@ -1,15 +1,18 @@
 // terrain/material.glsl: the terrain's layered material (issue 19; C++ side and the altitude
 // model in include/sylva/terrain/material.hpp). Layers: lowland grass, alpine meadow, dirt,
 // scree, rock, snow, sand, blended by altitude in metres (u_lines), slope and curvature, with
-// detail from ONE small tiling noise texture (u_detail, mipmapped) read at four scales. Mip
+// detail from ONE small tiling noise texture (u_detail, mipmapped) read at three scales plus a
+// ~400 m variation stored with the field's shape. Mip
 // filtering by the pixel footprint averages albedo variation and relief gradients toward their
 // mean as the ground recedes, so nothing shimmers; scales whose texels fall below ~1/8 pixel are
-// faded out and not fetched (the far ground costs fewer lookups). Steep ground is projected
-// triplanar (three planes blended by the normal), so cliffs are not stretched.
+// faded out (and not fetched where branches are real). Steep ground is projected on a side plane
+// (biplanar, see detail_scale), so cliffs are not stretched.
 #ifndef SYLVA_TERRAIN_MATERIAL_GLSL
 #define SYLVA_TERRAIN_MATERIAL_GLSL
 
-layout(binding = 1) uniform sampler2D u_detail;  // r, g: fBm (sd 0.4); b, a: relief gradient (unit RMS)
+// RGBA8, encoded by make_detail_texture: r, g fBm (sd 0.4) as v / 2 + 1/2; b, a the relief
+// gradient (unit RMS) as g / 8 + 1/2.
+layout(binding = 1) uniform sampler2D u_detail;
 
 uniform vec4 u_lines;   // world heights [m]: x snow line, y rock line, z tree line, w water level
 uniform vec4 u_layer;   // x beach height [m], y rock slope (1 - n.y), z 1 / finest tile [1/m], w detail strength
@@ -23,7 +26,7 @@ uniform vec3 u_snow_color;
 uniform vec3 u_sand_color;
 
 // Tile ratios between the scales: not integers, so the repeats of one never line up with another's.
-const float kScale1 = 5.3, kScale2 = 28.0, kScale3 = 204.0;
+const float kScale1 = 5.3, kScale2 = 28.0;
 
 struct TerrainSurface {
   vec3 albedo;     // linear
@@ -32,26 +35,24 @@ struct TerrainSurface {
   vec4 layers;     // debug view: x snow, y rock + scree, z dirt, w sand
 };
 
-// One scale: albedo channels (r, g) and the world-space relief gradient, triplanar with the
-// weights w (x: plane zy, y: plane xz, z: plane xy). Explicit gradients: the branches are not
-// uniform control flow, where implicit derivatives are undefined.
-vec2 detail_scale(vec3 p, vec3 dpdx, vec3 dpdy, float inv_tile, vec3 w, out vec3 grad) {
+// One scale: albedo channels (r, g) and the world-space relief gradient, "biplanar": the xz plane
+// with weight wy and ONE side plane (zy where |n.x| > |n.z|, else xy) with weight 1 - wy. Two
+// fetches, not three: llvmpipe runs both sides of every branch (execution masks), so only
+// fetches that are not written cost nothing; the side planes of a face meet in a seam where its
+// normal points 45 degrees between x and z, on rock. Implicit derivatives inside the branches:
+// where a quad is split by one, the branch's weight (fade or plane weight) is about 0.
+vec2 detail_scale(vec2 pxz, vec2 pside, bool xside, float inv_tile, float wy, out vec3 grad) {
   vec2 v = vec2(0.0);
   grad = vec3(0.0);
-  if (w.y > 0.0) {
-    vec4 s = textureGrad(u_detail, p.xz * inv_tile, dpdx.xz * inv_tile, dpdy.xz * inv_tile);
-    v += w.y * s.rg;
-    grad += w.y * vec3(s.b, 0.0, s.a);
+  if (wy > 0.0) {
+    vec4 s = texture(u_detail, pxz * inv_tile) * vec4(2.0, 2.0, 8.0, 8.0) - vec4(1.0, 1.0, 4.0, 4.0);
+    v += wy * s.rg;
+    grad += wy * vec3(s.b, 0.0, s.a);
   }
-  if (w.x > 0.0) {  // offsets decorrelate the planes where they overlap
-    vec4 s = textureGrad(u_detail, p.zy * inv_tile + 0.37, dpdx.zy * inv_tile, dpdy.zy * inv_tile);
-    v += w.x * s.rg;
-    grad += w.x * vec3(0.0, s.a, s.b);
-  }
-  if (w.z > 0.0) {
-    vec4 s = textureGrad(u_detail, p.xy * inv_tile + 0.71, dpdx.xy * inv_tile, dpdy.xy * inv_tile);
-    v += w.z * s.rg;
-    grad += w.z * vec3(s.b, s.a, 0.0);
+  if (wy < 1.0) {  // the offset decorrelates the side plane from the xz plane where they overlap
+    vec4 s = texture(u_detail, pside * inv_tile + 0.37) * vec4(2.0, 2.0, 8.0, 8.0) - vec4(1.0, 1.0, 4.0, 4.0);
+    v += (1.0 - wy) * s.rg;
+    grad += (1.0 - wy) * (xside ? vec3(0.0, s.a, s.b) : vec3(s.b, s.a, 0.0));
   }
   return v;
 }
@@ -64,32 +65,30 @@ float detail_fade(float footprint, float inv_tile) {
 }
 
 // p: position [m] (x/z from the field's origin, y the world height); n: the field's normal;
-// curvature: (mean height around - height) / radius (> 0 in hollows); h: world height [m].
-TerrainSurface terrain_surface(vec3 p, vec3 n, float curvature, float h) {
-  vec3 dpdx = dFdx(p), dpdy = dFdy(p);
-  float footprint = max(length(dpdx), length(dpdy));
+// curvature: (mean height around - height) / radius (> 0 in hollows); h: world height [m];
+// macro: the ~400 m variation from the shape texture, in about [-1, 1].
+TerrainSurface terrain_surface(vec3 p, vec3 n, float curvature, float h, float macro) {
+  float footprint = max(length(dFdx(p)), length(dFdy(p)));
   float inv_tile0 = u_layer.z;
   float strength = u_layer.w;
 
-  // Triplanar weights: the xz plane alone up to ~35 degrees, blended planes on steeper ground.
-  vec3 w = pow(abs(n), vec3(8.0));
-  w /= (w.x + w.y + w.z);
-  w = clamp((w - 0.05) / 0.95, 0.0, 1.0);
-  w /= max(w.x + w.y + w.z, 1e-4);
+  // Plane weights: the xz plane alone up to 49 degrees (it stretches the texture by 1 / n.y, at
+  // most 1.5x there), blended with the side plane up to 60 degrees, the side plane alone beyond.
+  float wy = clamp((smoothstep(0.5, 0.65, n.y) - 0.05) / 0.9, 0.0, 1.0);
+  bool xside = abs(n.x) > abs(n.z);
+  vec2 pside = xside ? p.zy : p.xy;
 
   float f0 = detail_fade(footprint, inv_tile0);
   float f1 = detail_fade(footprint, inv_tile0 / kScale1);
   float f2 = detail_fade(footprint, inv_tile0 / kScale2);
-  vec3 g0 = vec3(0.0), g1 = vec3(0.0), g2 = vec3(0.0), g3;
+  vec3 g0 = vec3(0.0), g1 = vec3(0.0), g2 = vec3(0.0);
   vec2 d0 = vec2(0.0), d1 = vec2(0.0), d2 = vec2(0.0);
-  if (f0 > 0.0) d0 = f0 * detail_scale(p, dpdx, dpdy, inv_tile0, w, g0);
-  if (f1 > 0.0) d1 = f1 * detail_scale(p, dpdx, dpdy, inv_tile0 / kScale1, w, g1);
-  if (f2 > 0.0) d2 = f2 * detail_scale(p, dpdx, dpdy, inv_tile0 / kScale2, w, g2);
-  // The macro scale (~500 m) is planar: its features are larger than any cliff.
-  vec2 d3 = detail_scale(p, dpdx, dpdy, inv_tile0 / kScale3, vec3(0.0, 1.0, 0.0), g3);
+  if (f0 > 0.0) d0 = f0 * detail_scale(p.xz, pside, xside, inv_tile0, wy, g0);
+  if (f1 > 0.0) d1 = f1 * detail_scale(p.xz, pside, xside, inv_tile0 / kScale1, wy, g1);
+  if (f2 > 0.0) d2 = f2 * detail_scale(p.xz, pside, xside, inv_tile0 / kScale2, wy, g2);
 
   // Breakup of the layer borders in metres of altitude and in slope, from the coarse scales.
-  float breakup = d2.g + 0.6 * d3.g + 0.35 * d1.g;  // sd ~0.5
+  float breakup = d2.g + 1.0 * macro + 0.35 * d1.g;  // sd ~0.5
   float fine = d0.r;                                // small patches (tufts, stones)
   float slope = 1.0 - n.y;
 
@@ -118,7 +117,7 @@ TerrainSurface terrain_surface(vec3 p, vec3 n, float curvature, float h) {
                step(1e-3, u_layer.x) * (1.0 - smoothstep(0.15, 0.3, slope));
 
   float v = (0.55 * d0.r + 0.45 * d1.r + 0.35 * d2.r) * strength;  // albedo variation, sd ~0.3 near
-  float macro = d3.r * strength;
+  macro *= strength;
   vec3 grass = u_grass_color * (1.0 + 0.45 * v + 0.25 * macro);
   grass = mix(grass, grass * vec3(1.45, 1.25, 0.7), smoothstep(-0.3, 0.6, d1.g + 0.5 * macro));  // drier tufts
   vec3 albedo = mix(grass, u_meadow_color * (1.0 + 0.4 * v), meadow);

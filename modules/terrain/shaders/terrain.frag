@@ -1,6 +1,6 @@
 #version 450 core
 // terrain/terrain.frag: the layered material of terrain/material.glsl (altitude bands in metres,
-// slope, curvature, detail at four scales, triplanar cliffs), the field's normal and curvature
+// slope, curvature, detail at three scales, triplanar cliffs), the field's normal and curvature
 // from the shape texture (one fetch), sun + hemisphere ambient darkened in hollows, fog,
 // optional cascaded shadows, and the debug views. Output: linear HDR colour.
 #include "render/lib/lighting.glsl"
@@ -10,7 +10,8 @@
 #include "render/lib/shadows.glsl"
 #endif
 
-// RGBA16F, texel (i, j) = field sample (i, j): x/z of the unit normal, curvature (material.hpp).
+// RGBA16_SNORM, texel (i, j) = field sample (i, j): x/z of the unit normal, curvature, macro
+// variation (material.hpp).
 layout(binding = 2) uniform sampler2D u_shape;
 
 uniform int u_has_shape;       // 0: normals from screen-space derivatives, no curvature
@@ -42,11 +43,12 @@ void main() {
   // The drawn surface's height (within tau pixels of the field's) places the altitude bands.
   float h = v_rel.y + sylva_params.y;
   vec3 n;
-  float curvature = 0.0;
+  float curvature = 0.0, macro = 0.0;
   if (u_has_shape != 0) {
-    vec3 shape = texture(u_shape, (v_grid + 0.5) / vec2(u_field_size)).xyz;
+    vec4 shape = texture(u_shape, (v_grid + 0.5) / vec2(u_field_size));
     n = vec3(shape.x, sqrt(max(1.0 - dot(shape.xy, shape.xy), 0.0)), shape.y);
     curvature = shape.z;
+    macro = 1.6 * shape.w;
   } else {
     n = normalize(cross(dFdy(v_rel), dFdx(v_rel)));
     if (n.y < 0.0) n = -n;
@@ -56,7 +58,7 @@ void main() {
     o_color = vec4(c * (0.35 + 0.65 * max(dot(n, sun_direction()), 0.0)), 1.0);
     return;
   }
-  TerrainSurface surface = terrain_surface(vec3(v_grid.x * u_spacing, h, v_grid.y * u_spacing), n, curvature, h);
+  TerrainSurface surface = terrain_surface(vec3(v_grid.x * u_spacing, h, v_grid.y * u_spacing), n, curvature, h, macro);
   if (u_debug_view == 4) {
     // Unlit layer colours: snow white, rock/scree grey, dirt brown, sand yellow, vegetation green.
     vec3 c = vec3(0.15, 0.55, 0.1);

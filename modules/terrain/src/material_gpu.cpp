@@ -13,13 +13,20 @@ constexpr int kBandRows = 256;  // rows per compute + upload band (bounds the wo
 }  // namespace
 
 render::Texture make_detail_texture() {
+  // RGBA8, not half floats: llvmpipe filters 8-bit textures on its fast path (measured: the
+  // frame's terrain time, see the README). Encoded as material.glsl decodes it: r, g (sd 0.4) as
+  // v / 2 + 1/2, the gradient (unit RMS) as g / 8 + 1/2; clamping at +-2.5 / +-4 sigma is harmless.
+  Image noise = make_detail_noise(kDetailSize, kDetailSeed);
+  for (int y = 0; y < noise.height(); ++y)
+    for (int x = 0; x < noise.width(); ++x)
+      for (int c = 0; c < 4; ++c) {
+        float& v = noise.at(x, y, c);
+        v = std::clamp(c < 2 ? v * 0.5f + 0.5f : v * 0.125f + 0.5f, 0.0f, 1.0f);
+      }
   render::TextureOptions options;
-  options.encoding = render::TextureEncoding::kFloat16;
+  options.encoding = render::TextureEncoding::kUnorm8;
   options.wrap = GL_REPEAT;
-  // 4x anisotropic: the ground is seen at grazing angles, where isotropic mips blur the detail
-  // within a few metres of the camera (issue 19's "no blurry ground within 5 m").
-  options.max_anisotropy = 4.0f;
-  return render::Texture::from_image(make_detail_noise(kDetailSize, kDetailSeed), options).value();
+  return render::Texture::from_image(noise, options).value();
 }
 
 void update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
@@ -43,7 +50,7 @@ Result<render::Texture> make_shape_texture(const HeightField& field, float radiu
     return make_error(ErrorCode::kLimit, fmt::format("terrain: a {}x{} shape texture exceeds GL_MAX_TEXTURE_SIZE {}",
                                                      field.columns(), field.rows(), max_size));
   }
-  render::Texture t = render::Texture::create_2d(field.columns(), field.rows(), GL_RGBA16F, 1);
+  render::Texture t = render::Texture::create_2d(field.columns(), field.rows(), GL_RGBA16_SNORM, 1);
   t.set_filter(GL_LINEAR, GL_LINEAR);
   t.set_wrap(GL_CLAMP_TO_EDGE);
   update_shape_texture(t, field, radius_m, 0, 0, field.columns(), field.rows());

@@ -10,12 +10,13 @@
 
 namespace sylva::terrain {
 
-// The tiling detail noise as a mipmapped RGBA16F texture (256^2, repeat, 4x anisotropic where
-// available), bound at unit 1.
+// The tiling detail noise as a mipmapped RGBA8 texture (256^2, repeat, trilinear; encoding in
+// material_gpu.cpp), bound at unit 1.
 render::Texture make_detail_texture();
 
-// The field's shape (compute_terrain_shape) as an RGBA16F texture, texel (i, j) = sample (i, j),
-// linear, clamped, bound at unit 2. Errors: kLimit beyond GL_MAX_TEXTURE_SIZE (naming the size).
+// The field's shape (compute_terrain_shape) as an RGBA16_SNORM texture (values clamped to
+// [-1, 1]: a curvature beyond is a 45-degree-deep pit or spike), texel (i, j) = sample (i, j),
+// linear, clamped, bound at unit 2. SNORM, not half floats: llvmpipe filters it on a fast path. Errors: kLimit beyond GL_MAX_TEXTURE_SIZE (naming the size).
 Result<render::Texture> make_shape_texture(const HeightField& field, float radius_m);
 // Recomputes the samples an edit of [x0, x1) x [z0, z1) changes (the rectangle grown by the
 // radius) and uploads only those.

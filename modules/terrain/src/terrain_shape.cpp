@@ -3,6 +3,7 @@
 // the mean height of a square neighbourhood minus the height (the "topographic position index"
 // of geomorphometry, Weiss 2001): positive in hollows and gullies, where dirt, scree and snow
 // collect, negative on ridges, which the wind and the weather strip to rock.
+#include <sylva/core/noise.hpp>
 #include <sylva/terrain/material.hpp>
 
 #include <algorithm>
@@ -32,6 +33,12 @@ void compute_terrain_shape(const HeightField& field, float radius_m, int x0, int
     }
   }
   const double window = static_cast<double>(2 * r + 1) * (2 * r + 1);
+  // Macro variation (~400 m features) per sample: the shader reads it with the shape for free
+  // instead of fetching a fourth, coarsest detail scale.
+  FbmSettings macro;
+  macro.octaves = 3;
+  macro.frequency = 1.0f / 400.0f;
+  macro.seed = 19u;
   const double inv_radius = r >= 1 ? 1.0 / (r * field.spacing()) : 0.0;
   for (int j = z0; j < z1; ++j) {
     for (int i = x0; i < x1; ++i) {
@@ -47,7 +54,8 @@ void compute_terrain_shape(const HeightField& field, float radius_m, int x0, int
         curvature = static_cast<float>((mean - field.sample(i, j)) * inv_radius);
       }
       float* o = &out[(static_cast<std::size_t>(j - z0) * (x1 - x0) + (i - x0)) * 4];
-      o[0] = n.x, o[1] = n.z, o[2] = curvature, o[3] = 0.0f;
+      o[0] = n.x, o[1] = n.z, o[2] = curvature;
+      o[3] = fbm2(glm::dvec2(i, j) * field.spacing(), macro);
     }
   }
 }

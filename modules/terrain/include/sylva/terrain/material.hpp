@@ -109,7 +109,9 @@ Image make_detail_noise(int size, std::uint32_t seed);
 
 // Per-sample shape of a field, 4 floats per sample, row-major like the field: x, z components of
 // the unit normal (central differences), curvature = (mean height within radius_m - height) /
-// radius_m (> 0 in hollows, < 0 on ridges; 0 when radius_m < spacing / 2), and 0, for the samples
+// radius_m (> 0 in hollows, < 0 on ridges; 0 when radius_m < spacing / 2), and a macro variation
+// (3-octave fBm of ~400 m features at the sample's position from the field's origin, in [-1, 1],
+// sd ~0.25) for the samples
 // of [x0, x1) x [z0, z1) (clamped to the field): `out` is resized to that rectangle, row-major.
 // Memory beyond `out`: one double per sample of the rectangle grown by the radius, so callers
 // with huge fields compute bands of rows.

@@ -7,7 +7,7 @@
 // and kept in an LRU GPU cache), then the seam batch with the same program, then the debug
 // overlays; the shadow pass draws depth into the active cascade. Shading: normals and curvature
 // from the full-resolution shape texture, the layered material of material.hpp (altitude bands
-// in metres for the climate set by set_climate, slope, curvature, tiling detail at four scales,
+// in metres for the climate set by set_climate, slope, curvature, tiling detail at three scales,
 // triplanar cliffs), sun, ambient, fog (render/lib) and, when the host binds them, cascaded
 // shadows.
 
