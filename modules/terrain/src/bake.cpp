@@ -1,6 +1,8 @@
 // bake_chunk_file: a one-process bake is one share and its merge (bake.hpp).
 #include <sylva/terrain/bake.hpp>
 
+#include "bake_merge.hpp"
+
 #include <sylva/core/atomic_file.hpp>
 
 namespace sylva::terrain {
@@ -25,7 +27,7 @@ Result<BakeReport> bake_chunk_file(HeightField field, const std::filesystem::pat
   if (!meshed) return meshed.error();
   BuildControl merge_control = options.control;
   if (options.control.progress) merge_control.progress = [&](float f) { options.control.progress(0.9f + 0.1f * f); };
-  Result<BakeReport> merged = merge_bake_shares({share}, out, merge_control);
+  Result<BakeReport> merged = detail::merge_shares({share}, out, merge_control, true);
   if (!merged) return merged.error();
   BakeReport report = merged.value();
   report.prepare_ms = meshed->prepare_ms;

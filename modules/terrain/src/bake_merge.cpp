@@ -5,9 +5,11 @@
 
 #include "bake_share_format.hpp"
 #include "chunk_blob.hpp"
+#include "bake_merge.hpp"
 #include "chunk_build.hpp"
 #include "parallel.hpp"
 
+#include <sylva/core/assert.hpp>
 #include <sylva/core/timer.hpp>
 
 #include <algorithm>
@@ -124,6 +126,11 @@ Status check_shares(const std::vector<Share>& shares, std::uint32_t slot_count) 
 
 Result<BakeReport> merge_bake_shares(const std::vector<std::filesystem::path>& paths, const std::filesystem::path& out,
                                      const BuildControl& control) {
+  return detail::merge_shares(paths, out, control, false);
+}
+
+Result<BakeReport> detail::merge_shares(const std::vector<std::filesystem::path>& paths, const std::filesystem::path& out,
+                                        const BuildControl& control, bool in_place) {
   Stopwatch watch;
   if (paths.empty()) return make_error(ErrorCode::kInvalidArgument, "bake merge: no share files given");
   std::vector<Share> shares;
@@ -176,7 +183,12 @@ Result<BakeReport> merge_bake_shares(const std::vector<std::filesystem::path>& p
   }
   ChunkTreeBuilder::finish(tree);
 
-  Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(out, tree);
+  // In place: a single share's blobs already sit at the chunk file's offsets (both headers are
+  // 128 bytes, blobs in slot order), so they are patched where they are; each batch is read
+  // before it is overwritten, and the larger chunk-file directory replaces the share's.
+  SYLVA_ASSERT(!in_place || shares.size() == 1, "in-place merge of {} shares", shares.size());
+  Result<std::unique_ptr<ChunkFileWriter>> writer =
+      ChunkFileWriter::create(out, tree, in_place ? shares.front().path : std::filesystem::path());
   if (!writer) return writer.error();
   BakeReport report;
   // Batches of blobs: read in slot order, verified and patched on every thread, written in slot

@@ -32,15 +32,23 @@ using detail::put_le;
 }  // namespace
 
 Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::filesystem::path& path,
-                                                                 const ChunkTree& layout) {
+                                                                 const ChunkTree& layout,
+                                                                 const std::filesystem::path& overwrite) {
   SYLVA_TRY(check_replaceable(path));
   std::unique_ptr<ChunkFileWriter> w(new ChunkFileWriter());
   w->path_ = path;
-  w->temp_ = temp_path_beside(path);
-  w->out_.open(w->temp_, std::ios::binary | std::ios::trunc);
-  if (!w->out_) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create a file in this folder", path.string()));
   w->header_.assign(kHeaderBytes, '\0');
-  w->out_.write(w->header_.data(), static_cast<std::streamsize>(kHeaderBytes));
+  if (overwrite.empty()) {
+    w->temp_ = temp_path_beside(path);
+    w->out_.open(w->temp_, std::ios::binary | std::ios::trunc);
+    if (!w->out_) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create a file in this folder", path.string()));
+    w->out_.write(w->header_.data(), static_cast<std::streamsize>(kHeaderBytes));
+  } else {
+    w->temp_ = overwrite;
+    w->out_.open(w->temp_, std::ios::binary | std::ios::in | std::ios::out);  // no truncation
+    if (!w->out_) return make_error(ErrorCode::kIo, fmt::format("{}: cannot reopen {}", path.string(), overwrite.string()));
+    w->out_.seekp(static_cast<std::streamoff>(kHeaderBytes));
+  }
   std::string& header = w->header_;
   std::memcpy(header.data(), kMagic, 8);
   put_le(header, 8, kChunkFileVersion);

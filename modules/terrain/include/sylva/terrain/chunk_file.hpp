@@ -37,7 +37,11 @@ class ChunkFileWriter {
  public:
   // `layout`: the tree's geometry, settings and chunk slots (ChunkTreeBuilder::layout or a built
   // tree). Errors: kIo naming `path` (missing folder, read-only target, cannot create).
-  static Result<std::unique_ptr<ChunkFileWriter>> create(const std::filesystem::path& path, const ChunkTree& layout);
+  // `overwrite`: instead of a new temporary, write over this existing file of ours (beside
+  // `path`), which becomes the temporary: blobs added must then lie where the file already holds
+  // blobs of the same sizes in the same order (the bake's one-process share, bake.hpp).
+  static Result<std::unique_ptr<ChunkFileWriter>> create(const std::filesystem::path& path, const ChunkTree& layout,
+                                                         const std::filesystem::path& overwrite = {});
   ~ChunkFileWriter();
   ChunkFileWriter(const ChunkFileWriter&) = delete;
   ChunkFileWriter& operator=(const ChunkFileWriter&) = delete;
