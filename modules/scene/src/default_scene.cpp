@@ -34,7 +34,13 @@ std::string default_scene_text() {
     j["ground"] = source;
   }
   if (find_module("grass")) {
-    j["grass"] = {{"area_min", {-60.0, -60.0}}, {"area_max", {60.0, 60.0}}, {"field", {{"density", 100.0}}}};
+    // Blades near the camera; clumps and the grass's ground layer carry the meadow's colour on to
+    // the forest and the mountain feet (rock stays bare: far.max_slope_deg).
+    j["grass"] = {{"area_min", {-60.0, -60.0}},
+                  {"area_max", {60.0, 60.0}},
+                  {"field", {{"density", 100.0}}},
+                  {"blade", {{"width_min", 0.014}, {"width_max", 0.03}}},
+                  {"far", {{"clump_margin", 150.0}, {"ground_margin", 800.0}, {"ground_spacing", 6.25}, {"texture_scale", 1.5}}}};
   }
   if (find_module("vegetation")) {
     // A mixed stand with clearings across the middle distance, beyond the meadow.
