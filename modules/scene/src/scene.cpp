@@ -4,6 +4,7 @@
 #include <sylva/core/params_json.hpp>
 #include <sylva/core/timer.hpp>
 #include <sylva/render/buffer.hpp>
+#include <sylva/render/gpu_memory.hpp>
 #include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/render/shader_library.hpp>
 #include <sylva/render/shadow_maps.hpp>
@@ -72,6 +73,8 @@ Result<std::unique_ptr<Scene>> Scene::create(SceneDocument document) {
   scene->lighting_ = make_lighting(scene->document_->sun, scene->document_->environment);
 
   render::embedded::register_render_shaders();
+  // GPU memory the scene itself holds (sky, shadow maps, targets); modules open their own scope.
+  const render::GpuMemoryOwner scene_memory("scene");
   auto sky = render::SkyRenderer::create();
   if (!sky.ok()) return sky.error();
   scene->gpu_ = std::make_unique<Gpu>();
@@ -85,6 +88,7 @@ Result<std::unique_ptr<Scene>> Scene::create(SceneDocument document) {
     // Modules draw their shadow from draw(kShadow) through render::active_shadow_cascade().
     const render::FrameContext ctx{self->camera_, self->time_, self->dt_, self->wind_, self->lighting_, self->viewport_, self->frame_};
     for (auto& m : self->modules_) {
+      const render::GpuMemoryOwner memory(m->module());
       render::PassStats counts;
       for (render::Drawable* d : m->drawables()) d->draw(render::Pass::kShadow, ctx, counts);
       self->shadow_counts_[m->module()] += counts;
@@ -170,6 +174,7 @@ Result<std::unique_ptr<ModuleInstance>> Scene::create_module(const ModuleSection
     return s.error();
   }
   Stopwatch watch;
+  const render::GpuMemoryOwner memory(section.name);  // what the module allocates is counted as its own
   auto created = d->create(context_for(section));
   build_ms_[section.name] = watch.elapsed_ms();
   if (created.ok()) log_info("scene: built {} in {:.0f} ms", section.name, build_ms_[section.name]);
@@ -212,6 +217,7 @@ Status Scene::rebuild_module(std::string_view name, Rebuild what) {
   }
   ModuleInstance* m = module(name);
   if (!m) return {};
+  const render::GpuMemoryOwner memory(name);
   return m->rebuild(what);
 }
 
@@ -317,6 +323,7 @@ void Scene::update(const render::Camera& camera, double time, float dt, glm::ive
   update_ms_.clear();
   for (auto& m : modules_) {
     Stopwatch watch;
+    const render::GpuMemoryOwner memory(m->module());
     m->sync_settings();
     for (render::Drawable* d : m->drawables()) d->update(ctx);
     update_ms_[m->module()] = watch.elapsed_ms();
@@ -330,6 +337,7 @@ void Scene::draw_pass(render::Pass pass, render::FrameProfiler& profiler) {
   const bool wire = debug_.wireframe && pass == render::Pass::kOpaque;
   if (wire) glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
   for (auto& m : modules_) {
+    const render::GpuMemoryOwner memory(m->module());
     const std::string scope = module_scope(pass_name, m->module());
     profiler.begin(scope, !m->counts_own_primitives());
     render::PassStats counts;
@@ -354,6 +362,7 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
     profiler.begin(shadow_pass, false);
     shadow_hook_(ctx, [&](render::PassStats& total) {
       for (auto& m : modules_) {
+        const render::GpuMemoryOwner memory(m->module());
         render::PassStats counts;
         for (render::Drawable* d : m->drawables()) d->draw(render::Pass::kShadow, ctx, counts);
         shadow_counts_[m->module()] += counts;
@@ -408,6 +417,7 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
     if (!gpu_->offscreen || gpu_->offscreen.size() != target.size() || have.samples != samples ||
         have.color_formats.front() != format) {
       gpu_->offscreen = {};  // free the old one first: at large sizes both would not fit
+      const render::GpuMemoryOwner memory("scene");
       auto made = render::Framebuffer::create(
           {.width = target.width(), .height = target.height(), .color_formats = {format}, .samples = samples});
       if (made.ok()) {
@@ -519,10 +529,16 @@ Status Scene::map_changed(std::string_view id, const TexelRect& rect) {
   const WorldArea area = changed_world_area(m->grid, r);
   if (m->id() == ground_map_id_ && ground_) {
     update_height_field(*ground_, m->grid, r);
-    for (auto& mod : modules_) SYLVA_TRY(mod->on_map_changed(m->id(), area));
+    for (auto& mod : modules_) {
+      const render::GpuMemoryOwner memory(mod->module());
+      SYLVA_TRY(mod->on_map_changed(m->id(), area));
+    }
     return {};
   }
-  if (ModuleInstance* owner = module(m->module)) return owner->on_map_changed(m->id(), area);
+  if (ModuleInstance* owner = module(m->module)) {
+    const render::GpuMemoryOwner memory(m->module);
+    return owner->on_map_changed(m->id(), area);
+  }
   return {};
 }
 
