@@ -8,6 +8,7 @@
 #include <sys/resource.h>
 
 #include <cmath>
+#include <filesystem>
 #include <mutex>
 
 namespace sylva::bake {
@@ -45,6 +46,22 @@ int fail(std::ostream& err, const Error& e) {
   return e.code == ErrorCode::kCancelled ? 130 : 1;
 }
 
+// The output must not replace an input (a typo that would turn the user's raster or share into
+// a chunk file).
+Status check_not_an_input(const BakeCommand& command) {
+  std::vector<std::filesystem::path> inputs = command.shares;
+  if (command.kind == BakeCommand::Kind::kTerrain) inputs.push_back(command.source);
+  for (const auto& in : inputs) {
+    std::error_code ec;
+    if (std::filesystem::equivalent(in, command.out, ec)) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: --out names an input file; give the baked file another name",
+                                    command.out.string()));
+    }
+  }
+  return ok_status();
+}
+
 }  // namespace
 
 int run_bake(const BakeCommand& command, const std::atomic<bool>& cancel, std::ostream& out, std::ostream& err) {
@@ -53,6 +70,7 @@ int run_bake(const BakeCommand& command, const std::atomic<bool>& cancel, std::o
   terrain::BuildControl control;
   control.cancel = &cancel;
   control.progress = [&](float f) { printer(f); };
+  if (Status s = check_not_an_input(command); !s) return fail(err, s.error());
   Result<terrain::BakeReport> report = make_error(ErrorCode::kInvalidArgument, "nothing to do");
   if (command.kind == BakeCommand::Kind::kMerge) {
     report = terrain::merge_bake_shares(command.shares, command.out, control);

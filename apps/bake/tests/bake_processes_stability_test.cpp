@@ -185,6 +185,10 @@ TEST(BakeProcesses, TruncatedAndCorruptRastersAreErrorsNamingTheFile) {
     fs::remove(out);
   }
   EXPECT_EQ(run_bake({"terrain", (dir / "missing.tif").string(), "--out", (dir / "o").string()}, dir / "m.log"), 1);
+  // --out naming the source: refused, the raster untouched.
+  EXPECT_EQ(run_bake({"terrain", dem.string(), "--out", (dir / "." / "dem.tif").string()}, dir / "same.log"), 1);
+  EXPECT_NE(text_of(dir / "same.log").find("names an input"), std::string::npos) << text_of(dir / "same.log");
+  EXPECT_TRUE(text_of(dem) == good);
   fs::remove_all(dir);
 }
 
