@@ -11,11 +11,13 @@ uniform float u_origin_height;   // world y of the field origin [m] (0 for heigh
 out vec3 v_rel_position;  // camera-relative position [m], for fog
 out vec3 v_normal;
 out float v_height;       // world height [m], for the material
+out vec2 v_field_xz;      // position in the field's own frame [m]: anchors the detail noise
 
 void main() {
   vec4 rel = u_model * vec4(a_position, 1.0);
   v_rel_position = rel.xyz;
   v_normal = a_normal;
   v_height = a_position.y + u_origin_height;
+  v_field_xz = a_position.xz;
   gl_Position = u_view_projection * rel;
 }
