@@ -31,19 +31,25 @@ std::string scene_text(int samples) {
     "ground": {"size": 100, "resolution": 17, "generator": "flat"}})";
 }
 
-Image render_frame(int samples, glm::ivec2 size) {
+// Renders `frames` frames of a scene text into a float target (the forest hands its instances
+// over at the first update, so plant scenes need two) and reads the last one back.
+Image render_text(const std::string& text, glm::ivec2 size, int frames = 1) {
   std::vector<std::string> warnings;
-  auto doc = SceneDocument::from_text(scene_text(samples), "msaa.json", warnings);
+  auto doc = SceneDocument::from_text(text, "msaa.json", warnings);
   EXPECT_TRUE(doc.ok()) << doc.error().message;
   auto scene = Scene::create(std::move(*doc));
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   auto fb = render::Framebuffer::create({.width = size.x, .height = size.y, .color_formats = {GL_RGBA32F}}).value();
   render::FrameProfiler profiler;
   const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, size);
-  (*scene)->update(camera, 0.0, 0.0f, size);
-  (*scene)->render(fb, profiler);
+  for (int i = 0; i < frames; ++i) {
+    (*scene)->update(camera, 0.0, 0.0f, size);
+    (*scene)->render(fb, profiler);
+  }
   return render::read_color(fb).value();
 }
+
+Image render_frame(int samples, glm::ivec2 size) { return render_text(scene_text(samples), size); }
 
 glm::vec3 rgb(const Image& image, int x, int y) { return {image.at(x, y, 0), image.at(x, y, 1), image.at(x, y, 2)}; }
 
@@ -108,23 +114,11 @@ struct Coverage {
 Coverage partial_coverage_over_sky(const std::string& plants, float eye_height, int samples) {
   const glm::ivec2 size(192, 108);
   auto frame = [&](bool with_plants) {
-    std::vector<std::string> warnings;
     const std::string text = R"({"camera": {"position": [0, )" + std::to_string(eye_height) + R"(, 30], "height_mode": "above_ground", "yaw_deg": 0, "pitch_deg": 12, "fov_deg": 50},
       "sun": {"fog_density": 0}, "environment": {"time_of_day_h": 12},
       "render": {"msaa_samples": )" + std::to_string(samples) + R"(, "shadows": {"enabled": false}},
       "ground": {"size": 400, "resolution": 17, "generator": "flat"})" + (with_plants ? ", " + plants : std::string()) + "}";
-    auto doc = SceneDocument::from_text(text, "msaa_plants.json", warnings);
-    EXPECT_TRUE(doc.ok()) << doc.error().message;
-    auto scene = Scene::create(std::move(*doc));
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    auto fb = render::Framebuffer::create({.width = size.x, .height = size.y, .color_formats = {GL_RGBA32F}}).value();
-    render::FrameProfiler profiler;
-    const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, size);
-    for (int i = 0; i < 2; ++i) {  // the forest hands its instances over at the first update
-      (*scene)->update(camera, 0.0, 0.0f, size);
-      (*scene)->render(fb, profiler);
-    }
-    return render::read_color(fb).value();
+    return render_text(text, size, 2);
   };
   const Image background = frame(false), image = frame(true);
   std::vector<float> differences;
