@@ -89,6 +89,20 @@ void main() {
   vec3 color;
   if (leaf) {
     if (dot(N, V) < 0.0) N = -N;  // two-sided
+#if SYLVA_TREE_ANIMATION >= 3
+    // Colour noise (seed §3.3.1): the leaf turns its normal by a small angle that changes with
+    // time, the same for every fragment of the leaf (its number from the normal map, plus the
+    // instance), then is shaded as before. Integer multiples of the wrapped scroll offsets keep
+    // the motion continuous.
+    float tilt = min(sylva_slices.misc.y * inst.wind.w, 0.5);
+    if (tilt > 0.0) {
+      float phase = number * 61.0 + inst.variation.w * 13.0;
+      vec2 w = vec2(sin(6.2831853 * (3.0 * sylva_slices.leaf_scroll.x + phase)),
+                    sin(6.2831853 * (4.0 * sylva_slices.leaf_scroll.w + 1.618 * phase)));
+      vec3 t1 = normalize(cross(N, abs(N.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+      N = normalize(N + tilt * (w.x * t1 + w.y * cross(N, t1)));
+    }
+#endif
     vec3 base = max(col.rgb - 0.5 + season.rgb + inst.variation.rgb, vec3(0.0));
     float nl = dot(N, L);
     float shadow = sylva_shadow(rel, nl >= 0.0 ? N : -N);

@@ -168,7 +168,7 @@ Status SliceRenderer::draw(render::Pass pass, const TreeAsset& tree, const Slice
   block.fade_range = glm::vec4(spacing, 1.0f, static_cast<float>(l.resolution), lod_.leaf_displacement);
   block.leaf_scroll = leaf_scroll_;
   const float scale = std::max(lod_.leaf_displacement_scale, 1.0e-3f);
-  block.misc = glm::vec4(1.0f / scale, 0.0f, lod_.shadow_depth_offset ? 1.0f : 0.0f, 0.25f * scale);
+  block.misc = glm::vec4(1.0f / scale, lod_.color_noise, lod_.shadow_depth_offset ? 1.0f : 0.0f, 0.25f * scale);
   l.block.update(0, sizeof(SliceSetGpu), &block);
 
   if (!depth && !params.receive_shadows) no_shadows_ubo_.bind_base(GL_UNIFORM_BUFFER, render::kShadowUniformBinding);

@@ -356,5 +356,47 @@ TEST_F(SlicesGl, EveryLevelCastsWithDepthOffsets) {
   }
 }
 
+// Colour noise (seed §3.3.1, LodSettings::color_noise): in wind the slice leaves' normals turn,
+// so LOD1 shading changes while its coverage stays exactly the same; without wind nothing moves.
+TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
+  Forest forest = testing::make_lod_forest(64);
+  testing::force_level(forest, 1, forest.settings().lod);
+  auto scene = testing::GlScene::create(96, 96);
+  scene.clear_color = {1.0f, 0.0f, 1.0f, 1.0f};
+  const TreeMesh& mesh = forest.mesh(0);
+  const glm::vec3 c = 0.5f * (mesh.bounds_min + mesh.bounds_max);
+  scene.camera.perspective().fov_y = 0.35f;
+  scene.camera.set_position(glm::dvec3(c.x, c.y + 2.0, c.z + 40.0));
+  scene.camera.look_at(glm::dvec3(c));
+  const auto render = [&](float noise, const WindField& wind) {
+    forest.settings().lod.color_noise = noise;
+    return testing::render_forest(forest, scene, wind, 3.7);
+  };
+  const auto changed_share = [&](const Image& a, const Image& b) {
+    const Image fa = testing::foreground(a, scene.clear_color), fb = testing::foreground(b, scene.clear_color);
+    std::size_t both = 0, changed = 0;
+    for (int y = 0; y < a.height(); ++y) {
+      for (int x = 0; x < a.width(); ++x) {
+        if (fa.at(x, y) < 0.5f || fb.at(x, y) < 0.5f) continue;
+        ++both;
+        float d = 0.0f;
+        for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a.at(x, y, k) - b.at(x, y, k)));
+        changed += d > 0.01f ? 1 : 0;
+      }
+    }
+    return both > 0 ? double(changed) / double(both) : 0.0;
+  };
+  const WindField windy(WindSettings{.strength = 8.0f, .gust_amplitude = 0.0f, .turbulence_amplitude = 0.0f});
+  const Image still = render(0.0f, windy), noisy = render(0.05f, windy);
+  EXPECT_EQ(testing::share(testing::foreground(still, scene.clear_color)),
+            testing::share(testing::foreground(noisy, scene.clear_color)))
+      << "colour noise changes shading only, never coverage";
+  const double share = changed_share(still, noisy);
+  std::printf("colour noise: %.3f of the crown's pixels change shade at 8 m/s\n", share);
+  EXPECT_GT(share, 0.2);
+  const WindField calm(WindSettings{.strength = 0.0f, .gust_amplitude = 0.0f, .turbulence_amplitude = 0.0f});
+  EXPECT_EQ(changed_share(render(0.0f, calm), render(0.05f, calm)), 0.0) << "no wind, no colour noise";
+}
+
 }  // namespace
 }  // namespace sylva::vegetation

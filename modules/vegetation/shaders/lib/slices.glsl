@@ -14,7 +14,7 @@ layout(std140, binding = 5) uniform SylvaSliceSet {  // SliceSetGpu, slice_rende
   vec4 fade_range;     // xy |cos| range over which a slice fades in (view-parallel slices hidden)
                        // z texels per side, w leaf displacement [m per m/s]
   vec4 leaf_scroll;    // xy, zw offsets of the two scrolling lookups (eq. 3.40)
-  vec4 misc;           // x 1 / leaf displacement scale [1/m], y unused, z depth offset in
+  vec4 misc;           // x 1 / leaf displacement scale [1/m], y colour noise [rad per m/s], z depth offset in
                        // shadows (0 / 1), w largest leaf displacement [m]
 } sylva_slices;
 

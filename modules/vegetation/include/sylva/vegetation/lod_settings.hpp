@@ -33,6 +33,10 @@ struct LodSettings {
   float slice_margin = 0.12f;     // quads grow by this share of the tree height for swaying content
   float leaf_displacement = 0.002f;  // scrolling leaf displacement [m per m/s of wind] (seed eq. 3.40)
   float leaf_displacement_scale = 0.6f;  // feature size of the leaf displacement field [m]
+  // Colour noise in slices (seed 000 §3.3.1): each leaf's normal tilts by up to this angle per
+  // m/s of wind (capped at 0.5 rad), coherently for the whole leaf, so distant crowns twinkle as
+  // leaves turn instead of shading like rigid cards. 0 = off.
+  float color_noise = 0.03f;             // [rad per m/s of wind]
   bool shadow_depth_offset = true;       // slices write their baked depth offset into shadow maps (§4.7)
   bool sort_front_to_back = true;        // order each LOD queue near to far (early depth rejection)
 
@@ -51,6 +55,7 @@ struct LodSettings {
     v(slice_margin, "slice_margin", {.min = 0.0, .max = 1.0, .help = "Slice quad growth for swaying content (share of height)"});
     v(leaf_displacement, "leaf_displacement", {.min = 0.0, .max = 1.0, .unit = "m/(m/s)", .help = "Scrolling leaf displacement in slices"});
     v(leaf_displacement_scale, "leaf_displacement_scale", {.min = 0.01, .max = 100.0, .unit = "m", .help = "Feature size of the leaf displacement"});
+    v(color_noise, "color_noise", {.min = 0.0, .max = 1.0, .unit = "rad/(m/s)", .help = "Per-leaf normal tilt in slices per m/s of wind (colour noise)"});
     v(shadow_depth_offset, "shadow_depth_offset", {.help = "Slices write their baked depth into shadow maps"});
     v(sort_front_to_back, "sort_front_to_back", {.help = "Order LOD queues near to far"});
   }
