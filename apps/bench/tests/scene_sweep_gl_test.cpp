@@ -61,6 +61,11 @@ TEST(BenchSceneSweep, GroundSceneResolutionSweep) {
   ASSERT_TRUE(m.contains("memory.gpu_mib") && m.contains("memory.peak_rss_mib")) << m.dump();
   EXPECT_GT(m["memory.gpu_mib"]["max"].get<double>(), 0.0);
   EXPECT_GT(m["memory.peak_rss_mib"]["max"].get<double>(), 10.0);
+  EXPECT_GT(m["memory.gpu_mib.ground"]["max"].get<double>(), 0.0) << "the ground module's own GPU memory";
+  // Per-pass and per-module-per-pass GPU time, and the module's set-up time.
+  EXPECT_TRUE(m.contains("pass.opaque.gpu_ms")) << m.dump();
+  EXPECT_TRUE(m.contains("ground.opaque.gpu_ms")) << m.dump();
+  EXPECT_TRUE(m.contains("ground.build_ms")) << m.dump();
   auto html = sylva::read_file(out / "report.html");
   ASSERT_TRUE(html.ok());
   EXPECT_NE(html->find("ground.resolution=33"), std::string::npos);

@@ -169,10 +169,15 @@ class SceneTarget final : public BenchTarget {
       out.metrics["terrain.certified_projected_error_px"] = e->certified;
     }
 #endif
-    // Per-module GPU time, for the CSV and JSON.
+    // GPU time per pass, per module and per module and pass (issue #20: the per-pass columns of
+    // seed 000 Tab 5.6 and seed 004 R1/R2), for the CSV and JSON.
+    for (const auto& [pass, p] : s.passes) out.metrics["pass." + pass + ".gpu_ms"] = p.gpu_ms;
     for (const auto& [module, passes] : s.modules) {
       double ms = 0.0;
-      for (const auto& [pass, p] : passes) ms += p.gpu_ms;
+      for (const auto& [pass, p] : passes) {
+        ms += p.gpu_ms;
+        out.metrics[module + "." + pass + ".gpu_ms"] = p.gpu_ms;
+      }
       out.metrics[module + ".gpu_ms"] = ms;
     }
     return {};
