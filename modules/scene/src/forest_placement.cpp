@@ -92,14 +92,15 @@ std::vector<PlacedTree> place_trees(const ForestPlacement& p, const MapGrid* den
   const FbmSettings noise = clearing_noise(p);
   for (int k = cmin.y; k <= cmax.y; ++k) {
     for (int i = cmin.x; i <= cmax.x; ++i) {
-      const double jx = margin + unit(hash(p.seed, i, k, 1)) * (c - 2.0 * margin);
-      const double jz = margin + unit(hash(p.seed, i, k, 2)) * (c - 2.0 * margin);
+      const bool grid = p.layout == ForestLayout::kGrid;
+      const double jx = grid ? 0.0 : margin + unit(hash(p.seed, i, k, 1)) * (c - 2.0 * margin);
+      const double jz = grid ? 0.0 : margin + unit(hash(p.seed, i, k, 2)) * (c - 2.0 * margin);
       const glm::dvec2 xz(i * c + jx, k * c + jz);
       if (xz.x < p.area_min.x || xz.x >= p.area_max.x || xz.y < p.area_min.y || xz.y >= p.area_max.y) continue;
       float d = density ? std::clamp(sample_density(*density, xz), 0.0f, 1.0f) : 1.0f;
       // Soft edges: the stand thins over a band of the noise rather than ending on a contour.
       if (clearings) d *= glm::smoothstep(threshold - 0.04f, threshold + 0.04f, fbm2(xz, noise));
-      if (!(unit(hash(p.seed, i, k, 3)) < d)) continue;
+      if (grid ? !(d >= 0.5f) : !(unit(hash(p.seed, i, k, 3)) < d)) continue;
       PlacedTree t;
       t.position = {xz.x, ground ? ground->height(xz.x, xz.y) : 0.0, xz.y};
       t.yaw = unit(hash(p.seed, i, k, 4)) * 6.2831853f;

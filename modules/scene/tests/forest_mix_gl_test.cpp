@@ -4,6 +4,7 @@
 // mix keeps the single `species`.
 #include <sylva/render/testing.hpp>
 #include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/module_instance.hpp>
 #include <sylva/scene/scene.hpp>
 
 #include <gtest/gtest.h>
@@ -60,6 +61,20 @@ TEST_F(ForestMixGl, AnAllZeroMixKeepsTheSingleSpecies) {
   const nlohmann::json per = scene->module_stats()["vegetation"]["trees_per_species"];
   ASSERT_EQ(per.size(), 1u) << per.dump();
   EXPECT_TRUE(per.contains("conifer")) << per.dump();
+}
+
+// The grid layout through a scene file: one tree at a known spot (the thesis experiments'
+// single-tree scenes), standing on the ground.
+TEST_F(ForestMixGl, AGridLayoutPlacesOneTreeAtTheOrigin) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  auto scene = make_scene(R"({"area_min": [-1, -1], "area_max": [1, 1], "layout": "grid", "trees_per_hectare": 1,
+                              "leaf_texture_size": 32})");
+  ASSERT_TRUE(scene);
+  const std::vector<glm::dvec3> trees = scene->module("vegetation")->placed_positions(10);
+  ASSERT_EQ(trees.size(), 1u);
+  EXPECT_EQ(trees[0].x, 0.0);
+  EXPECT_EQ(trees[0].z, 0.0);
+  EXPECT_NEAR(trees[0].y, scene->ground_height(0.0, 0.0), 1e-4);
 }
 
 }  // namespace

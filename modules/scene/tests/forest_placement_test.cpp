@@ -113,3 +113,25 @@ TEST(ForestPlacement, ClearingsOpenTheAskedShareInPatches) {
   }
   EXPECT_EQ(keys(place_trees(p, nullptr, nullptr, lo, hi)), keys(expected));
 }
+
+// Grid layout (the thesis experiments' exact arrangements): trees at every multiple of the cell
+// side inside the area, none missing where the density allows them, one tree at the origin for a
+// small area around it.
+TEST(ForestPlacement, GridLayoutIsExact) {
+  ForestPlacement p;
+  p.layout = ForestLayout::kGrid;
+  p.trees_per_hectare = 100;  // cell side 10 m
+  p.area_min = {-25, -15};
+  p.area_max = {25, 15};
+  const auto trees = place_trees(p, nullptr, nullptr, p.area_min, p.area_max);
+  ASSERT_EQ(trees.size(), 5u * 3u);  // x in {-20, -10, 0, 10, 20}, z in {-10, 0, 10}
+  for (const PlacedTree& t : trees) {
+    EXPECT_DOUBLE_EQ(std::fmod(std::abs(t.position.x), 10.0), 0.0);
+    EXPECT_DOUBLE_EQ(std::fmod(std::abs(t.position.z), 10.0), 0.0);
+  }
+  p.area_min = {-1, -1};
+  p.area_max = {1, 1};
+  const auto one = place_trees(p, nullptr, nullptr, p.area_min, p.area_max);
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].position, glm::dvec3(0.0));
+}

@@ -61,6 +61,7 @@ struct ForestSectionSettings {
   std::uint32_t seed = 1;
   float clearings = 0.0f;
   float clearing_size = 150.0f;
+  ForestLayout layout = ForestLayout::kJittered;
   int map_resolution = 128;
   vegetation::SpeciesPreset species = vegetation::SpeciesPreset::kBroadleaf;
   std::uint32_t species_seed = 1;
@@ -80,6 +81,7 @@ struct ForestSectionSettings {
     v(scale_max, "scale_max", {.min = 0.05, .max = 20.0, .help = "Largest random tree scale", .rebuild = Rebuild::kOffline});
     v(seed, "seed", {.min = 0.0, .max = 4294967295.0, .help = "Placement seed", .rebuild = Rebuild::kOffline});
     v(clearings, "clearings", {.min = 0.0, .max = 0.95, .help = "Share of the area left open in natural clearings", .rebuild = Rebuild::kOffline});
+    v(layout, "layout", {.help = "jittered (a natural stand) or grid (multiples of the cell side: exact layouts; a small area round the origin is one tree)", .rebuild = Rebuild::kOffline});
     v(clearing_size, "clearing_size", {.min = 1.0, .max = 1.0e5, .unit = "m", .help = "Feature size of the clearings", .rebuild = Rebuild::kOffline, .log_scale = true});
     v(map_resolution, "map_resolution", {.min = 1, .max = 8192, .help = "Texels of a new density map along the longer side", .rebuild = Rebuild::kOffline});
     v(species, "species", {.help = "broadleaf, conifer, birch or shrub", .rebuild = Rebuild::kOffline});
@@ -298,7 +300,7 @@ class ForestInstance final : public ModuleInstance {
 
   ForestPlacement placement() const {
     const ForestSectionSettings& s = settings();
-    return {s.area_min, s.area_max, s.trees_per_hectare, s.min_spacing, s.scale_min, s.scale_max, s.seed, s.clearings, s.clearing_size};
+    return {s.area_min, s.area_max, s.trees_per_hectare, s.min_spacing, s.scale_min, s.scale_max, s.seed, s.clearings, s.clearing_size, s.layout};
   }
 
   Status density_map() {

@@ -14,14 +14,26 @@
 //  - trees stand on the ground: y = ground height at the trunk base.
 
 #include <sylva/core/height_field.hpp>
+#include <sylva/core/params.hpp>
 #include <sylva/scene/map_grid.hpp>
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 namespace sylva::scene {
+
+// kJittered: one candidate at a hashed point of each cell, kept with probability = density (a
+// natural stand). kGrid: the thesis experiments' exact layouts (seed 000 Tab 5.1/5.3/5.5): trees at
+// every multiple of the cell side 100 m / sqrt(trees_per_hectare) from the world origin inside
+// the area, kept where the density is at least 0.5; an area around the origin smaller than a cell
+// gives one tree at (0, 0).
+enum class ForestLayout { kJittered, kGrid };
+constexpr std::array<EnumName<ForestLayout>, 2> enum_names(ForestLayout) {
+  return {{{ForestLayout::kJittered, "jittered"}, {ForestLayout::kGrid, "grid"}}};
+}
 
 struct ForestPlacement {
   glm::dvec2 area_min{-60.0, -60.0};  // the forest's rectangle (world x/z) [m]
@@ -37,6 +49,7 @@ struct ForestPlacement {
   // the same trees as placing the whole forest.
   float clearings = 0.0f;
   float clearing_size = 150.0f;
+  ForestLayout layout = ForestLayout::kJittered;
 };
 
 struct PlacedTree {
