@@ -256,6 +256,12 @@ void Forest::update(const render::FrameContext& frame) {
     ForestStats::Species& ss = m.stats.species[si];
     for (int k = 0; k < kLodLevels; ++k) {
       const std::vector<LodQueueEntry>& q = s.queues.level[static_cast<std::size_t>(k)];
+      ss.lod[static_cast<std::size_t>(k)] = q.size();
+      m.stats.lod[static_cast<std::size_t>(k)] += q.size();
+      if (!st.lod.draws_level(k)) {  // selected and counted, not drawn (LodSettings::draw_lod*)
+        s.queued[static_cast<std::size_t>(k)] = 0;
+        continue;
+      }
       upload.clear();
       upload.reserve(q.size());
       for (const LodQueueEntry& e : q) {
@@ -269,8 +275,6 @@ void Forest::update(const render::FrameContext& frame) {
       }
       if (!upload.empty()) s.gpu[static_cast<std::size_t>(k)].upload(std::span<const InstanceGpu>(upload));
       s.queued[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(q.size());
-      ss.lod[static_cast<std::size_t>(k)] = q.size();
-      m.stats.lod[static_cast<std::size_t>(k)] += q.size();
     }
     ss.instances = s.instances.size();
     ss.visible = s.visible.size();
@@ -346,7 +350,7 @@ Status Forest::draw_depth(const glm::mat4& relative_view_proj, const render::Fru
     }
     for (int k = 0; k < kLodLevels; ++k) {
       const std::vector<InstanceGpu>& u = upload[static_cast<std::size_t>(k)];
-      if (u.empty()) continue;
+      if (u.empty() || !m.settings.lod.draws_level(k)) continue;
       render::Buffer& buf = s.depth_gpu[static_cast<std::size_t>(k)];
       buf.upload(std::span<const InstanceGpu>(u));
       const auto n = static_cast<std::uint32_t>(u.size());

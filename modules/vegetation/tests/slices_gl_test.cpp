@@ -398,5 +398,30 @@ TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
   EXPECT_EQ(changed_share(render(0.0f, calm), render(0.05f, calm)), 0.0) << "no wind, no colour noise";
 }
 
+// Per-level draw switches at fixed thresholds (seed 000 Tab 5.4, LodSettings::draw_lod*): a level
+// switched off is still selected and counted but draws nothing; the other levels are unaffected.
+TEST_F(SlicesGl, ALevelSwitchedOffIsSelectedButNotDrawn) {
+  Forest forest = testing::make_lod_forest(64);
+  auto scene = testing::GlScene::create(96, 96);
+  scene.clear_color = {1.0f, 0.0f, 1.0f, 1.0f};
+  const TreeMesh& mesh = forest.mesh(0);
+  const glm::vec3 c = 0.5f * (mesh.bounds_min + mesh.bounds_max);
+  scene.camera.perspective().fov_y = 0.35f;
+  scene.camera.set_position(glm::dvec3(c.x, c.y + 2.0, c.z + 40.0));
+  scene.camera.look_at(glm::dvec3(c));
+  const WindField calm(WindSettings{.strength = 0.0f, .gust_amplitude = 0.0f, .turbulence_amplitude = 0.0f});
+  for (int level = 0; level < kLodLevels; ++level) {
+    testing::force_level(forest, level, LodSettings{});
+    const double drawn = testing::share(testing::foreground(testing::render_forest(forest, scene, calm, 1.0), scene.clear_color));
+    EXPECT_GT(drawn, 0.01) << "LOD" << level;
+    LodSettings& lod = forest.settings().lod;
+    (level == 0 ? lod.draw_lod0 : level == 1 ? lod.draw_lod1 : lod.draw_lod2) = false;
+    const double left_out = testing::share(testing::foreground(testing::render_forest(forest, scene, calm, 1.0), scene.clear_color));
+    EXPECT_EQ(left_out, 0.0) << "LOD" << level << " switched off";
+    EXPECT_EQ(forest.stats().lod[static_cast<std::size_t>(level)], 1u) << "still selected and counted";
+    lod.draw_lod0 = lod.draw_lod1 = lod.draw_lod2 = true;
+  }
+}
+
 }  // namespace
 }  // namespace sylva::vegetation

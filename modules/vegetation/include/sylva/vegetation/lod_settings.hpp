@@ -39,6 +39,13 @@ struct LodSettings {
   float color_noise = 0.03f;             // [rad per m/s of wind]
   bool shadow_depth_offset = true;       // slices write their baked depth offset into shadow maps (§4.7)
   bool sort_front_to_back = true;        // order each LOD queue near to far (early depth rejection)
+  // Draw switches per level at unchanged thresholds (seed 000 Tab 5.4 measures each level's share
+  // of the frame by leaving it out): a level switched off is selected and counted as usual but
+  // neither drawn nor cast into shadow maps.
+  bool draw_lod0 = true;
+  bool draw_lod1 = true;
+  bool draw_lod2 = true;
+  bool draws_level(int level) const { return level == 0 ? draw_lod0 : level == 1 ? draw_lod1 : draw_lod2; }
 
   template <class V>
   void visit(V& v) {
@@ -58,6 +65,9 @@ struct LodSettings {
     v(color_noise, "color_noise", {.min = 0.0, .max = 1.0, .unit = "rad/(m/s)", .help = "Per-leaf normal tilt in slices per m/s of wind (colour noise)"});
     v(shadow_depth_offset, "shadow_depth_offset", {.help = "Slices write their baked depth into shadow maps"});
     v(sort_front_to_back, "sort_front_to_back", {.help = "Order LOD queues near to far"});
+    v(draw_lod0, "draw_lod0", {.help = "Draw the trees selected for LOD0 (off: left out, thresholds unchanged)"});
+    v(draw_lod1, "draw_lod1", {.help = "Draw the trees selected for LOD1 (off: left out, thresholds unchanged)"});
+    v(draw_lod2, "draw_lod2", {.help = "Draw the trees selected for LOD2 (off: left out, thresholds unchanged)"});
   }
 };
 
