@@ -449,17 +449,23 @@ void EditorUi::stats_overlay(const glm::vec2& origin) {
       // rasteriser's work escapes. CPU: update and submission.
       ImGui::Text("frame (wall) %.2f ms   GPU (queries) %.2f ms   CPU %.2f ms", 1000.0 * ImGui::GetIO().DeltaTime,
                   s.gpu_ms, s.cpu_ms);
-      // Tracked GPU memory and the process's peak RSS (render/gpu_memory.hpp, issue #20).
-      const nlohmann::json memory = scene::memory_report();
-      constexpr double kMiB = 1.0 / (1024.0 * 1024.0);
-      std::string per_owner;
-      for (const auto& [owner, bytes] : memory["gpu_bytes"].items()) {
-        const double mib = bytes["total"].get<double>() * kMiB;
-        if (mib >= 0.05) per_owner += fmt::format("  {} {:.1f}", owner, mib);
+      // Tracked GPU memory and the process's peak RSS (render/gpu_memory.hpp, issue #20), rebuilt
+      // twice a second: the report walks every owner and calls getrusage.
+      if (memory_line_time_ < 0.0 || ImGui::GetTime() - memory_line_time_ >= 0.5) {
+        memory_line_time_ = ImGui::GetTime();
+        const nlohmann::json memory = scene::memory_report();
+        constexpr double kMiB = 1.0 / (1024.0 * 1024.0);
+        std::string per_owner;
+        for (const auto& [owner, bytes] : memory["gpu_bytes"].items()) {
+          const double mib = bytes["total"].get<double>() * kMiB;
+          if (mib >= 0.05) per_owner += fmt::format("  {} {:.1f}", owner, mib);
+        }
+        memory_line_ = fmt::format("GPU memory {:.1f} MiB (peak {:.1f}):{}   process peak RSS {:.0f} MiB",
+                                   memory["gpu_total_bytes"].get<double>() * kMiB,
+                                   memory["gpu_peak_bytes"].get<double>() * kMiB, per_owner,
+                                   memory["peak_rss_bytes"].get<double>() * kMiB);
       }
-      ImGui::Text("GPU memory %.1f MiB (peak %.1f):%s   process peak RSS %.0f MiB",
-                  memory["gpu_total_bytes"].get<double>() * kMiB, memory["gpu_peak_bytes"].get<double>() * kMiB,
-                  per_owner.c_str(), memory["peak_rss_bytes"].get<double>() * kMiB);
+      ImGui::TextUnformatted(memory_line_.c_str());
       if (ImGui::BeginTable("passes", 5, ImGuiTableFlags_SizingFixedFit)) {
         ImGui::TableSetupColumn("module/pass");
         ImGui::TableSetupColumn("GPU ms");

@@ -64,6 +64,9 @@ class EditorUi {
   std::deque<std::string> messages_;
   std::optional<glm::dvec3> brush_hit_;
   std::string playing_path_;
+  // The overlay's memory line, rebuilt twice a second rather than every frame.
+  std::string memory_line_;
+  double memory_line_time_ = -1.0;
   double path_time_ = 0.0;
 };
 

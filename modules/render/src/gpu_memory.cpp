@@ -30,15 +30,17 @@ OwnerTable& table() {
   return t;
 }
 
+// The scene opens a scope per module and pass every frame: look the name up without allocating;
+// only a new owner (once per name and process) copies it.
 int owner_index(std::string_view name) {
-  const std::string key = name.empty() ? "other" : std::string(name);
+  const std::string_view key = name.empty() ? std::string_view("other") : name;
   OwnerTable& t = table();
   std::lock_guard lock(t.mutex);
   for (std::size_t i = 0; i < t.owners.size(); ++i) {
     if (t.owners[i]->name == key) return static_cast<int>(i);
   }
   t.owners.push_back(std::make_unique<OwnerCounters>());
-  t.owners.back()->name = key;
+  t.owners.back()->name = std::string(key);
   return static_cast<int>(t.owners.size() - 1);
 }
 

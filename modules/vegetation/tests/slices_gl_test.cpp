@@ -356,11 +356,8 @@ TEST_F(SlicesGl, EveryLevelCastsWithDepthOffsets) {
   }
 }
 
-// Colour noise (seed §3.3.1, LodSettings::color_noise): in wind the slice leaves' normals turn,
-// so LOD1 shading changes while its coverage stays exactly the same; without wind nothing moves.
-TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
-  Forest forest = testing::make_lod_forest(64);
-  testing::force_level(forest, 1, forest.settings().lod);
+// A 96x96 view of the forest's one tree from 40 m, its crown filling the frame, over magenta.
+testing::GlScene side_view_at_40m(const Forest& forest) {
   auto scene = testing::GlScene::create(96, 96);
   scene.clear_color = {1.0f, 0.0f, 1.0f, 1.0f};
   const TreeMesh& mesh = forest.mesh(0);
@@ -368,6 +365,15 @@ TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
   scene.camera.perspective().fov_y = 0.35f;
   scene.camera.set_position(glm::dvec3(c.x, c.y + 2.0, c.z + 40.0));
   scene.camera.look_at(glm::dvec3(c));
+  return scene;
+}
+
+// Colour noise (seed §3.3.1, LodSettings::color_noise): in wind the slice leaves' normals turn,
+// so LOD1 shading changes while its coverage stays exactly the same; without wind nothing moves.
+TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
+  Forest forest = testing::make_lod_forest(64);
+  testing::force_level(forest, 1, forest.settings().lod);
+  testing::GlScene scene = side_view_at_40m(forest);
   const auto render = [&](float noise, const WindField& wind) {
     forest.settings().lod.color_noise = noise;
     return testing::render_forest(forest, scene, wind, 3.7);
@@ -402,13 +408,7 @@ TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
 // switched off is still selected and counted but draws nothing; the other levels are unaffected.
 TEST_F(SlicesGl, ALevelSwitchedOffIsSelectedButNotDrawn) {
   Forest forest = testing::make_lod_forest(64);
-  auto scene = testing::GlScene::create(96, 96);
-  scene.clear_color = {1.0f, 0.0f, 1.0f, 1.0f};
-  const TreeMesh& mesh = forest.mesh(0);
-  const glm::vec3 c = 0.5f * (mesh.bounds_min + mesh.bounds_max);
-  scene.camera.perspective().fov_y = 0.35f;
-  scene.camera.set_position(glm::dvec3(c.x, c.y + 2.0, c.z + 40.0));
-  scene.camera.look_at(glm::dvec3(c));
+  testing::GlScene scene = side_view_at_40m(forest);
   const WindField calm(WindSettings{.strength = 0.0f, .gust_amplitude = 0.0f, .turbulence_amplitude = 0.0f});
   for (int level = 0; level < kLodLevels; ++level) {
     testing::force_level(forest, level, LodSettings{});
