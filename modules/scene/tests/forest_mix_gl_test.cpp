@@ -2,12 +2,17 @@
 // becomes a species of the forest, trees are shared out in proportion to the weights, the split
 // is the same at every load (a hash of each trunk's position picks its species), and an all-zero
 // mix keeps the single `species`.
+#include <sylva/render/framebuffer.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/render/readback.hpp>
 #include <sylva/render/testing.hpp>
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/module_instance.hpp>
 #include <sylva/scene/scene.hpp>
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 using namespace sylva;
 using namespace sylva::scene;
@@ -75,6 +80,54 @@ TEST_F(ForestMixGl, AGridLayoutPlacesOneTreeAtTheOrigin) {
   EXPECT_EQ(trees[0].x, 0.0);
   EXPECT_EQ(trees[0].z, 0.0);
   EXPECT_NEAR(trees[0].y, scene->ground_height(0.0, 0.0), 1e-4);
+}
+
+// The forest's LOD switches reach a scene file (`vegetation.forest.lod.*`, what the editor's
+// panels and --set edit): a tree 60 m away (LOD1) in a strong wind changes shade with
+// color_noise, and vanishes with draw_lod1 off.
+TEST_F(ForestMixGl, LodSwitchesReachTheSceneFile) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::from_text(R"({"camera": {"position": [0, 6, 60], "yaw_deg": 0, "pitch_deg": 0, "fov_deg": 12},
+      "wind": {"strength": 8, "gust_amplitude": 0},
+      "render": {"msaa_samples": 1, "shadows": {"enabled": false}},
+      "ground": {"resolution": 33, "size": 512, "generator": "flat"},
+      "vegetation": {"area_min": [-1, -1], "area_max": [1, 1], "layout": "grid", "trees_per_hectare": 1,
+                     "leaf_texture_size": 32, "forest": {"lod": {"color_noise": 0}}}})", "lod.json", warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto scene = Scene::create(std::move(*doc));
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  const glm::ivec2 size(96, 96);
+  auto fb = render::Framebuffer::create({.width = size.x, .height = size.y}).value();
+  const auto frame = [&] {
+    render::FrameProfiler profiler;
+    const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, size);
+    for (int i = 0; i < 2; ++i) {  // the forest hands its instances over at the first update
+      (*scene)->update(camera, 2.0, 0.0f, size);
+      (*scene)->render(fb, profiler);
+    }
+    return render::read_color(fb).value();
+  };
+  const auto changed = [](const Image& a, const Image& b) {
+    int n = 0;
+    for (int y = 0; y < a.height(); ++y)
+      for (int x = 0; x < a.width(); ++x)
+        for (int c = 0; c < 3; ++c) {
+          if (std::abs(a.at(x, y, c) - b.at(x, y, c)) > 0.01f) {
+            ++n;
+            break;
+          }
+        }
+    return n;
+  };
+  const Image plain = frame();
+  EXPECT_EQ((*scene)->module_stats()["vegetation"]["instances_per_lod"]["lod1"].get<int>(), 1) << "the tree is at LOD1";
+  ASSERT_TRUE((*scene)->set_param("vegetation.forest.lod.color_noise", "0.05").ok());
+  const Image noisy = frame();
+  EXPECT_GT(changed(plain, noisy), 30) << "colour noise turns the leaves";
+  ASSERT_TRUE((*scene)->set_param("vegetation.forest.lod.draw_lod1", "false").ok());
+  const Image gone = frame();
+  EXPECT_GT(changed(noisy, gone), 200) << "LOD1 switched off: the tree is not drawn";
 }
 
 }  // namespace
