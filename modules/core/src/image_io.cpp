@@ -3,6 +3,8 @@
 
 #include <sylva/core/atomic_file.hpp>
 
+#include "exr_header_check.hpp"
+
 #include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
@@ -67,6 +69,8 @@ Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) 
   if (fs::is_directory(path, ec)) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: is a folder, not an image", name));
   }
+  // OpenEXR allocates whatever its header declares before it checks the file holds it.
+  if (detail::has_exr_magic(path)) SYLVA_TRY(detail::check_exr_header(path, name, options.max_side));
   // Keep stored values as they are: no premultiplication by alpha (PNG would otherwise
   // associate alpha on read), since our alpha channels are masks and coverage, not opacity.
   OIIO::ImageSpec config;

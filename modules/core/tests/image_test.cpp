@@ -270,3 +270,63 @@ TEST(Image, WriteIntoMissingFolderFailsCleanly) {
   EXPECT_EQ(r.error().code, ErrorCode::kIo);
   EXPECT_NE(r.error().message.find("/nonexistent/folder/out.png"), std::string::npos);
 }
+
+// OpenEXR trusts the sizes in its header (exr_header_check.hpp): a hostile header must be refused
+// by Sylva's walk before the library allocates what it declares.
+namespace {
+
+std::string read_bytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void write_bytes(const fs::path& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary) << bytes;
+}
+
+void put_le32(std::string& bytes, std::size_t at, std::int32_t value) {
+  for (int i = 0; i < 4; ++i) bytes[at + i] = static_cast<char>((static_cast<std::uint32_t>(value) >> (8 * i)) & 0xffu);
+}
+
+// A valid EXR's bytes and the offset just past the named attribute's type (its size field).
+std::pair<std::string, std::size_t> exr_with_attribute(const fs::path& path, const std::string& attribute) {
+  EXPECT_TRUE(sylva::write_image(path, gradient(8, 4, 1), PixelFormat::kF32).ok());
+  std::string bytes = read_bytes(path);
+  const std::size_t name = bytes.find(attribute + '\0');
+  EXPECT_NE(name, std::string::npos) << attribute;
+  const std::size_t type_end = bytes.find('\0', name + attribute.size() + 1);
+  return {bytes, type_end + 1};
+}
+
+}  // namespace
+
+TEST(Image, ExrAttributeLargerThanTheFileIsRefusedBeforeOpenExrAllocatesIt) {
+  const fs::path path = temp_dir() / "hostile_attribute.exr";
+  auto [bytes, size_at] = exr_with_attribute(path, "channels");
+  put_le32(bytes, size_at, 0x70000000);  // 1.8 GB in a file of a few hundred bytes
+  write_bytes(path, bytes);
+  auto r = sylva::read_image(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(r.error().message.find("hostile_attribute.exr: OpenEXR attribute \"channels\" declares 1879048192 bytes"),
+            std::string::npos)
+      << r.error().message;
+}
+
+TEST(Image, ExrDataWindowAboveTheLimitIsRefusedBeforeOpenExrSizesItsOffsetTable) {
+  const fs::path path = temp_dir() / "hostile_window.exr";
+  auto [bytes, size_at] = exr_with_attribute(path, "dataWindow");
+  put_le32(bytes, size_at + 4 + 12, 1 << 30);  // ymax: a billion scan lines
+  write_bytes(path, bytes);
+  auto r = sylva::read_image(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kLimit);
+  EXPECT_NE(r.error().message.find("image is 8x1073741825, larger than the limit of 32768"), std::string::npos)
+      << r.error().message;
+  // Within the side limit but with more chunks than the file could index.
+  put_le32(bytes, size_at + 4 + 12, 30000);
+  write_bytes(path, bytes);
+  r = sylva::read_image(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("chunks but the file has only"), std::string::npos) << r.error().message;
+}

@@ -1,0 +1,147 @@
+// OpenEXR header walk (file layout: OpenEXR "File Layout" document, section "Header"): magic,
+// version with flags, then per part a list of attributes (name\0 type\0 int32 size, value) closed
+// by an empty name; a multi-part file closes its list of headers with one more empty header.
+#include "exr_header_check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <string>
+
+namespace sylva::detail {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::array<unsigned char, 4> kMagic{0x76, 0x2f, 0x31, 0x01};
+constexpr std::uint32_t kLongNamesFlag = 0x400, kMultiPartFlag = 0x1000;
+constexpr int kMaxParts = 1024;            // far above any real file; bounds the walk
+constexpr int kMaxAttributesPerPart = 4096;
+
+std::int64_t little_endian(const unsigned char* p, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
+  if (bytes == 4) return static_cast<std::int32_t>(static_cast<std::uint32_t>(v));
+  return static_cast<std::int64_t>(v);
+}
+
+// Reads a NUL-terminated string of at most `max_length` characters; false at the end of the
+// file or when no NUL comes in time.
+bool read_name(std::ifstream& in, std::size_t max_length, std::string& out) {
+  out.clear();
+  for (char c; in.get(c);) {
+    if (c == '\0') return true;
+    if (out.size() == max_length) return false;
+    out.push_back(c);
+  }
+  return false;
+}
+
+// What one part's header says about the size of its offset table.
+struct PartShape {
+  std::int64_t width = 0, height = 0;  // data window; 0 = not seen
+  std::int64_t tile_x = 0, tile_y = 0; // tiles attribute; 0 = scan lines
+  std::int64_t chunk_count = -1;       // chunkCount attribute (multi-part); -1 = not given
+};
+
+}  // namespace
+
+bool has_exr_magic(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 4> head{};
+  if (!in.read(reinterpret_cast<char*>(head.data()), head.size())) return false;
+  return head == kMagic;
+}
+
+Status check_exr_header(const fs::path& path, std::string_view display, int max_side) {
+  std::error_code ec;
+  const auto file_size = static_cast<std::int64_t>(fs::file_size(path, ec));
+  if (ec) return make_error(ErrorCode::kNotFound, fmt::format("{}: cannot read ({})", display, ec.message()));
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 8> start{};
+  if (!in.read(reinterpret_cast<char*>(start.data()), start.size())) {
+    return make_error(ErrorCode::kCorrupt, fmt::format("{}: truncated OpenEXR file ({} bytes)", display, file_size));
+  }
+  const auto flags = static_cast<std::uint32_t>(little_endian(start.data() + 4, 4));
+  const std::size_t max_name = (flags & kLongNamesFlag) != 0 ? 255 : 31;
+  const bool multi_part = (flags & kMultiPartFlag) != 0;
+
+  std::string name, type;
+  for (int part = 0; part < kMaxParts; ++part) {
+    PartShape shape;
+    int attributes = 0;
+    for (;; ++attributes) {
+      if (attributes == kMaxAttributesPerPart) {
+        return make_error(ErrorCode::kLimit, fmt::format("{}: OpenEXR header of part {} has more than {} attributes",
+                                                         display, part, kMaxAttributesPerPart));
+      }
+      if (!read_name(in, max_name, name)) {
+        return make_error(ErrorCode::kCorrupt,
+                          fmt::format("{}: OpenEXR header of part {} ends early or holds a name longer than {} characters",
+                                      display, part, max_name));
+      }
+      if (name.empty()) break;  // end of this header
+      std::array<unsigned char, 4> size_bytes{};
+      if (!read_name(in, max_name, type) || !in.read(reinterpret_cast<char*>(size_bytes.data()), 4)) {
+        return make_error(ErrorCode::kCorrupt, fmt::format("{}: OpenEXR attribute \"{}\" is cut off", display, name));
+      }
+      const std::int64_t size = little_endian(size_bytes.data(), 4);
+      const std::int64_t left = file_size - static_cast<std::int64_t>(in.tellg());
+      if (size < 0 || size > left) {
+        return make_error(ErrorCode::kCorrupt,
+                          fmt::format("{}: OpenEXR attribute \"{}\" declares {} bytes but the file has {} left", display,
+                                      name, size, left));
+      }
+      // The few values that size the offset table; everything else is skipped unread.
+      std::array<unsigned char, 16> value{};
+      const bool wanted = (name == "dataWindow" && type == "box2i" && size == 16) ||
+                          (name == "tiles" && type == "tiledesc" && size == 9) ||
+                          (name == "chunkCount" && type == "int" && size == 4);
+      if (wanted) {
+        if (!in.read(reinterpret_cast<char*>(value.data()), size)) {
+          return make_error(ErrorCode::kCorrupt, fmt::format("{}: OpenEXR attribute \"{}\" is cut off", display, name));
+        }
+        if (name == "dataWindow") {
+          shape.width = little_endian(value.data() + 8, 4) - little_endian(value.data(), 4) + 1;
+          shape.height = little_endian(value.data() + 12, 4) - little_endian(value.data() + 4, 4) + 1;
+        } else if (name == "tiles") {
+          shape.tile_x = static_cast<std::uint32_t>(little_endian(value.data(), 4));
+          shape.tile_y = static_cast<std::uint32_t>(little_endian(value.data() + 4, 4));
+        } else {
+          shape.chunk_count = little_endian(value.data(), 4);
+        }
+      } else {
+        in.seekg(size, std::ios::cur);
+      }
+    }
+    if (attributes == 0) {
+      if (multi_part && part > 0) return {};  // the empty header closing a multi-part list
+      return make_error(ErrorCode::kCorrupt, fmt::format("{}: OpenEXR header of part {} is empty", display, part));
+    }
+    if (shape.width > max_side || shape.height > max_side || shape.width < 0 || shape.height < 0) {
+      return make_error(ErrorCode::kLimit,
+                        fmt::format("{}: image is {}x{}, larger than the limit of {} per side (OpenEXR data window)",
+                                    display, shape.width, shape.height, max_side));
+    }
+    // The offset table holds 8 bytes per chunk and lies in the file. At least: one chunk per 256
+    // scan lines (the largest block, DWAB), or one per level-0 tile.
+    std::int64_t min_chunks = (shape.height + 255) / 256;
+    if (shape.tile_x > 0 && shape.tile_y > 0) {
+      min_chunks = ((shape.width + shape.tile_x - 1) / shape.tile_x) * ((shape.height + shape.tile_y - 1) / shape.tile_y);
+    }
+    if (shape.chunk_count >= 0) min_chunks = std::max(min_chunks, shape.chunk_count);
+    if (min_chunks * 8 > file_size) {
+      return make_error(ErrorCode::kCorrupt,
+                        fmt::format("{}: OpenEXR part {} needs {} chunks but the file has only {} bytes", display, part,
+                                    min_chunks, file_size));
+    }
+    if (!multi_part) return {};
+  }
+  return make_error(ErrorCode::kLimit, fmt::format("{}: OpenEXR file has more than {} parts", display, kMaxParts));
+}
+
+}  // namespace sylva::detail
