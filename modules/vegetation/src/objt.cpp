@@ -475,8 +475,8 @@ Result<TreeModel> Parser::build() {
       if (b.radius_base < 0.0f || b.radius_tip < 0.0f)
         return error(line_of(r, 'w'), fmt::format("branch {}: field 'w': radii {} / {} must be >= 0", r.id, b.radius_base, b.radius_tip));
     } else {
-      b.radius_base = 0.03f * b.length;
-      b.radius_tip = 0.2f * b.radius_base;
+      b.radius_base = options_.default_radius_ratio * b.length;
+      b.radius_tip = options_.default_taper * b.radius_base;
     }
     if (r.fields.count('c') != 0) {
       b.c2 = static_cast<float>(num(r, 'c', 0));
@@ -513,8 +513,8 @@ Result<TreeModel> Parser::build() {
       if (!(l.width > 0.0f && l.length > 0.0f))
         return error(line_of(r, 'w'), fmt::format("leaf {}: field 'w': size {} x {} must be positive", r.id, l.width, l.length));
     } else {
-      l.width = 0.05f;
-      l.length = 0.08f;
+      l.width = options_.default_leaf_width;
+      l.length = options_.default_leaf_length;
     }
     if (r.fields.count('n') != 0) {
       l.number = static_cast<float>(num(r, 'n'));

@@ -88,6 +88,20 @@ bool orthonormalize(BranchFrame& f) {
   return true;
 }
 
+void scale_tree_model(TreeModel& model, float factor) {
+  SYLVA_ASSERT(factor > 0.0f && std::isfinite(factor), "scale_tree_model: factor {} must be positive and finite", factor);
+  for (Branch& b : model.branches) {
+    b.start *= factor;
+    b.length *= factor;
+    b.radius_base *= factor;
+    b.radius_tip *= factor;
+  }
+  for (Leaf& l : model.leaves) {
+    l.width *= factor;
+    l.length *= factor;
+  }
+}
+
 Status validate(const TreeModel& model) {
   const auto n = static_cast<int>(model.branches.size());
   for (int i = 0; i < n; ++i) {

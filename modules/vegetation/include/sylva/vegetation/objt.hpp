@@ -17,9 +17,9 @@
 // The seed's format has no radii, leaf sizes or per-leaf numbers (extraction §3.1 notes). Sylva
 // adds optional fields so a model round-trips exactly; files without them load with defaults:
 //   branch  w <radius_base> <radius_tip>   default: 0.03 d at the base, taper 0.2 (the taper the
-//                                          seed's constants belong to)
+//                                          seed's constants belong to); ObjtReadOptions changes both
 //   branch  c <c2> <c4>                    default: fitted from the taper (bending.hpp)
-//   leaf    w <width> <length>             default: 0.05 x 0.08 m
+//   leaf    w <width> <length>             default: 0.05 x 0.08 (ObjtReadOptions)
 //   leaf    n <number in [0, 1)>           default: a hash of the leaf id and the seed
 //   header  seed = <uint32>                default: 0; seeds the per-branch noise signals
 // Leaf frame vectors: r is the leaf normal n, s the bitangent b = t x n, t the blade axis.
@@ -61,6 +61,13 @@ struct ObjtReadOptions {
   bool strict = false;                 // refuse what is otherwise repaired with a warning (above)
   // Where repair warnings go ("file:line: ..."); not owned; null = the log (log_warn).
   std::vector<std::string>* warnings = nullptr;
+  // Rules for files without the Sylva extensions (a species file sets them, species_file.hpp):
+  // a branch without 'w' gets radius_base = default_radius_ratio * d and radius_tip =
+  // default_taper * radius_base; a leaf without 'w' gets this size (file units).
+  float default_radius_ratio = 0.03f;
+  float default_taper = 0.2f;
+  float default_leaf_width = 0.05f;
+  float default_leaf_length = 0.08f;
 };
 
 Result<TreeModel> parse_objt(std::string_view text, const ObjtReadOptions& options = {});

@@ -101,6 +101,11 @@ struct TreeModel {
 // radii, positive leaf sizes). kInvalidArgument naming the branch or leaf (its OBJT id) and field.
 Status validate(const TreeModel& model);
 
+// Scales the rest geometry uniformly by `factor` (> 0, finite): branch starts, lengths and radii,
+// leaf sizes. Frames, x values, bending constants and amplitude limits are relative and stay (a
+// species file's `units`, metres per file unit).
+void scale_tree_model(TreeModel& model, float factor);
+
 // Orthonormalises a frame keeping t's direction: t normalised, r made orthogonal to t, s = t x r.
 // Returns false (frame untouched) when t is zero or r is (nearly) parallel to t.
 bool orthonormalize(BranchFrame& frame);

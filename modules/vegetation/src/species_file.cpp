@@ -1,0 +1,221 @@
+// Species files (species_file.hpp): the JSON is read through the params reflection (core
+// params_json) wherever it can be, so types, ranges and unknown keys get the same messages as a
+// scene file; only the two shapes of "model" are told apart here.
+
+#include <sylva/vegetation/species_file.hpp>
+
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/params_json.hpp>
+#include <sylva/vegetation/objt.hpp>
+#include <sylva/vegetation/textures.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <system_error>
+
+namespace sylva::vegetation {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Rules for OBJT files without the Sylva extensions (objt.hpp defaults).
+struct ObjtRules {
+  float branch_radius = 0.03f;  // base radius / length
+  float branch_taper = 0.2f;    // tip radius / base radius
+  float leaf_width = 0.05f;     // [m]
+  float leaf_length = 0.08f;    // [m]
+  bool strict = false;
+
+  template <class V>
+  void visit(V& v) {
+    v(branch_radius, "branch_radius", {.min = 0.0, .max = 1.0, .help = "Base radius of a branch without w, relative to its length"});
+    v(branch_taper, "branch_taper", {.min = 0.0, .max = 1.0, .help = "Tip radius / base radius of a branch without w"});
+    v(leaf_width, "leaf_width", {.min = 1e-4, .max = 10.0, .unit = "m", .help = "Width of a leaf without w"});
+    v(leaf_length, "leaf_length", {.min = 1e-4, .max = 10.0, .unit = "m", .help = "Length of a leaf without w"});
+    v(strict, "strict", {.help = "Refuse what the OBJT loader would repair with a warning"});
+  }
+};
+
+// Everything but "model".
+struct SpeciesTop {
+  std::string name;
+  float units = 1.0f;
+  ObjtRules objt;
+  SpeciesPreset look = SpeciesPreset::kBroadleaf;
+  std::uint32_t texture_seed = 1;
+  glm::vec3 leaf_tint{1.0f};
+  glm::vec3 bark_color{0.32f, 0.24f, 0.17f};
+
+  template <class V>
+  void visit(V& v) {
+    v(name, "name", {.max = 64, .help = "Species name"});
+    v(units, "units", {.min = 1e-6, .max = 1000.0, .unit = "m", .help = "Metres per model unit"});
+    v(objt, "objt");
+    v(look, "look", {.help = "Procedural textures: broadleaf, conifer, birch or shrub"});
+    v(texture_seed, "texture_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the procedural textures"});
+    v(leaf_tint, "leaf_tint", {.min = 0.0, .max = 4.0, .help = "Multiplies the seasonal leaf colour"});
+    v(bark_color, "bark_color", {.min = 0.0, .max = 1.0, .help = "Linear albedo of the bark plates"});
+  }
+};
+
+struct ObjtModel {
+  std::string objt;
+  template <class V>
+  void visit(V& v) {
+    v(objt, "objt", {.max = 4096, .help = "OBJT file, relative to the species file"});
+  }
+};
+
+struct PresetModel {
+  SpeciesPreset preset = SpeciesPreset::kBroadleaf;
+  std::uint32_t seed = 1;
+  template <class V>
+  void visit(V& v) {
+    v(preset, "preset", {.help = "Generator preset"});
+    v(seed, "seed", {.min = 0.0, .max = 4294967295.0, .help = "Generator seed"});
+  }
+};
+
+Error fail(ErrorCode code, std::string_view source, std::string_view what) {
+  return make_error(code, fmt::format("{}: {}", source, what));
+}
+
+void add_warnings(std::vector<std::string>& out, std::vector<std::string>& local, std::string_view source) {
+  for (const std::string& w : local) out.push_back(fmt::format("{}: {}", source, w));
+  local.clear();
+}
+
+Result<TreeModel> load_objt_model(const nlohmann::json& model, const SpeciesTop& top, const fs::path& directory,
+                                  std::string_view source, std::vector<std::string>& warnings) {
+  ObjtModel om;
+  std::vector<std::string> local;
+  Status s = params_from_json(om, model, local, "model");
+  add_warnings(warnings, local, source);
+  if (!s.ok()) return fail(s.error().code, source, s.error().message);
+  if (om.objt.empty()) return fail(ErrorCode::kInvalidArgument, source, "model.objt: empty path");
+  const fs::path path = fs::path(om.objt).is_absolute() ? fs::path(om.objt) : directory / om.objt;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return fail(ErrorCode::kNotFound, source, fmt::format("model.objt: no such file {}", om.objt));
+  if (!fs::is_regular_file(path, ec)) return fail(ErrorCode::kIo, source, fmt::format("model.objt: {} is not a file", om.objt));
+  const std::uintmax_t bytes = fs::file_size(path, ec);
+  if (ec || bytes > kMaxObjtFileBytes)
+    return fail(ErrorCode::kLimit, source, fmt::format("model.objt: {} is {} bytes, above the {} MiB limit", om.objt, bytes, kMaxObjtFileBytes >> 20));
+  Result<std::string> text = read_file(path);
+  if (!text.ok()) return fail(text.error().code, source, fmt::format("model.objt: {}", text.error().message));
+  ObjtReadOptions options;
+  options.source_name = om.objt;
+  options.strict = top.objt.strict;
+  options.warnings = &local;
+  options.default_radius_ratio = top.objt.branch_radius;
+  options.default_taper = top.objt.branch_taper;
+  // The leaf rule is in metres; the file's numbers are in its own units until scaled.
+  options.default_leaf_width = top.objt.leaf_width / top.units;
+  options.default_leaf_length = top.objt.leaf_length / top.units;
+  Result<TreeModel> parsed = parse_objt(*text, options);
+  add_warnings(warnings, local, source);
+  if (!parsed.ok()) return fail(parsed.error().code, source, fmt::format("model.objt: {}", parsed.error().message));
+  return parsed;
+}
+
+Result<TreeModel> generate_preset_model(const nlohmann::json& model, std::string_view source, std::vector<std::string>& warnings,
+                                        SpeciesPreset& preset) {
+  nlohmann::json head = model;
+  head.erase("parameters");
+  PresetModel pm;
+  std::vector<std::string> local;
+  Status s = params_from_json(pm, head, local, "model");
+  add_warnings(warnings, local, source);
+  if (!s.ok()) return fail(s.error().code, source, s.error().message);
+  preset = pm.preset;
+  TreeSpecies species = species_preset(pm.preset, pm.seed);
+  if (const auto p = model.find("parameters"); p != model.end()) {
+    if (!p->is_object()) return fail(ErrorCode::kInvalidArgument, source, "model.parameters: must be an object of generator parameters");
+    s = params_from_json(species, *p, local, "model.parameters");
+    add_warnings(warnings, local, source);
+    if (!s.ok()) return fail(s.error().code, source, s.error().message);
+  }
+  Result<TreeModel> generated = generate_tree(species);
+  if (!generated.ok()) return fail(generated.error().code, source, fmt::format("model.parameters: {}", generated.error().message));
+  return generated;
+}
+
+}  // namespace
+
+Result<SpeciesFile> parse_species(std::string_view text, const fs::path& directory, std::string_view source,
+                                  std::vector<std::string>& warnings) {
+  Result<nlohmann::json> json = parse_json_text(text, source);
+  if (!json.ok()) return json.error();
+  if (!json->is_object()) return fail(ErrorCode::kInvalidArgument, source, "the species must be a JSON object");
+  const auto model = json->find("model");
+  if (model == json->end())
+    return fail(ErrorCode::kInvalidArgument, source, R"(model: missing (an object with "objt" or "preset"))");
+  if (!model->is_object() || model->contains("objt") == model->contains("preset"))
+    return fail(ErrorCode::kInvalidArgument, source, R"(model: must be an object with either "objt" or "preset")");
+
+  nlohmann::json rest = *json;
+  rest.erase("model");
+  SpeciesTop top;
+  std::vector<std::string> local;
+  Status s = params_from_json(top, rest, local);
+  add_warnings(warnings, local, source);
+  if (!s.ok()) return fail(s.error().code, source, s.error().message);
+
+  SpeciesFile out;
+  const bool objt = model->contains("objt");
+  SpeciesPreset preset = SpeciesPreset::kBroadleaf;
+  Result<TreeModel> tree = objt ? load_objt_model(*model, top, directory, source, warnings)
+                                : generate_preset_model(*model, source, warnings, preset);
+  if (!tree.ok()) return tree.error();
+  out.model = std::move(tree).value();
+  if (out.model.branches.empty()) return fail(ErrorCode::kInvalidArgument, source, "model: the tree has no branches");
+  if (top.units != 1.0f) scale_tree_model(out.model, top.units);
+  const glm::vec3 extent = out.model.bounds_max() - out.model.bounds_min();
+  const float largest = std::max({extent.x, extent.y, extent.z});
+  if (!(largest <= kMaxTreeExtent))
+    return fail(ErrorCode::kLimit, source,
+                fmt::format("units: the tree is {:.4g} m across after scaling by {}, above the {} m limit", largest, top.units, kMaxTreeExtent));
+  if (Status v = validate(out.model); !v.ok()) return fail(v.error().code, source, fmt::format("model: {}", v.error().message));
+
+  out.name = !top.name.empty() ? top.name : fs::path(std::string(source)).stem().string();
+  // A preset's own textures unless the file picks another look.
+  out.look = objt || rest.contains("look") ? top.look : preset;
+  out.texture_seed = top.texture_seed;
+  out.leaf_tint = top.leaf_tint;
+  if (rest.contains("bark_color")) out.bark_color = top.bark_color;
+  if (objt) out.objt_file = directory / model->at("objt").get<std::string>();  // a string: loaded above
+  return out;
+}
+
+Result<SpeciesFile> load_species_file(const fs::path& file, std::vector<std::string>& warnings) {
+  const std::string source = file.filename().string();
+  std::error_code ec;
+  if (!fs::exists(file, ec)) return fail(ErrorCode::kNotFound, file.string(), "no such file");
+  const std::uintmax_t bytes = fs::file_size(file, ec);
+  if (ec) return fail(ErrorCode::kIo, file.string(), ec.message());
+  if (bytes > kMaxSpeciesFileBytes)
+    return fail(ErrorCode::kLimit, source, fmt::format("{} bytes, above the {} MiB limit of a species file", bytes, kMaxSpeciesFileBytes >> 20));
+  Result<std::string> text = read_file(file);
+  if (!text.ok()) return text.error();
+  return parse_species(*text, file.parent_path(), source, warnings);
+}
+
+Result<TreeTextureSet> make_species_textures(const SpeciesFile& species, int texture_size) {
+  Result<TreeTextureSet> set = make_texture_set(species.look, species.texture_seed, texture_size, texture_size);
+  if (!set.ok()) return set.error();
+  if (species.bark_color) {
+    BarkTextureSettings bark = bark_texture_settings_for(species.look, species.texture_seed);
+    bark.size = texture_size;
+    bark.color = *species.bark_color;
+    Result<BarkTextures> textures = generate_bark_textures(bark);
+    if (!textures.ok()) return textures.error();
+    set->bark = std::move(textures).value();
+  }
+  Image& season = set->season;
+  for (int y = 0; y < season.height(); ++y)
+    for (int x = 0; x < season.width(); ++x)
+      for (int c = 0; c < 3; ++c) season.at(x, y, c) *= species.leaf_tint[c];
+  return set;
+}
+
+}  // namespace sylva::vegetation
