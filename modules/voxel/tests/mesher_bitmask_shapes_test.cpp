@@ -1,0 +1,116 @@
+// Whole-chunk shapes that take the bitmask mesher's shortcuts (issue #18): the all-air scan,
+// slabs of only empty and full rows (transpose skipped), rows whose only AO work is on their
+// edge bits, and widths that are not a multiple of 16 (overlapping tail loads). Each must give
+// exactly the reference surface (face_visible / face_ao, face by face).
+
+#include <sylva/voxel/mesher.hpp>
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <string>
+
+#include "support/test_chunks.hpp"
+
+namespace sylva::voxel {
+namespace {
+
+using testing::FaceCoverage;
+
+// Same unit faces, blocks, AO and lists as the reference; returns the bitmask mesh.
+ChunkMesh expect_reference(const PaddedBlocks& blocks, const std::string& what) {
+  const auto& palette = testing::test_palette();
+  ChunkMesh mesh;
+  make_mesher(MesherKind::kBitmask)->mesh(blocks, palette, mesh);
+  const FaceCoverage want = testing::reference_coverage(blocks, palette);
+  const FaceCoverage got = testing::coverage_of(mesh, blocks.n);
+  std::size_t mismatches = 0;
+  for (std::size_t k = 0; k < want.count.size(); ++k) {
+    const bool same = want.count[k] == got.count[k] &&
+                      (want.count[k] == 0 || (want.block[k] == got.block[k] && want.ao[k] == got.ao[k] &&
+                                              want.list[k] == got.list[k]));
+    mismatches += same ? 0 : 1;
+  }
+  EXPECT_EQ(mismatches, 0u) << what;
+  return mesh;
+}
+
+// Fills the padded volume: f(x, y, z) for x, y, z in [-1, n].
+PaddedBlocks fill(int n, const std::function<BlockId(int, int, int)>& f) {
+  PaddedBlocks b(n);
+  for (int y = -1; y <= n; ++y)
+    for (int z = -1; z <= n; ++z)
+      for (int x = -1; x <= n; ++x) b.set(x, y, z, f(x, y, z));
+  return b;
+}
+
+bool inside(int n, int x, int y, int z) { return x >= 0 && y >= 0 && z >= 0 && x < n && y < n && z < n; }
+
+constexpr int kSizes[] = {1, 7, 8, 9, 17, 33, 47, 62, 64};
+
+TEST(MesherBitmaskShapes, EmptyChunkWithAnyRingHasNoQuads) {
+  for (int n : kSizes) {
+    // Stone and glass in the ring only: nothing of the chunk itself to draw.
+    const PaddedBlocks b = fill(n, [n](int x, int y, int z) -> BlockId {
+      return inside(n, x, y, z) ? kAir : static_cast<BlockId>(((x + y + z) & 1) ? 1 : 5);
+    });
+    EXPECT_TRUE(expect_reference(b, "ring only n=" + std::to_string(n)).empty()) << n;
+  }
+}
+
+TEST(MesherBitmaskShapes, OneBlockAnywhereInAnEmptyChunkIsFound) {
+  // The all-air scan must look at every block: the last one of each row, the last row, the
+  // overlapping tail of rows whose width is not a multiple of 8.
+  for (int n : kSizes) {
+    for (int c = 0; c < 8; ++c) {
+      const int bx = (c & 1) ? n - 1 : 0, by = (c & 2) ? n - 1 : 0, bz = (c & 4) ? n - 1 : 0;
+      const PaddedBlocks b = fill(n, [&](int x, int y, int z) -> BlockId {
+        return x == bx && y == by && z == bz ? 1 : kAir;
+      });
+      const ChunkMesh mesh = expect_reference(b, "corner " + std::to_string(c) + " n=" + std::to_string(n));
+      EXPECT_EQ(mesh.quad_count(), 6u) << "n=" << n << " corner " << c;
+    }
+    if (n >= 3) {
+      const PaddedBlocks b = fill(n, [n](int x, int y, int z) -> BlockId {
+        return x == n - 2 && y == n / 2 && z == 1 ? 4 : kAir;  // leaves, alpha-cut
+      });
+      EXPECT_EQ(expect_reference(b, "alpha n=" + std::to_string(n)).alpha_cut.size(), 6u) << n;
+    }
+  }
+}
+
+TEST(MesherBitmaskShapes, SolidChunksAndFlatFloorsMatchTheReference) {
+  for (int n : kSizes) {
+    const std::string size = " n=" + std::to_string(n);
+    // Solid with an air ring: one quad per side (AO open: the ring is air).
+    const PaddedBlocks solid = fill(n, [n](int x, int y, int z) -> BlockId { return inside(n, x, y, z) ? 1 : kAir; });
+    EXPECT_EQ(expect_reference(solid, "solid" + size).quad_count(), 6u) << n;
+    // Solid with a patchy ring: AO on the chunk's sides comes from the ring.
+    const PaddedBlocks patchy = fill(n, [n](int x, int y, int z) -> BlockId {
+      return inside(n, x, y, z) || ((x * 7 + y * 3 + z * 5) % 4 == 0) ? 1 : kAir;
+    });
+    expect_reference(patchy, "solid, patchy ring" + size);
+    // Flat floors of several heights, with and without a ring of stone beside them.
+    for (int h : {1, n / 2, n - 1}) {
+      const PaddedBlocks floor = fill(n, [h](int, int y, int) -> BlockId { return y < h ? 2 : kAir; });
+      expect_reference(floor, "floor " + std::to_string(h) + size);
+      const PaddedBlocks walled = fill(n, [n, h](int x, int y, int z) -> BlockId {
+        return y < h || !inside(n, x, 0, z) ? 2 : kAir;
+      });
+      expect_reference(walled, "walled floor " + std::to_string(h) + size);
+    }
+  }
+}
+
+TEST(MesherBitmaskShapes, RandomChunksOfEveryWidthMatchTheReference) {
+  // Widths around the 16- and 32-block steps of the row classification.
+  for (int n : {15, 16, 17, 31, 47, 48, 49, 62}) {
+    for (auto pattern : {testing::Pattern::kMixedAlpha, testing::Pattern::kTerrain}) {
+      expect_reference(testing::make_pattern(pattern, n, 7),
+                       testing::to_string(pattern) + " n=" + std::to_string(n));
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sylva::voxel
