@@ -18,7 +18,10 @@
 // 4. Faces with uniform AO are bucketed by key (block, face, AO) into per-slice bit planes (open
 //    rows in runs of one block id, one update per run) and merged into rectangles with
 //    count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs between
-//    corners stay unit quads, so every mesher shades identically.
+//    corners stay unit quads, so every mesher shades identically; so do faces with no face
+//    beside them in the slice (they could merge with nothing), without a slot.
+// 5. Whole-chunk shortcuts (issue #18): an all-air chunk is found by a scan and costs no masks;
+//    slabs of only empty and full rows are not transposed.
 //
 // The public binary greedy mesher (cgerikj/binary-greedy-meshing) pads 62^3 chunks into 64-bit
 // columns and has no AO merging rule; this one also handles 64^3 chunks.
@@ -261,6 +264,12 @@ class BitmaskMesher final : public Mesher {
       for (std::uint64_t rows_left = nonempty; rows_left; rows_left &= rows_left - 1) {
         const int r = std::countr_zero(rows_left);
         std::uint64_t faces = face_rows_[r];
+        // Faces with no face beside them in the slice (left, right, rows r - 1 and r + 1) can
+        // merge with nothing: they are written as unit quads at once instead of going through
+        // a slot and the rectangle merge (checkerboard: every face; random 50 %: most).
+        const std::uint64_t prev = r > 0 ? face_rows_[r - 1] : 0;
+        const std::uint64_t next = r + 1 < n ? face_rows_[r + 1] : 0;
+        const std::uint64_t alone = faces & ~(faces << 1 | faces >> 1 | prev | next);
         // The opaque rows r - 1, r, r + 1 of the layer in front. With none of them opaque and no
         // face on an edge bit, every corner of every face of the row is open (AO 3): open ground
         // takes the run path below without any AO work.
@@ -311,7 +320,7 @@ class BitmaskMesher final : public Mesher {
             aob = edge_ao.face_bits(idx, F);
             uniform = ao_uniform(aob);
           }
-          if (uniform) {
+          if (uniform && !((alone >> b) & 1)) {
             add(pack_word1(self, F, aob), std::uint64_t{1} << b);
           } else {
             const PackedQuad q{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(self, F, aob)};
@@ -327,7 +336,7 @@ class BitmaskMesher final : public Mesher {
           // value (same_next bit b: the block at b + 1 has the same id as the one at b), one slot
           // update per run instead of per face.
           // (A single face is a run of one: no need to compare the row's ids.)
-          std::uint64_t uni = occluded ? 0 : faces;
+          std::uint64_t uni = occluded ? 0 : faces & ~alone;
           const std::uint64_t same_next = (uni & (uni - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           faces &= ~uni;
           while (uni) {

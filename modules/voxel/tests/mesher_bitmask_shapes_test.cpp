@@ -102,6 +102,32 @@ TEST(MesherBitmaskShapes, SolidChunksAndFlatFloorsMatchTheReference) {
   }
 }
 
+TEST(MesherBitmaskShapes, TwoBlocksMergeTheirSidesAlongEveryAxis) {
+  // Faces with no neighbour in their slice are written as unit quads without merging; a face
+  // with one beside it (same row, or the row before or after) must still merge: two blocks side
+  // by side give 4 side quads of 2 faces and 2 end quads, with AO on or off, in the middle of
+  // the chunk and on its edge bits.
+  for (bool ao : {true, false}) {
+    MesherOptions options;
+    options.ambient_occlusion = ao;
+    for (int n : {8, 17, 62}) {
+      for (int axis = 0; axis < 3; ++axis) {
+        for (int at : {0, n / 2, n - 2}) {
+          const PaddedBlocks b = fill(n, [&](int x, int y, int z) -> BlockId {
+            const int c[3] = {x, y, z};
+            const int o1 = (axis + 1) % 3, o2 = (axis + 2) % 3;
+            return (c[axis] == at || c[axis] == at + 1) && c[o1] == n / 3 && c[o2] == at ? 1 : kAir;
+          });
+          ChunkMesh mesh;
+          make_mesher(MesherKind::kBitmask, options)->mesh(b, testing::test_palette(), mesh);
+          EXPECT_EQ(mesh.quad_count(), 6u) << "ao " << ao << " n=" << n << " axis " << axis << " at " << at;
+          if (ao) expect_reference(b, "pair n=" + std::to_string(n));
+        }
+      }
+    }
+  }
+}
+
 TEST(MesherBitmaskShapes, RandomChunksOfEveryWidthMatchTheReference) {
   // Widths around the 16- and 32-block steps of the row classification.
   for (int n : {15, 16, 17, 31, 47, 48, 49, 62}) {
