@@ -3,8 +3,11 @@
 // and casts shadows) whose trees are placed by the scene's world-anchored forest placement
 // (forest_placement.hpp) over a rectangle, standing on the scene's ground, swaying in the scene's
 // wind, coloured by the scene's season. Map: density (tree placement probability in [0, 1]).
-// One species (`species`) or a mixed stand (`mix`: a weight per preset); each placed tree picks
-// its species from a hash of its position, so a mix is stable under edits and reloads.
+// One species (`species`) or a mixed stand (`mix`: a weight per preset, plus up to four species
+// files `species_files.0..3.file` with their `weight`, paths relative to the scene file); each
+// placed tree picks its species from a hash of its position, so a mix is stable under edits and
+// reloads. A species file that fails to load is left out with a warning (the editor's messages
+// panel shows it); the scene fails only when no species is left.
 //
 // Edits: a changed density or ground area re-places only the trees of the grid cells it touches
 // on the CPU; the species (model, mesh, textures on the GPU) is untouched, and the instance list
@@ -20,12 +23,14 @@
 #include <sylva/vegetation/animation.hpp>
 #include <sylva/vegetation/forest.hpp>
 #include <sylva/vegetation/generator.hpp>
+#include <sylva/vegetation/species_file.hpp>
 #include <sylva/vegetation/tree_mesh.hpp>
 #include <sylva/vegetation/tree_renderer.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -51,6 +56,34 @@ struct SpeciesMix {
   }
 };
 
+// Species files (vegetation/species_file.hpp) in a fixed number of slots: the parameter system has
+// no list kind, and four named slots show in the editor's panel, take --set
+// (`vegetation.species_files.1.file=oak.json`) and save like every other parameter.
+struct SpeciesFileSlot {
+  std::string file;  // relative to the scene file; "" = unused slot
+  float weight = 1.0f;
+
+  template <class V>
+  void visit(V& v) {
+    v(file, "file", {.max = 4096.0, .help = "Species file (JSON, see the vegetation README) relative to the scene file", .rebuild = Rebuild::kOffline});
+    v(weight, "weight", {.min = 0.0, .max = 1000.0, .help = "Relative share of this species in the stand", .rebuild = Rebuild::kOffline});
+  }
+};
+
+constexpr int kSpeciesFileSlots = 4;
+
+struct SpeciesFiles {
+  std::array<SpeciesFileSlot, kSpeciesFileSlots> slot;
+
+  template <class V>
+  void visit(V& v) {
+    for (int i = 0; i < kSpeciesFileSlots; ++i) v(slot[static_cast<std::size_t>(i)], kSlotNames[i]);
+  }
+
+ private:
+  static constexpr const char* kSlotNames[kSpeciesFileSlots] = {"0", "1", "2", "3"};
+};
+
 struct ForestSectionSettings {
   glm::dvec2 area_min{-40.0, -40.0};
   glm::dvec2 area_max{40.0, 40.0};
@@ -66,6 +99,7 @@ struct ForestSectionSettings {
   vegetation::SpeciesPreset species = vegetation::SpeciesPreset::kBroadleaf;
   std::uint32_t species_seed = 1;
   SpeciesMix mix;
+  SpeciesFiles species_files;
   int leaf_texture_size = 128;
   vegetation::MeshSettings mesh;
   vegetation::ForestSettings forest;  // animation, shading, culling of vegetation::Forest
@@ -87,6 +121,7 @@ struct ForestSectionSettings {
     v(species, "species", {.help = "broadleaf, conifer, birch or shrub", .rebuild = Rebuild::kOffline});
     v(species_seed, "species_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the generated tree", .rebuild = Rebuild::kOffline});
     v(mix, "mix");
+    v(species_files, "species_files");
     v(leaf_texture_size, "leaf_texture_size", {.min = 16, .max = 2048, .unit = "px", .help = "Procedural leaf and bark texture size (power of two)", .rebuild = Rebuild::kGpu});
     v(mesh, "mesh");
     v(forest, "forest");
@@ -118,34 +153,46 @@ const char* preset_name(vegetation::SpeciesPreset p) {
   return enum_table<vegetation::SpeciesPreset>().name_of(static_cast<std::int64_t>(p));
 }
 
-// The stand's species with their weights, in preset order: the mix's non-zero entries, or the
-// single `species` when the mix is all zero.
-std::vector<std::pair<vegetation::SpeciesPreset, float>> stand_species(const ForestSectionSettings& s) {
+// One species of the stand: a preset or a species file (its slot and path as written).
+struct StandEntry {
+  std::string name;  // stats key: the preset's name or the species file's name
+  float weight = 1.0f;
+  std::optional<vegetation::SpeciesPreset> preset;
+  int slot = -1;
+  std::string file;
+};
+
+// The stand's species with their weights: the mix's non-zero presets in preset order, then the
+// species files with a non-zero weight in slot order; the single `species` when both are empty.
+std::vector<StandEntry> stand_species(const ForestSectionSettings& s) {
   using vegetation::SpeciesPreset;
   const std::pair<SpeciesPreset, float> all[] = {{SpeciesPreset::kBroadleaf, s.mix.broadleaf},
                                                  {SpeciesPreset::kConifer, s.mix.conifer},
                                                  {SpeciesPreset::kBirch, s.mix.birch},
                                                  {SpeciesPreset::kShrub, s.mix.shrub}};
-  std::vector<std::pair<SpeciesPreset, float>> out;
-  for (const auto& entry : all) {
-    if (entry.second > 0.0f) out.push_back(entry);
+  std::vector<StandEntry> out;
+  for (const auto& [preset, weight] : all) {
+    if (weight > 0.0f) out.push_back({preset_name(preset), weight, preset, -1, {}});
   }
-  if (out.empty()) out.push_back({s.species, 1.0f});
+  for (int i = 0; i < kSpeciesFileSlots; ++i) {
+    const SpeciesFileSlot& slot = s.species_files.slot[static_cast<std::size_t>(i)];
+    if (!slot.file.empty() && slot.weight > 0.0f) out.push_back({slot.file, slot.weight, std::nullopt, i, slot.file});
+  }
+  if (out.empty()) out.push_back({preset_name(s.species), 1.0f, s.species, -1, {}});
   return out;
 }
 
-// Index into stand_species() of a tree: a weighted pick by a hash of its trunk position (in
+// Index into the stand of a tree: a weighted pick by a hash of its trunk position (in
 // centimetres) and the placement seed, independent of the randoms that drive scale and colour.
-std::size_t species_of(const PlacedTree& t, const std::vector<std::pair<vegetation::SpeciesPreset, float>>& stand,
-                       std::uint32_t seed) {
+std::size_t species_of(const PlacedTree& t, const std::vector<StandEntry>& stand, std::uint32_t seed) {
   float total = 0.0f;
-  for (const auto& entry : stand) total += entry.second;
+  for (const StandEntry& entry : stand) total += entry.weight;
   const float u = hash_to_unit_float(hash_i32(static_cast<std::int32_t>(std::floor(t.position.x * 100.0)),
                                               static_cast<std::int32_t>(std::floor(t.position.z * 100.0)), seed ^ 0x9e3779b9u)) *
                   total;
   float upto = 0.0f;
   for (std::size_t i = 0; i < stand.size(); ++i) {
-    upto += stand[i].second;
+    upto += stand[i].weight;
     if (u < upto) return i;
   }
   return stand.size() - 1;
@@ -258,8 +305,8 @@ class ForestInstance final : public ModuleInstance {
       for (const PlacedTree& t : list) ++counts[species_of(t, stand_, settings().seed)];
     }
     for (std::size_t i = 0; i < stand_.size(); ++i) {
-      triangles_per_tree[preset_name(stand_[i].first)] = forest_->asset(static_cast<int>(i)).triangles();
-      trees_per_species[preset_name(stand_[i].first)] = counts[i];
+      triangles_per_tree[stand_[i].name] = forest_->asset(static_cast<int>(i)).triangles();
+      trees_per_species[stand_[i].name] = counts[i];
     }
     return {{"trees", trees},
             {"trees_drawn", fs.visible},
@@ -315,25 +362,61 @@ class ForestInstance final : public ModuleInstance {
     const ForestSectionSettings& s = settings();
     // The image-based levels are baked when a species is added, so a change of forest.lod (e.g.
     // enabled, bake resolution) needs a new forest; its other settings are applied live.
-    return fmt::format("{} {} {} {} {} {}", static_cast<int>(s.species), s.species_seed, params_to_json(s.mix).dump(),
-                       s.leaf_texture_size, params_to_json(s.mesh).dump(), lod_key(s.forest));
+    return fmt::format("{} {} {} {} {} {} {}", static_cast<int>(s.species), s.species_seed, params_to_json(s.mix).dump(),
+                       params_to_json(s.species_files).dump(), s.leaf_texture_size, params_to_json(s.mesh).dump(), lod_key(s.forest));
+  }
+
+  // A preset's generated model and textures, or a species file's (vegetation/species_file.hpp).
+  struct SpeciesData {
+    vegetation::TreeModel model;
+    vegetation::TreeTextureSet textures;
+  };
+  Result<SpeciesData> species_data(StandEntry& entry) const {
+    const ForestSectionSettings& s = settings();
+    if (entry.preset) {
+      auto model = vegetation::generate_tree(vegetation::species_preset(*entry.preset, s.species_seed));
+      if (!model.ok()) return model.error();
+      auto textures = vegetation::make_texture_set(*entry.preset, s.species_seed, s.leaf_texture_size, s.leaf_texture_size);
+      if (!textures.ok()) return textures.error();
+      return SpeciesData{std::move(model).value(), std::move(textures).value()};
+    }
+    std::vector<std::string> warnings;
+    auto file = vegetation::load_species_file(ctx_.document->resolve(entry.file), warnings);
+    for (const std::string& w : warnings) log_warn("vegetation.species_files.{}.file: {}", entry.slot, w);
+    if (!file.ok()) return file.error();
+    auto textures = vegetation::make_species_textures(*file, s.leaf_texture_size);
+    if (!textures.ok()) return textures.error();
+    entry.name = file->name;
+    return SpeciesData{std::move(file->model), std::move(textures).value()};
   }
 
   Status build_forest() {
     const ForestSectionSettings& s = settings();
     auto forest = vegetation::Forest::create(s.forest);
     if (!forest.ok()) return make_error(forest.error().code, "vegetation: " + forest.error().message);
-    const auto stand = stand_species(s);
-    for (const auto& [preset, weight] : stand) {
-      auto model = vegetation::generate_tree(vegetation::species_preset(preset, s.species_seed));
-      if (!model.ok()) return make_error(model.error().code, fmt::format("vegetation ({}): {}", preset_name(preset), model.error().message));
-      auto textures = vegetation::make_texture_set(preset, s.species_seed, s.leaf_texture_size, s.leaf_texture_size);
-      if (!textures.ok()) return make_error(textures.error().code, fmt::format("vegetation ({}): {}", preset_name(preset), textures.error().message));
-      auto species = forest->add_species(*model, *textures, s.mesh);
-      if (!species.ok()) return make_error(species.error().code, fmt::format("vegetation ({}): {}", preset_name(preset), species.error().message));
+    std::vector<StandEntry> stand;
+    for (StandEntry& entry : stand_species(s)) {
+      auto data = species_data(entry);
+      if (!data.ok() && !entry.preset) {
+        // A user's species file: leave it out, keep the scene (issue #16).
+        log_warn("vegetation.species_files.{}.file: {}; the species is left out", entry.slot, data.error().message);
+        continue;
+      }
+      if (!data.ok()) return make_error(data.error().code, fmt::format("vegetation ({}): {}", entry.name, data.error().message));
+      auto species = forest->add_species(data->model, data->textures, s.mesh);
+      if (!species.ok()) return make_error(species.error().code, fmt::format("vegetation ({}): {}", entry.name, species.error().message));
+      // Two species with one name would share a stats key.
+      for (const StandEntry& other : stand) {
+        if (other.name == entry.name) entry.name += fmt::format(" ({})", entry.slot);
+      }
+      stand.push_back(std::move(entry));
+    }
+    if (stand.empty()) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        "vegetation.species_files: no species left (every named species file failed to load; see the warnings)");
     }
     forest_ = std::move(*forest);
-    stand_ = stand;
+    stand_ = std::move(stand);
     built_key_ = asset_key();
     instances_dirty_ = true;
     return {};
@@ -352,7 +435,7 @@ class ForestInstance final : public ModuleInstance {
 
   ModuleBuildContext ctx_;
   std::optional<vegetation::Forest> forest_;
-  std::vector<std::pair<vegetation::SpeciesPreset, float>> stand_;  // index = forest species
+  std::vector<StandEntry> stand_;  // index = forest species
   std::map<std::pair<int, int>, std::vector<PlacedTree>> cells_;
   SceneMap* map_ = nullptr;
   bool instances_dirty_ = true;

@@ -1,0 +1,292 @@
+// Species files reach a scene (issue #16): a scene file on disk names species JSON files
+// (`vegetation.species_files.N.file`, relative to the scene), which name an OBJT tree written as
+// seed 000 §4.3.1 shows it. Checked on pixels: the loaded tree stands where it is placed with its
+// model's height (its units applied), a forest of two species from files shows both, its slices
+// are baked for LOD1, and a species file that fails is left out with a warning.
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/log.hpp>
+#include <sylva/render/framebuffer.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/render/readback.hpp>
+#include <sylva/render/testing.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/module_instance.hpp>
+#include <sylva/scene/scene.hpp>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+using namespace sylva;
+using namespace sylva::scene;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Seed 000 §4.3.1's plain layout (as modules/vegetation/data/seed_example.objt): no radii, no
+// leaf sizes; the species file gives the rules.
+constexpr const char* kSeedObjt = R"(name = "seed example"
+B 0 {
+    l    0
+    d    5
+    z    0 0 0
+    k    0 5 0
+    r    1 0 0
+    s    0 0 -1
+    t    0 1 0
+    p    -1
+    x    0
+}
+B 1 {
+    l    1
+    d    2
+    z    0 3 0
+    k    2 3 0
+    r    0 1 0
+    s    0 0 1
+    t    1 0 0
+    p    0
+    x    0.6
+}
+B 2 {
+    l    1
+    d    1.5
+    z    0 4 0
+    k    -1.06066 5.06066 0
+    r    0.70710678 0.70710678 0
+    s    0 0 1
+    t    -0.70710678 0.70710678 0
+    p    0
+    x    0.8
+}
+L 1 {
+    r    0 1 0
+    s    0 0 1
+    t    1 0 0
+    p    1
+    x    0.9
+}
+)";
+
+constexpr const char* kRedSpecies = R"({"name": "red", "model": {"objt": "../trees/seed.objt"}, "units": 2,
+    "objt": {"branch_radius": 0.06, "branch_taper": 0.5}, "bark_color": [0.7, 0.05, 0.05]})";
+constexpr const char* kBlueSpecies = R"({"name": "blue", "model": {"objt": "../trees/seed.objt"}, "units": 1.5,
+    "objt": {"branch_radius": 0.06, "branch_taper": 0.5}, "bark_color": [0.05, 0.1, 0.7]})";
+
+class SpeciesFilesGl : public render::GlTest {
+ protected:
+  void SetUp() override {
+    render::GlTest::SetUp();
+    dir_ = fs::temp_directory_path() / fmt::format("sylva_species_gl_{}", ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "trees");
+    fs::create_directories(dir_ / "species");
+    ASSERT_TRUE(write_file_atomic(dir_ / "trees" / "seed.objt", kSeedObjt).ok());
+    ASSERT_TRUE(write_file_atomic(dir_ / "species" / "red.json", kRedSpecies).ok());
+    ASSERT_TRUE(write_file_atomic(dir_ / "species" / "blue.json", kBlueSpecies).ok());
+  }
+  void TearDown() override {
+    fs::remove_all(dir_);
+    render::GlTest::TearDown();
+  }
+
+  // Writes scene.json (camera, flat ground, no wind, no shadows, plus `vegetation` when given)
+  // and opens it from the file as the player does.
+  std::unique_ptr<Scene> open(const std::string& camera, const std::string& vegetation) {
+    std::string text = R"({"camera": )" + camera + R"(, "wind": {"strength": 0, "gust_amplitude": 0},
+        "render": {"msaa_samples": 1, "shadows": {"enabled": false}},
+        "ground": {"resolution": 33, "size": 512, "generator": "flat"})";
+    if (!vegetation.empty()) text += R"(, "vegetation": )" + vegetation;
+    text += "}";
+    EXPECT_TRUE(write_file_atomic(dir_ / "scene.json", text).ok());
+    std::vector<std::string> warnings;
+    auto doc = SceneDocument::load(dir_ / "scene.json", warnings);
+    EXPECT_TRUE(doc.ok()) << doc.error().message;
+    if (!doc.ok()) return nullptr;
+    auto scene = Scene::create(std::move(*doc));
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    return scene.ok() ? std::move(*scene) : nullptr;
+  }
+
+  static Image frame(Scene& scene, glm::ivec2 size) {
+    auto fb = render::Framebuffer::create({.width = size.x, .height = size.y}).value();
+    render::FrameProfiler profiler;
+    const render::Camera camera = scene.make_camera(scene.document().camera, size);
+    for (int i = 0; i < 2; ++i) {  // the forest hands its instances over at the first update
+      scene.update(camera, 2.0, 0.0f, size);
+      scene.render(fb, profiler);
+    }
+    return render::read_color(fb).value();
+  }
+
+  // Pixels that differ from the scene without trees.
+  static std::vector<std::uint8_t> tree_mask(const Image& with, const Image& without) {
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(with.width() * with.height()), 0);
+    for (int y = 0; y < with.height(); ++y)
+      for (int x = 0; x < with.width(); ++x)
+        for (int c = 0; c < 3; ++c)
+          if (std::abs(with.at(x, y, c) - without.at(x, y, c)) > 0.02f) mask[static_cast<std::size_t>(y * with.width() + x)] = 1;
+    return mask;
+  }
+
+  fs::path dir_;
+};
+
+// Camera 80 m south of the origin at 5 m height, looking north, 12 deg vertical field of view.
+constexpr const char* kSideCamera = R"({"position": [0, 5, 80], "yaw_deg": 0, "pitch_deg": 0, "fov_deg": 12})";
+constexpr const char* kOneTree = R"({"area_min": [-1, -1], "area_max": [1, 1], "layout": "grid", "trees_per_hectare": 1,
+    "scale_min": 1, "scale_max": 1, "leaf_texture_size": 32, "forest": {"lod": {"enabled": false}},
+    "species_files": {"0": {"file": "species/red.json"}}})";
+
+TEST_F(SpeciesFilesGl, TheLoadedTreeStandsWithItsModelsHeight) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  auto scene = open(kSideCamera, kOneTree);
+  ASSERT_TRUE(scene);
+  auto bare = open(kSideCamera, "");
+  ASSERT_TRUE(bare);
+  const nlohmann::json stats = scene->module_stats()["vegetation"];
+  ASSERT_EQ(stats["trees_per_species"].size(), 1u) << stats.dump();
+  EXPECT_EQ(stats["trees_per_species"]["red"].get<int>(), 1) << stats.dump();
+
+  // The loaded model's rest bounds (the tree stands at the origin with scale 1).
+  const std::vector<render::Aabb> bounds = scene->module("vegetation")->debug_bounds();
+  ASSERT_EQ(bounds.size(), 1u);
+  const glm::dvec3 lo = bounds[0].min, hi = bounds[0].max - glm::dvec3(0.0, scene->ground_height(0.0, 0.0), 0.0);
+  ASSERT_GT(hi.y, 10.0) << "units 2: the 5 m trunk is 10 m";
+  ASSERT_LT(hi.y, 11.0) << "the highest point, branch 2 at 2 x 5.06 m, plus its radius";
+
+  const glm::ivec2 size(128, 128);
+  const Image with = frame(*scene, size), without = frame(*bare, size);
+  const std::vector<std::uint8_t> mask = tree_mask(with, without);
+  int top = size.y, bottom = -1, left = size.x, right = -1, count = 0, red = 0;
+  for (int y = 0; y < size.y; ++y)
+    for (int x = 0; x < size.x; ++x) {
+      if (!mask[static_cast<std::size_t>(y * size.x + x)]) continue;
+      ++count;
+      top = std::min(top, y);
+      bottom = std::max(bottom, y);
+      left = std::min(left, x);
+      right = std::max(right, x);
+      if (with.at(x, y, 0) > 1.5f * with.at(x, y, 2)) ++red;
+    }
+  ASSERT_GT(count, 40) << "the tree is drawn";
+  EXPECT_GT(red, count / 2) << "with the species file's red bark";
+  // Rows of the image (row 0 at the top or the bottom, whichever read_color gives: compare
+  // extents, not positions) against the model projected from 80 +- its horizontal radius.
+  const double radius = std::max({std::abs(lo.x), std::abs(hi.x), std::abs(lo.z), std::abs(hi.z)});
+  const double ground = scene->ground_height(0.0, 0.0);
+  const double px_per_rad = size.y / (2.0 * std::tan(glm::radians(6.0)));
+  const auto row = [&](double y, double dist) { return px_per_rad * std::atan((y - 5.0) / dist); };
+  const double height_min = row(ground + hi.y, 80.0 + radius) - row(ground, 80.0 - radius);
+  const double height_max = row(ground + hi.y, 80.0 - radius) - row(ground, 80.0 + radius);
+  const int rows = bottom - top + 1;
+  std::printf("tree: %d rows (model %.1f-%.1f), %d columns, %d pixels, %d red\n", rows, height_min, height_max, right - left + 1, count, red);
+  EXPECT_GE(rows, height_min - 2.0) << "the silhouette is as tall as the model: " << rows << " rows";
+  EXPECT_LE(rows, height_max + 2.0) << "the silhouette is as tall as the model: " << rows << " rows";
+  const double width_max = 2.0 * px_per_rad * std::atan(radius / (80.0 - radius));
+  EXPECT_LE(right - left + 1, width_max + 2.0);
+  EXPECT_GE(right - left + 1, 4) << "the trunk's 1.2 m base at least";
+}
+
+TEST_F(SpeciesFilesGl, AForestOfTwoSpeciesFromFilesShowsBoth) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  const std::string camera = R"({"position": [0, 8, 70], "yaw_deg": 0, "pitch_deg": -4, "fov_deg": 40})";
+  const std::string stand = R"({"area_min": [-30, -30], "area_max": [30, 30], "layout": "grid", "trees_per_hectare": 100,
+      "leaf_texture_size": 32, "species_files": {"0": {"file": "species/red.json", "weight": 1},
+                                                 "1": {"file": "species/blue.json", "weight": 1}}})";
+  auto scene = open(camera, stand);
+  ASSERT_TRUE(scene);
+  auto bare = open(camera, "");
+  ASSERT_TRUE(bare);
+  const nlohmann::json stats = scene->module_stats()["vegetation"];
+  const nlohmann::json per = stats["trees_per_species"];
+  ASSERT_EQ(per.size(), 2u) << stats.dump();
+  EXPECT_GT(per["red"].get<int>(), 10) << stats.dump();
+  EXPECT_GT(per["blue"].get<int>(), 10) << stats.dump();
+
+  const glm::ivec2 size(160, 96);
+  const Image with = frame(*scene, size), without = frame(*bare, size);
+  const std::vector<std::uint8_t> mask = tree_mask(with, without);
+  int red = 0, blue = 0;
+  for (int y = 0; y < size.y; ++y)
+    for (int x = 0; x < size.x; ++x) {
+      if (!mask[static_cast<std::size_t>(y * size.x + x)]) continue;
+      const float r = with.at(x, y, 0), b = with.at(x, y, 2);
+      if (r > 1.5f * b) ++red;
+      if (b > 1.5f * r) ++blue;
+    }
+  std::printf("two species: %d red, %d blue pixels\n", red, blue);
+  EXPECT_GT(red, 30) << "red trunks";
+  EXPECT_GT(blue, 30) << "blue trunks";
+}
+
+// Slices (LOD1/LOD2) are baked for a loaded model as for a generated one: the same tree 80 m away
+// at LOD1 covers about the pixels its LOD0 covers.
+TEST_F(SpeciesFilesGl, ALoadedTreeGetsSlices) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  std::string lod = kOneTree;
+  lod.replace(lod.find(R"("enabled": false)"), 16, R"("v1": 30, "v2": 200, "cache_directory": "")");
+  auto near = open(kSideCamera, kOneTree);
+  ASSERT_TRUE(near);
+  auto sliced = open(kSideCamera, lod);
+  ASSERT_TRUE(sliced);
+  auto bare = open(kSideCamera, "");
+  ASSERT_TRUE(bare);
+  const glm::ivec2 size(128, 128);
+  const Image without = frame(*bare, size);
+  const std::vector<std::uint8_t> a = tree_mask(frame(*near, size), without);
+  const std::vector<std::uint8_t> b = tree_mask(frame(*sliced, size), without);
+  EXPECT_EQ(sliced->module_stats()["vegetation"]["instances_per_lod"]["lod1"].get<int>(), 1)
+      << sliced->module_stats()["vegetation"].dump();
+  int both = 0, either = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    both += a[i] && b[i];
+    either += a[i] || b[i];
+  }
+  std::printf("LOD1 against LOD0: %d of %d pixels in both\n", both, either);
+  ASSERT_GT(either, 40);
+  EXPECT_GT(static_cast<double>(both) / either, 0.5) << "LOD1 silhouette overlaps LOD0's: " << both << " / " << either;
+}
+
+TEST_F(SpeciesFilesGl, AFailingSpeciesFileIsLeftOutWithAWarning) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  std::vector<std::string> logged;
+  set_log_sink([&](LogLevel level, std::string_view message) {
+    if (level == LogLevel::kWarn) logged.emplace_back(message);
+  });
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "broken.json", R"({"model": {"objt": "../trees/oak.objt"}})").ok());
+  const std::string stand = R"({"area_min": [-1, -1], "area_max": [1, 1], "layout": "grid", "trees_per_hectare": 1,
+      "leaf_texture_size": 32, "forest": {"lod": {"enabled": false}},
+      "species_files": {"0": {"file": "species/red.json"}, "1": {"file": "species/broken.json"}}})";
+  auto scene = open(kSideCamera, stand);
+  auto none = [&] {
+    std::vector<std::string> warnings;
+    EXPECT_TRUE(write_file_atomic(dir_ / "only_broken.json", R"({"ground": {"resolution": 33, "size": 64, "generator": "flat"},
+        "vegetation": {"leaf_texture_size": 32, "species_files": {"0": {"file": "species/broken.json"}}}})")
+                    .ok());
+    auto doc = SceneDocument::load(dir_ / "only_broken.json", warnings);
+    EXPECT_TRUE(doc.ok());
+    return Scene::create(std::move(*doc));
+  }();
+  set_log_sink(nullptr);
+  ASSERT_TRUE(scene);
+  const nlohmann::json per = scene->module_stats()["vegetation"]["trees_per_species"];
+  EXPECT_EQ(per.size(), 1u) << per.dump();
+  EXPECT_TRUE(per.contains("red")) << per.dump();
+  std::string all;
+  for (const std::string& m : logged) all += m + "\n";
+  EXPECT_NE(all.find("vegetation.species_files.1.file: broken.json: model.objt: no such file ../trees/oak.objt"), std::string::npos)
+      << all;
+  // The editor's and --set's path: a slot set by its parameter path rebuilds the stand.
+  ASSERT_TRUE(scene->set_param("vegetation.species_files.1.file", "species/blue.json").ok());
+  const nlohmann::json after = scene->module_stats()["vegetation"]["triangles_per_tree"];
+  EXPECT_EQ(after.size(), 2u) << after.dump();
+  EXPECT_TRUE(after.contains("blue")) << after.dump();
+  ASSERT_FALSE(none.ok()) << "no species left";
+  EXPECT_NE(none.error().message.find("no species left"), std::string::npos) << none.error().message;
+}
+
+}  // namespace
