@@ -1,13 +1,16 @@
 #include <sylva/terrain/chunk_file.hpp>
 
 #include "chunk_blob.hpp"
+#include "parallel.hpp"
 
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/assert.hpp>
 #include <sylva/core/log.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 namespace sylva::terrain {
 
@@ -121,6 +124,8 @@ Status ChunkFileWriter::add(std::uint32_t index, const Chunk& chunk, const Chunk
   return add(index, chunk, chunk.present ? std::string_view(detail::encode_chunk_mesh(mesh)) : std::string_view());
 }
 
+void ChunkFileWriter::set_tag(std::uint64_t tag) { put_le(header_, 112, tag); }
+
 Status ChunkFileWriter::finish() {
   SYLVA_ASSERT(!done_, "ChunkFileWriter::finish called twice");
   const std::uint64_t directory_offset = offset_;
@@ -139,13 +144,14 @@ Status ChunkFileWriter::finish() {
   return replace_with_temp(temp_, path_);
 }
 
-Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree) {
+Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag) {
   if (!tree.has_meshes()) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: the chunk tree was built without meshes (keep_meshes = false)", path.string()));
   }
   Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(path, tree);
   if (!writer) return writer.error();
+  (*writer)->set_tag(tag);
   for (std::uint32_t i = 0; i < tree.chunk_count(); ++i) SYLVA_TRY((*writer)->add(i, tree.chunk(i), tree.chunk(i).mesh));
   return (*writer)->finish();
 }
@@ -179,6 +185,7 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
     return corrupt(fmt::format("{}: {} bytes but the header says {}", size < file_bytes ? "truncated" : "wrong size",
                                size, file_bytes));
   }
+  file->tag_ = get_le<std::uint64_t>(header.data(), 112);
   ChunkTree& t = file->tree_;
   t.levels_ = static_cast<int>(get_le<std::uint32_t>(header.data(), 16));
   t.n_ = get_le<std::uint32_t>(header.data(), 20);
@@ -289,6 +296,58 @@ Result<ChunkMesh> ChunkFile::read_chunk(std::uint32_t index) const {
   const std::string wrong = detail::decode_chunk_mesh(blob, e.vertices, e.indices, m);
   if (!wrong.empty()) return corrupt(wrong);
   return m;
+}
+
+}  // namespace sylva::terrain
+
+namespace sylva::terrain {
+
+Result<ChunkTree> ChunkFile::read_tree(const ChunkTreeSettings& settings, const BuildControl& control) const {
+  const ChunkTreeSettings& stored = tree_.settings();
+  auto differs = [&](const char* name, double file, double wanted) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: built with terrain.tree.{} = {}, not {}",
+                                                               path_.string(), name, file, wanted));
+  };
+  if (stored.leaf_dimension != settings.leaf_dimension)
+    return differs("leaf_dimension", stored.leaf_dimension, settings.leaf_dimension);
+  if (stored.flat_tolerance != settings.flat_tolerance)
+    return differs("flat_tolerance", stored.flat_tolerance, settings.flat_tolerance);
+  if (stored.max_morph_fraction != settings.max_morph_fraction)
+    return differs("max_morph_fraction", stored.max_morph_fraction, settings.max_morph_fraction);
+  ChunkTree tree = tree_;  // metadata, layout and selection nodes
+  tree.settings_ = settings;
+  tree.settings_.keep_meshes = true;
+  // read_chunk serialises the reads (slot order: the file's order) and verifies and decodes
+  // outside its lock, so the checksums and decoding run on every thread.
+  std::vector<std::optional<Error>> failed(tree.chunks_.size());
+  std::atomic<bool> bad{false};
+  std::atomic<std::size_t> done{0};
+  const bool finished = detail::parallel_for(
+      tree.chunks_.size(), detail::resolve_threads(settings.threads),
+      [&](std::size_t i) {
+        Chunk& c = tree.chunks_[i];
+        if (!c.present || bad.load(std::memory_order_relaxed)) return;
+        Result<ChunkMesh> mesh = read_chunk(static_cast<std::uint32_t>(i));
+        if (!mesh.ok()) {
+          failed[i] = mesh.error();
+          bad = true;
+          return;
+        }
+        c.mesh = std::move(*mesh);
+        const std::size_t n = done.fetch_add(1) + 1;
+        if (control.progress && n % 64 == 0) control.progress(static_cast<float>(n) / static_cast<float>(tree.chunks_.size()));
+      },
+      control.cancel, 16);
+  if (bad) {
+    for (const std::optional<Error>& e : failed)
+      if (e) return *e;
+  }
+  if (!finished) return make_error(ErrorCode::kCancelled, fmt::format("{}: reading cancelled", path_.string()));
+  tree.report_ = BuildReport{};
+  tree.report_.threads = detail::resolve_threads(settings.threads);
+  tree.fill_level_report();
+  if (control.progress) control.progress(1.0f);
+  return tree;
 }
 
 }  // namespace sylva::terrain

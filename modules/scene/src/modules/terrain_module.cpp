@@ -11,6 +11,13 @@
 // (ChunkTree::rebuild_region) and re-uploads only those; a failure falls back to a full rebuild.
 // The number and CPU time of rebuilds and the chunks rebuilt by the last edit are in the stats.
 // Other modules standing on the ground re-seat only what the region touches.
+//
+// Tree cache (issue 15, terrain/tree_cache.hpp): "terrain.tree_cache" names the folder where a
+// built chunk tree is kept, keyed by the field's samples and the tree settings, so the next launch
+// of the same scene reopens it instead of rebuilding (a 4097^2 map: seconds). Painting changes the
+// live tree in place and writes nothing; a later full rebuild of a painted field (a tree setting
+// changed in the editor) is cached under that field's own key. stats(): "tree_cache" = hit, miss
+// or off, of the last full build.
 
 #include "modules/module_factories.hpp"
 
@@ -20,11 +27,13 @@
 #include <sylva/terrain/chunk_tree.hpp>
 #include <sylva/terrain/renderer.hpp>
 #include <sylva/terrain/settings.hpp>
+#include <sylva/terrain/tree_cache.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
+#include <filesystem>
 
 namespace sylva::scene::detail {
 namespace {
@@ -32,12 +41,14 @@ namespace {
 struct TerrainSectionSettings {
   HeightSourceSettings source;
   terrain::ChunkTreeSettings tree;
+  terrain::TreeCacheSettings tree_cache;
   terrain::TerrainRenderSettings render;
 
   template <class V>
   void visit(V& v) {
     source.visit(v);  // flat, like "ground": "terrain.size", "terrain.noise.octaves", ...
     v(tree, "tree");
+    v(tree_cache, "tree_cache");
     v(render, "render");
   }
 };
@@ -147,7 +158,12 @@ class TerrainInstance final : public ModuleInstance {
             {"tree_partial_rebuilds", partial_rebuilds_},
             {"chunks_rebuilt", chunks_rebuilt_},
             {"chunks_updated", chunks_updated_},
-            {"tree_build_ms", last_build_ms_}};
+            {"tree_build_ms", last_build_ms_},
+            {"tree_cache", terrain::to_string(tree_cache_)},
+            // Numbers for sylva-bench's columns (it keeps numeric facts only): 1 on a hit, 0 else.
+            {"tree_cache_hit", tree_cache_ == terrain::TreeCacheOutcome::kHit ? 1 : 0},
+            {"tree_cache_load_ms", cache_load_ms_},
+            {"tree_cache_save_ms", cache_save_ms_}};
   }
 
   std::vector<render::Aabb> debug_bounds() const override {
@@ -163,10 +179,14 @@ class TerrainInstance final : public ModuleInstance {
   Status build() {
     Stopwatch watch;
     const TerrainSectionSettings& s = settings();
-    auto tree = terrain::ChunkTree::build(*ctx_.ground, s.tree);
+    const std::filesystem::path base = ctx_.document != nullptr ? ctx_.document->directory() : std::filesystem::path();
+    auto tree = terrain::build_or_load_chunk_tree(*ctx_.ground, s.tree, s.tree_cache, base);
     if (!tree.ok()) return make_error(tree.error().code, "terrain: " + tree.error().message);
-    auto renderer = terrain::TerrainRenderer::create(std::make_shared<const terrain::ChunkTree>(std::move(*tree)), ctx_.ground,
-                                                     s.render);
+    tree_cache_ = tree->cache;
+    cache_load_ms_ = tree->key_ms + tree->load_ms;
+    cache_save_ms_ = tree->save_ms;
+    auto renderer = terrain::TerrainRenderer::create(std::make_shared<const terrain::ChunkTree>(std::move(tree->tree)),
+                                                     ctx_.ground, s.render);
     if (!renderer.ok()) return make_error(renderer.error().code, "terrain: " + renderer.error().message);
     renderer_ = std::move(*renderer);
     ++rebuilds_;
@@ -200,6 +220,8 @@ class TerrainInstance final : public ModuleInstance {
   std::size_t chunks_rebuilt_ = 0, chunks_updated_ = 0;
   std::uint64_t rebuilds_ = 0;
   double last_build_ms_ = 0.0;
+  terrain::TreeCacheOutcome tree_cache_ = terrain::TreeCacheOutcome::kOff;  // of the last full build
+  double cache_load_ms_ = 0.0, cache_save_ms_ = 0.0;  // hashing + reading / writing, last full build
 };
 
 }  // namespace

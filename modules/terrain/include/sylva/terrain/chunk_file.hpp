@@ -3,7 +3,8 @@
 // terrain parts to disk").
 //
 // Layout (little endian): a 128-byte header (magic "SYLVACHK", version, field geometry, tree
-// settings, directory offset and size, total file size, FNV-1a 64 checksums of the directory and
+// settings, directory offset and size, total file size, a 64-bit tag (0 unless the writer set one;
+// the tree cache stores its key there, tree_cache.hpp), FNV-1a 64 checksums of the directory and
 // of the header itself), then every chunk's mesh blob, then the directory: one 64-byte entry per
 // chunk slot (presence, key, errors, bounds, counts, blob offset, size and checksum). Opening
 // reads and verifies the header and directory only; chunk blobs are read and verified on demand.
@@ -25,8 +26,9 @@ namespace sylva::terrain {
 
 inline constexpr std::uint32_t kChunkFileVersion = 1;
 
-// Writes the tree (which must hold its meshes) through a temporary file and a rename.
-Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree);
+// Writes the tree (which must hold its meshes) through a temporary file and a rename. `tag` goes
+// into the header (ChunkFile::tag()).
+Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag = 0);
 
 // Writes a chunk file chunk by chunk, so a tree too big for memory can be saved (bake.hpp): blobs
 // go to a temporary file beside the target as they come, the directory and header at finish(),
@@ -53,6 +55,8 @@ class ChunkFileWriter {
   Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob);
   // The same with the blob's fnv1a64 computed by the caller (on another thread).
   Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob, std::uint64_t checksum);
+  // The header's tag (default 0), written at finish().
+  void set_tag(std::uint64_t tag);
   // Directory, header, fsync, rename over the target. Errors: kIo naming the file.
   Status finish();
   // Stops and removes the temporary (no-op once finished).
@@ -78,6 +82,8 @@ class ChunkFile {
   // The tree's metadata (errors, bounds, counts, geometry) without meshes: what selection needs.
   const ChunkTree& tree() const { return tree_; }
   const std::filesystem::path& path() const { return path_; }
+  // The header's tag: what the writer stored there (0 for a bake or a plain save_chunk_file).
+  std::uint64_t tag() const { return tag_; }
 
   // Reads, verifies and decodes one chunk's mesh. Thread-safe. Errors (kCorrupt/kIo) name the
   // file and the chunk.
@@ -85,12 +91,22 @@ class ChunkFile {
   // Bytes the decoded mesh of a chunk occupies in memory (for memory budgets).
   std::size_t mesh_bytes(std::uint32_t index) const;
 
+  // The whole tree with every chunk's mesh, equal to the ChunkTree::build that wrote the file
+  // (vertices, indices, edges, errors, bounds, nodes; the report has the levels, no times). The
+  // file stores leaf_dimension, flat_tolerance and max_morph_fraction: they must equal
+  // `settings`' (else kInvalidArgument naming the parameter and both values); the rest
+  // (optimize_vertex_cache, threads, max_build_bytes) is taken from `settings`, keep_meshes is
+  // true. Chunks are read in slot order and verified and decoded on settings.threads threads.
+  // Errors: as read_chunk (the first bad chunk, named), kCancelled.
+  Result<ChunkTree> read_tree(const ChunkTreeSettings& settings, const BuildControl& control = {}) const;
+
  private:
   struct Entry {
     std::uint64_t offset = 0, bytes = 0, checksum = 0;
     std::uint32_t vertices = 0, indices = 0;
   };
   std::filesystem::path path_;
+  std::uint64_t tag_ = 0;
   ChunkTree tree_;
   std::vector<Entry> entries_;
   mutable std::mutex mutex_;

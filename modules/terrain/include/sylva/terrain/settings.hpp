@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 namespace sylva::terrain {
 
@@ -54,6 +55,29 @@ struct ChunkTreeSettings {
       .rebuild = Rebuild::kOffline});
     v(max_build_bytes, "max_build_bytes", {.min = 1e6, .max = 1e12, .unit = "B",
       .help = "Memory cap of the build's error grid", .log_scale = true});
+  }
+};
+
+// The chunk-tree cache (tree_cache.hpp): where a built tree is kept so the next launch of the same
+// field with the same ChunkTreeSettings reopens it instead of rebuilding (issue 15).
+struct TreeCacheSettings {
+  // "auto" = <temp>/sylva-terrain-cache, "" = no cache, else a folder (relative to the scene file).
+  std::string directory = "auto";
+  // Fields with fewer samples are built, not cached: below about 1449^2 a build takes under ~1 s
+  // on 2 cores and the file (~65 B per sample) would cost more disk than the launch time it
+  // saves (README, "Tree cache"). 0 caches every field.
+  int min_samples = 2'000'000;
+  // Cache files kept in the folder; the least recently used beyond this are deleted after a write
+  // (a 4097^2 tree is ~1.1 GB, and every tree-setting change in the editor makes a new one).
+  int max_files = 4;
+
+  template <class V>
+  void visit(V& v) {
+    v(directory, "directory", {.min = 0, .max = 4096,
+      .help = "Chunk-tree cache folder (auto = temp folder, empty = no cache)"});
+    v(min_samples, "min_samples", {.min = 0, .max = 1'000'000'000,
+      .help = "Smallest field (samples) whose tree is cached"});
+    v(max_files, "max_files", {.min = 1, .max = 1000, .help = "Cached trees kept (least recently used deleted)"});
   }
 };
 
