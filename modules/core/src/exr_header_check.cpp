@@ -41,6 +41,42 @@ bool read_name(std::ifstream& in, std::size_t max_length, std::string& out) {
   return false;
 }
 
+// OpenEXR reads a value of a known fixed-size type with that type's own reader and ignores the
+// declared size, so a declared size that differs would make the library read the rest of the
+// header out of step with this walk: such a file is refused. Types read by the declared size
+// (string, vectors, opaque ones) need nothing here; "chlist" and "preview" are checked apart.
+int fixed_value_size(const std::string& type) {
+  static const struct {
+    const char* type;
+    int bytes;
+  } kFixed[] = {{"box2i", 16},  {"box2f", 16},   {"compression", 1}, {"lineOrder", 1}, {"envmap", 1},
+                {"deepImageState", 1}, {"int", 4}, {"float", 4},  {"double", 8},  {"v2i", 8},
+                {"v2f", 8},     {"v2d", 16},     {"v3i", 12},        {"v3f", 12},      {"v3d", 24},
+                {"m33f", 36},   {"m33d", 72},    {"m44f", 64},       {"m44d", 128},    {"rational", 8},
+                {"tiledesc", 9}, {"timecode", 8}, {"keycode", 28},   {"chromaticities", 32}};
+  for (const auto& f : kFixed) {
+    if (type == f.type) return f.bytes;
+  }
+  return -1;
+}
+
+// Bytes a channel list occupies as OpenEXR reads it (per channel: name, 16 bytes of type,
+// linearity and sampling; an empty name ends it); -1 when it does not end within `limit`.
+std::int64_t channel_list_bytes(std::ifstream& in, std::int64_t limit) {
+  const std::streampos start = in.tellg();
+  std::string channel;
+  std::int64_t used = 0;
+  while (used < limit) {
+    if (!read_name(in, 255, channel)) return -1;
+    used += static_cast<std::int64_t>(channel.size()) + 1;
+    if (channel.empty()) break;
+    in.seekg(16, std::ios::cur);
+    used += 16;
+  }
+  in.seekg(start);
+  return used <= limit ? used : -1;
+}
+
 // What one part's header says about the size of its offset table.
 struct PartShape {
   std::int64_t width = 0, height = 0;  // data window; 0 = not seen
@@ -95,6 +131,31 @@ Status check_exr_header(const fs::path& path, std::string_view display, int max_
         return make_error(ErrorCode::kCorrupt,
                           fmt::format("{}: OpenEXR attribute \"{}\" declares {} bytes but the file has {} left", display,
                                       name, size, left));
+      }
+      const int fixed = fixed_value_size(type);
+      if (fixed >= 0 && size != fixed) {
+        return make_error(ErrorCode::kCorrupt, fmt::format("{}: OpenEXR attribute \"{}\" of type {} declares {} bytes "
+                                                           "instead of {}",
+                                                           display, name, type, size, fixed));
+      }
+      if (type == "chlist" && channel_list_bytes(in, size) != size) {
+        return make_error(ErrorCode::kCorrupt,
+                          fmt::format("{}: OpenEXR channel list \"{}\" does not fill its {} bytes", display, name, size));
+      }
+      if (type == "preview") {
+        // Width and height, then 4 bytes per pixel: the library allocates width * height * 4.
+        std::array<unsigned char, 8> dims{};
+        if (size < 8 || !in.read(reinterpret_cast<char*>(dims.data()), 8)) {
+          return make_error(ErrorCode::kCorrupt, fmt::format("{}: OpenEXR preview \"{}\" is cut off", display, name));
+        }
+        in.seekg(-8, std::ios::cur);
+        const auto w = static_cast<std::uint64_t>(static_cast<std::uint32_t>(little_endian(dims.data(), 4)));
+        const auto h = static_cast<std::uint64_t>(static_cast<std::uint32_t>(little_endian(dims.data() + 4, 4)));
+        if (8 + 4 * w * h != static_cast<std::uint64_t>(size)) {
+          return make_error(ErrorCode::kCorrupt, fmt::format("{}: OpenEXR preview \"{}\" of {}x{} does not fill its {} "
+                                                             "bytes",
+                                                             display, name, w, h, size));
+        }
       }
       // The few values that size the offset table; everything else is skipped unread.
       std::array<unsigned char, 16> value{};

@@ -6,6 +6,10 @@
 // offset table of that many entries. Every such size is bounded by the file itself: an attribute's
 // value and a part's offset table (8 bytes per chunk) must fit in the bytes the file holds. This
 // check walks the headers (never the pixels) and refuses what cannot fit, naming the attribute.
+// The library reads known types with their own readers, not by the declared size, so the walk
+// also refuses a fixed-size type declaring another size, and a channel list or preview image that
+// does not fill its declared bytes: otherwise the library would read the rest of the header out
+// of step with this walk (the fuzz target found exactly that).
 #pragma once
 
 #include <sylva/core/result.hpp>

@@ -330,3 +330,18 @@ TEST(Image, ExrDataWindowAboveTheLimitIsRefusedBeforeOpenExrSizesItsOffsetTable)
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("chunks but the file has only"), std::string::npos) << r.error().message;
 }
+
+TEST(Image, ExrFixedSizeAttributeDeclaringAnotherSizeIsRefused) {
+  // OpenEXR reads a compression value as one byte whatever the header declares: a header saying
+  // otherwise would be read out of step with Sylva's walk, so it is refused.
+  const fs::path path = temp_dir() / "out_of_step.exr";
+  auto [bytes, size_at] = exr_with_attribute(path, "compression");
+  put_le32(bytes, size_at, 2);
+  write_bytes(path, bytes);
+  auto r = sylva::read_image(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(r.error().message.find("attribute \"compression\" of type compression declares 2 bytes instead of 1"),
+            std::string::npos)
+      << r.error().message;
+}
