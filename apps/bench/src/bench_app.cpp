@@ -5,6 +5,9 @@
 #include "scene_source.hpp"
 #include "stability.hpp"
 #include "suites.hpp"
+#ifdef SYLVA_BENCH_WITH_SCENE
+#include "with_scene/paper_runs.hpp"
+#endif
 #include "svg_plot.hpp"
 
 #include <sylva/core/atomic_file.hpp>
@@ -215,6 +218,23 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
         merge(kExitFailed);
       }
     }
+  }
+
+  if (o.paper) {
+#ifdef SYLVA_BENCH_WITH_SCENE
+    PaperRunOptions po;
+    po.which = *o.paper;
+    po.quick = o.quick;
+    po.out = out_dir;
+    po.customise = [&o](RunSpec& spec) { apply_common(o, spec); };
+    po.embed_images = o.embed_images;
+    po.gl_renderer = context->renderer();
+    po.gl_version = context->version();
+    merge(run_paper(po, out, err));
+#else
+    err << "sylva-bench: --paper needs the scene module, which is not part of this build\n";
+    merge(kExitUnavailable);
+#endif
   }
 
   if (o.stability) {

@@ -97,6 +97,15 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
                           fmt::format("--suite: \"{}\" is not terrain, grass, trees, voxel or all", *v));
       }
       o.suite = *v;
+    } else if (name == "--paper") {
+      SYLVA_BENCH_VALUE(v, "000, 001, 002, 003, 004 or all (the thesis whose tables to reproduce)");
+      if (*v != "000" && *v != "001" && *v != "002" && *v != "003" && *v != "004" && *v != "all") {
+        return make_error(ErrorCode::kInvalidArgument,
+                          fmt::format("--paper: \"{}\" is not 000, 001, 002, 003, 004 or all", *v));
+      }
+      o.paper = *v;
+    } else if (name == "--quick") {
+      o.quick = true;
     } else if (name == "--camera-path") {
       SYLVA_BENCH_VALUE(v, "a camera path name of the scene (see --list-camera-paths)");
       o.camera_path = *v;
@@ -155,12 +164,19 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
     }
     return o;
   }
-  if (!o.scene && !o.suite && (!o.sweeps.empty() || !o.reference.empty())) {
+  if (o.paper && (o.scene || o.suite || o.stability || !o.sweeps.empty() || !o.reference.empty())) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("--paper {} runs the thesis's own experiments; it takes no SCENE, --suite, --stability, "
+                                  "--sweep or --reference",
+                                  *o.paper));
+  }
+  if (o.quick && !o.paper) return make_error(ErrorCode::kInvalidArgument, "--quick goes with --paper");
+  if (!o.scene && !o.suite && !o.paper && (!o.sweeps.empty() || !o.reference.empty())) {
     return make_error(ErrorCode::kInvalidArgument, "--sweep and --reference need a SCENE to sweep");
   }
-  if (!o.scene && !o.suite && !o.stability) {
+  if (!o.scene && !o.suite && !o.stability && !o.paper) {
     return make_error(ErrorCode::kInvalidArgument,
-                      "nothing to do: give a SCENE with --sweep, a --suite, or --stability (see --help)");
+                      "nothing to do: give a SCENE with --sweep, a --suite, --paper or --stability (see --help)");
   }
   if (o.suite && o.scene) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -184,6 +200,7 @@ std::string bench_usage() {
   return "usage: sylva-bench SCENE --sweep path=v1,v2,... [options] --out DIR\n"
          "       sylva-bench --suite terrain|grass|trees|voxel|all [options] --out DIR\n"
          "       sylva-bench --stability [--suite ...] --out DIR\n"
+         "       sylva-bench --paper 000|001|002|003|004|all [--quick] --out DIR\n"
          "Renders a camera path for every combination of the swept parameters and puts the image error against\n"
          "a maximum-quality reference next to the cost (GPU and CPU time, triangles, fragments, draw calls).\n"
          "  SCENE                  scene JSON file, or builtin:ground (sky + fBm ground, no content module)\n"
@@ -193,6 +210,9 @@ std::string bench_usage() {
          "                         without it the scene as loaded is the reference\n"
          "  --set path=value       applied to every setting and to the reference\n"
          "  --suite NAME           curated sweeps: terrain, grass, trees, voxel or all\n"
+         "  --paper THESIS         the thesis's experiments: per table the thesis's numbers beside Sylva's\n"
+         "                         (DIR/paper-THESIS/paper.md, paper.json, a sweep report per row)\n"
+         "  --quick                with --paper: the first row of each table at 256x144, 2 frames (for CI)\n"
          "  --stability            run every available module's extreme cases; writes stability.{csv,json,html}\n"
          "  --camera-path NAME     named camera path of the scene (default: the scene's first)\n"
          "  --frames N             frames along the path (default 24)\n"

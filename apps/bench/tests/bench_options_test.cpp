@@ -81,5 +81,22 @@ TEST(BenchOptions, HelpAndListingNeedNoOut) {
   EXPECT_TRUE(l->list_params);
 }
 
+TEST(BenchOptions, PaperWithQuick) {
+  auto o = parse({"--paper", "000", "--quick", "--out", "x"});
+  ASSERT_TRUE(o.ok()) << o.error().message;
+  EXPECT_EQ(*o->paper, "000");
+  EXPECT_TRUE(o->quick);
+  EXPECT_TRUE(parse({"--paper=all", "--out", "x"}).ok());
+  auto bad = parse({"--paper", "005", "--out", "x"});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("--paper: \"005\" is not 000"), std::string::npos) << bad.error().message;
+  auto mixed = parse({"--paper", "000", "--suite", "grass", "--out", "x"});
+  ASSERT_FALSE(mixed.ok());
+  EXPECT_NE(mixed.error().message.find("takes no SCENE, --suite"), std::string::npos) << mixed.error().message;
+  auto quick_alone = parse({"--suite", "grass", "--quick", "--out", "x"});
+  ASSERT_FALSE(quick_alone.ok());
+  EXPECT_NE(quick_alone.error().message.find("--quick goes with --paper"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sylva::bench

@@ -1,0 +1,155 @@
+#include "paper_report.hpp"
+
+#include <sylva/core/atomic_file.hpp>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace sylva::bench {
+namespace {
+
+std::string number(double v) {
+  if (!std::isfinite(v)) return "–";
+  if (std::fabs(v) >= 100.0) return fmt::format("{:.0f}", v);
+  if (std::fabs(v) >= 10.0) return fmt::format("{:.1f}", v);
+  return fmt::format("{:.3g}", v);
+}
+
+std::string ratio(double v, double first) {
+  if (!std::isfinite(v) || !std::isfinite(first) || first == 0.0) return "–";
+  return fmt::format("{:.2f}x", v / first);
+}
+
+// Sylva's value of (column, value) in row r, NaN when that row did not run.
+double sylva_value(const PaperOutcome& o, std::size_t r, std::size_t c, const PaperValue& v, CostMetric cost) {
+  if (r >= o.rows.size() || !o.rows[r] || c >= o.rows[r]->size()) return std::nan("");
+  return paper_measure((*o.rows[r])[c], v.measure, cost);
+}
+
+// The first row with a value (the ratio's base): the thesis's first row, Sylva's first row that ran.
+double first_sylva(const PaperOutcome& o, std::size_t c, const PaperValue& v, CostMetric cost) {
+  for (std::size_t r = 0; r < o.table->rows.size(); ++r) {
+    const double x = sylva_value(o, r, c, v, cost);
+    if (std::isfinite(x)) return x;
+  }
+  return std::nan("");
+}
+
+std::string heading(const std::string& thesis, CostMetric cost, const MachineInfo& m, const std::string& gl_renderer) {
+  return fmt::format(
+      "# sylva-bench --paper {}\n\nSylva: {} ({} logical cores), {}, {} build, {}. Sylva's ms are `{}` (mean over "
+      "the frames of a static camera). Ratios (x) are to the table's first row: compare the shape of the tables, not "
+      "absolute times across machines.\n\n",
+      thesis, m.cpu_model, m.cpu_cores, gl_renderer, m.build_type, m.date_utc, to_string(cost));
+}
+
+}  // namespace
+
+double paper_measure(const SettingResult& result, PaperMeasure measure, CostMetric cost) {
+  switch (measure) {
+    case PaperMeasure::kMs: return cost_of(result, cost);
+    case PaperMeasure::kFragments:
+      return result.frames > 0 ? static_cast<double>(result.totals.fragments) / result.frames : std::nan("");
+  }
+  return std::nan("");
+}
+
+std::string paper_markdown(const std::string& thesis, const std::vector<PaperOutcome>& outcomes, CostMetric cost,
+                           const MachineInfo& machine, const std::string& gl_renderer) {
+  std::string md = heading(thesis, cost, machine, gl_renderer);
+  for (const PaperOutcome& o : outcomes) {
+    const PaperTable& t = *o.table;
+    md += fmt::format("## Tab. {}: {}\n\nThesis: {}.\n\n", t.id, t.title, t.thesis_hardware);
+    if (!t.missing.empty()) {
+      md += fmt::format("Not reproduced: {}.\n\n", t.missing);
+      continue;
+    }
+    if (!o.failure.empty()) md += fmt::format("**Failed:** {}\n\n", o.failure);
+    // Header: row | per column and value: thesis, x, Sylva, x.
+    std::string head = "| " + t.row_header, rule = "|---";
+    for (const PaperColumn& c : t.columns) {
+      for (const PaperValue& v : c.values) {
+        head += fmt::format(" | {0} {1} thesis | x | {0} {1} Sylva | x", c.name, v.name);
+        rule += "|---:|---:|---:|---:";
+      }
+    }
+    if (!t.reference.empty()) {
+      for (const PaperColumn& c : t.columns) head += fmt::format(" | {} DSSIM", c.name), rule += "|---:";
+    }
+    head += " | report |\n";
+    rule += "|---|\n";
+    md += head + rule;
+    for (std::size_t r = 0; r < t.rows.size(); ++r) {
+      md += "| " + t.rows[r].label;
+      for (std::size_t c = 0; c < t.columns.size(); ++c) {
+        for (const PaperValue& v : t.columns[c].values) {
+          const double th = r < v.thesis.size() ? v.thesis[r] : std::nan("");
+          const double th0 = v.thesis.empty() ? std::nan("") : v.thesis[0];
+          const double sy = sylva_value(o, r, c, v, cost);
+          md += fmt::format(" | {} | {} | {} | {}", number(th), ratio(th, th0), number(sy),
+                            ratio(sy, first_sylva(o, c, v, cost)));
+        }
+      }
+      if (!t.reference.empty()) {
+        for (std::size_t c = 0; c < t.columns.size(); ++c) {
+          const bool ran = r < o.rows.size() && o.rows[r] && c < o.rows[r]->size();
+          md += " | " + (ran ? number(error_of((*o.rows[r])[c], ErrorMetric::kDssim)) : std::string("–"));
+        }
+      }
+      const std::string rep = r < o.row_reports.size() ? o.row_reports[r] : "";
+      md += " | " + (rep.empty() ? std::string("not run") : fmt::format("[{0}]({0}/report.html)", rep)) + " |\n";
+    }
+    md += fmt::format("\nDifferences from the thesis: {}\n\n", t.differences);
+  }
+  return md;
+}
+
+nlohmann::json paper_json(const std::string& thesis, const std::vector<PaperOutcome>& outcomes, CostMetric cost,
+                          const MachineInfo& machine, const std::string& gl_renderer) {
+  auto finite_or_null = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+  nlohmann::json tables = nlohmann::json::array();
+  for (const PaperOutcome& o : outcomes) {
+    const PaperTable& t = *o.table;
+    nlohmann::json rows = nlohmann::json::array();
+    for (std::size_t r = 0; r < t.rows.size(); ++r) {
+      nlohmann::json cells = nlohmann::json::object();
+      for (std::size_t c = 0; c < t.columns.size(); ++c) {
+        for (const PaperValue& v : t.columns[c].values) {
+          cells[t.columns[c].name + " " + v.name] = {
+              {"thesis", finite_or_null(r < v.thesis.size() ? v.thesis[r] : std::nan(""))},
+              {"sylva", finite_or_null(sylva_value(o, r, c, v, cost))}};
+        }
+      }
+      // Instances per LOD level per frame, per column: what the column's setting selected.
+      nlohmann::json lods = nlohmann::json::object();
+      for (std::size_t c = 0; r < o.rows.size() && o.rows[r] && c < o.rows[r]->size(); ++c) {
+        const SettingResult& s = (*o.rows[r])[c];
+        for (const auto& [level, count] : s.totals.lod_instances) {
+          lods[t.columns[c].name][level] = s.frames > 0 ? static_cast<double>(count) / s.frames : 0.0;
+        }
+      }
+      rows.push_back({{"label", t.rows[r].label}, {"values", cells}, {"lod_instances_per_frame", lods},
+                      {"report", r < o.row_reports.size() ? o.row_reports[r] : ""}});
+    }
+    tables.push_back({{"table", t.id}, {"title", t.title}, {"thesis_hardware", t.thesis_hardware},
+                      {"rows", rows}, {"missing", t.missing}, {"failure", o.failure}, {"differences", t.differences}});
+  }
+  return {{"thesis", thesis},
+          {"cost_metric", to_string(cost)},
+          {"machine", {{"cpu", machine.cpu_model}, {"cores", machine.cpu_cores}, {"gl_renderer", gl_renderer},
+                       {"build", machine.build_type}, {"date_utc", machine.date_utc}}},
+          {"tables", tables}};
+}
+
+Status write_paper_report(const std::filesystem::path& folder, const std::string& thesis,
+                          const std::vector<PaperOutcome>& outcomes, CostMetric cost, const MachineInfo& machine,
+                          const std::string& gl_renderer) {
+  std::error_code ec;
+  std::filesystem::create_directories(folder, ec);
+  if (ec) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create ({})", folder.string(), ec.message()));
+  SYLVA_TRY(write_file_atomic(folder / "paper.md", paper_markdown(thesis, outcomes, cost, machine, gl_renderer)));
+  return write_file_atomic(folder / "paper.json", paper_json(thesis, outcomes, cost, machine, gl_renderer).dump(2) + "\n");
+}
+
+}  // namespace sylva::bench

@@ -1,0 +1,69 @@
+#pragma once
+// The theses' experiments as data (issue 20, `sylva-bench --paper`): per table, the thesis's own
+// numbers (transcribed from ../shared/seeds/, with the hardware the thesis ran on) and the recipe
+// that makes Sylva run the same experiment: a scene, one setting per row and per column. GL-free;
+// the runner (with_scene/paper_runs.cpp) renders, paper_report.hpp writes the tables side by side.
+//
+// Where a thesis measured FPS or GPU ms on a 2010 GPU, Sylva's column is ms on this machine and
+// both get a ratio to the table's first row: a software rasteriser's absolute times do not compare
+// with a GTX 470, the shape of the table does.
+
+#include "sweep.hpp"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <vector>
+
+namespace sylva::bench {
+
+// What a value of a table is.
+enum class PaperMeasure {
+  kMs,         // time of a frame [ms]: the run's cost metric (frame_ms on llvmpipe, else gpu_ms), mean over frames
+  kFragments,  // GL_SAMPLES_PASSED per frame
+};
+
+// One reported quantity of a column, with the thesis's value for each row (NaN: not in the thesis).
+struct PaperValue {
+  std::string name;             // "ms", "fragments"
+  PaperMeasure measure = PaperMeasure::kMs;
+  std::vector<double> thesis;   // one per row of the table
+};
+
+// One column: a setting applied on top of the row's, and what is reported of it.
+struct PaperColumn {
+  std::string name;                   // "LOD0"
+  std::vector<Assignment> assignments;
+  std::vector<PaperValue> values;
+};
+
+struct PaperRow {
+  std::string label;                  // "10", "512 x 512", "+LOD1"
+  std::vector<Assignment> assignments;
+};
+
+struct PaperTable {
+  std::string thesis;                 // "000"
+  std::string id;                     // "5.1" (the thesis's table number)
+  std::string title;
+  std::string row_header;             // "# instances"
+  std::string thesis_hardware;        // what the thesis measured on
+  std::string scene_json;             // the experiment's scene (modules/scene format)
+  std::vector<Assignment> overrides;  // applied to every cell
+  std::vector<PaperRow> rows;
+  std::vector<PaperColumn> columns;
+  // The maximum-quality setting the image error of each row is measured against; empty: the
+  // table has no image-quality dimension (its report shows times and counts only).
+  std::vector<Assignment> reference;
+  glm::ivec2 size{1280, 720};         // the thesis's resolution
+  std::string differences;            // deliberate differences from the thesis's set-up
+  std::string missing;                // non-empty: Sylva cannot run this table yet, and why
+};
+
+// Theses with a --paper command: "000" ... "004", in the order `--paper all` runs them.
+std::vector<std::string> paper_names();
+
+// The tables of one thesis, in the thesis's order. Unknown names give an empty list.
+std::vector<PaperTable> paper_tables(const std::string& thesis);
+
+}  // namespace sylva::bench

@@ -1,0 +1,97 @@
+// `sylva-bench --paper 000 --quick` end to end (issue 20): every table of seed 000 that Sylva can
+// run gets its first row measured beside the thesis's numbers, the columns select what they claim
+// (the LOD forced per column, the instance count of the row), and a thesis without transcribed
+// tables is refused as not available, never passed silently.
+#include <sylva/core/atomic_file.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+#ifdef SYLVA_BENCH_WITH_SCENE
+
+int run(const std::string& args, const fs::path& log, std::string& output) {
+  const std::string cmd = std::string(SYLVA_BENCH_EXE) + " " + args + " > '" + log.string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  auto text = sylva::read_file(log);
+  output = text.ok() ? *text : "";
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+fs::path test_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("sylva-bench-paper-test-" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+const nlohmann::json& table(const nlohmann::json& paper, const std::string& id) {
+  for (const nlohmann::json& t : paper["tables"]) {
+    if (t["table"] == id) return t;
+  }
+  ADD_FAILURE() << "no table " << id;
+  static const nlohmann::json none;
+  return none;
+}
+
+TEST(BenchPaper, Seed000QuickFillsBothColumnsOfEveryTable) {
+  const fs::path out = test_dir("000");
+  std::string output;
+  const int code = run("--paper 000 --quick --size 96x54 --out '" + out.string() + "'", out / "log.txt", output);
+  ASSERT_EQ(code, 0) << output;
+  auto text = sylva::read_file(out / "paper-000" / "paper.json");
+  ASSERT_TRUE(text.ok()) << output;
+  const nlohmann::json j = nlohmann::json::parse(*text);
+  ASSERT_EQ(j["tables"].size(), 6u);
+  for (const nlohmann::json& t : j["tables"]) {
+    SCOPED_TRACE(t["table"].get<std::string>());
+    if (!t["missing"].get<std::string>().empty()) continue;
+    EXPECT_EQ(t["failure"], "");
+    const nlohmann::json& first = t["rows"][0];
+    for (const auto& [name, cell] : first["values"].items()) {
+      EXPECT_TRUE(cell["thesis"].is_number()) << name;
+      EXPECT_TRUE(cell["sylva"].is_number()) << name;
+      EXPECT_GT(cell["sylva"].get<double>(), 0.0) << name;
+    }
+    EXPECT_TRUE(fs::exists(out / "paper-000" / first["report"].get<std::string>() / "report.html"));
+    // Quick mode runs the first row only.
+    if (t["rows"].size() > 1) {
+      EXPECT_TRUE(t["rows"][1]["values"].begin().value()["sylva"].is_null());
+    }
+  }
+  EXPECT_FALSE(table(j, "5.5")["missing"].get<std::string>().empty());  // animation levels: not yet
+  // Tab. 5.1 row "10": ten trees, all in LOD0 in the LOD0 column and all in LOD1 in the LOD1 column.
+  const nlohmann::json& lods = table(j, "5.1")["rows"][0]["lod_instances_per_frame"];
+  EXPECT_EQ(lods["LOD0"]["vegetation.lod0"], 10.0) << lods.dump();
+  EXPECT_EQ(lods["LOD0"]["vegetation.lod1"], 0.0) << lods.dump();
+  EXPECT_EQ(lods["LOD1"]["vegetation.lod1"], 10.0) << lods.dump();
+  EXPECT_EQ(lods["LOD1"]["vegetation.lod0"], 0.0) << lods.dump();
+  // Tab. 5.3: one tree at the origin.
+  EXPECT_EQ(table(j, "5.3")["rows"][0]["lod_instances_per_frame"]["LOD0"]["vegetation.lod0"], 1.0);
+  auto md = sylva::read_file(out / "paper-000" / "paper.md");
+  ASSERT_TRUE(md.ok());
+  EXPECT_NE(md->find("## Tab. 5.1: LOD0 vs LOD1, no multisampling"), std::string::npos);
+  EXPECT_NE(md->find("| 1000 | 189 | 63.41x | – |"), std::string::npos) << *md;
+}
+
+TEST(BenchPaper, ThesisWithoutTablesIsNotAvailable) {
+  const fs::path out = test_dir("001");
+  std::string output;
+  const int code = run("--paper 001 --quick --out '" + out.string() + "'", out / "log.txt", output);
+  EXPECT_EQ(code, 3) << output;
+  EXPECT_NE(output.find("--paper 001: not available yet"), std::string::npos) << output;
+}
+
+#endif
+
+}  // namespace

@@ -1,0 +1,94 @@
+// The thesis tables beside Sylva's numbers (GL-free): values, ratios to the first row, rows that
+// did not run, tables Sylva cannot run yet, and the thesis data itself (every row has a value).
+#include "paper_report.hpp"
+#include "paper_tables.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace sylva::bench {
+namespace {
+
+PaperTable two_row_table() {
+  PaperTable t;
+  t.thesis = "000";
+  t.id = "9.9";
+  t.title = "test table";
+  t.row_header = "# things";
+  t.thesis_hardware = "a GPU";
+  t.rows = {{"10", {}}, {"20", {}}};
+  t.columns = {{"LOD0", {}, {{"ms", PaperMeasure::kMs, {2.0, 5.0}}, {"fragments", PaperMeasure::kFragments, {100, 300}}}}};
+  t.differences = "none";
+  return t;
+}
+
+SettingResult measured(double frame_ms, std::uint64_t fragments_total, int frames) {
+  SettingResult r;
+  r.frames = frames;
+  r.frame_ms.mean = frame_ms;
+  r.totals.fragments = fragments_total;
+  r.totals.lod_instances["vegetation.lod0"] = 10u * static_cast<std::uint64_t>(frames);
+  return r;
+}
+
+TEST(PaperReport, ThesisAndSylvaSideBySideWithRatiosToTheFirstRow) {
+  const PaperTable t = two_row_table();
+  PaperOutcome o;
+  o.table = &t;
+  o.rows = {std::vector<SettingResult>{measured(40.0, 2000, 2)}, std::vector<SettingResult>{measured(120.0, 9000, 3)}};
+  o.row_reports = {"tab-9.9/row-0", "tab-9.9/row-1"};
+  const std::string md = paper_markdown("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  // Row 1: thesis 5 ms (2.5x of 2 ms), Sylva 120 ms (3x of 40 ms); fragments per frame 3000 (3x of 1000).
+  EXPECT_NE(md.find("| 20 | 5 | 2.50x | 120 | 3.00x | 300 | 3.00x | 3000 | 3.00x |"), std::string::npos) << md;
+  EXPECT_NE(md.find("[tab-9.9/row-0](tab-9.9/row-0/report.html)"), std::string::npos);
+  const nlohmann::json j = paper_json("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["values"]["LOD0 ms"]["sylva"].get<double>(), 120.0);
+  EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["values"]["LOD0 ms"]["thesis"].get<double>(), 5.0);
+  EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["lod_instances_per_frame"]["LOD0"]["vegetation.lod0"].get<double>(), 10.0);
+}
+
+TEST(PaperReport, RowsNotRunAndTablesNotReproducibleAreSaidSo) {
+  PaperTable t = two_row_table();
+  PaperOutcome o;
+  o.table = &t;
+  o.rows = {std::vector<SettingResult>{measured(40.0, 2000, 2)}, std::nullopt};
+  o.row_reports = {"tab-9.9/row-0", ""};
+  PaperTable missing = two_row_table();
+  missing.missing = "a variant Sylva lacks";
+  PaperOutcome m;
+  m.table = &missing;
+  const std::string md = paper_markdown("000", {o, m}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  EXPECT_NE(md.find("| 20 | 5 | 2.50x | – | – |"), std::string::npos) << md;
+  EXPECT_NE(md.find("not run |"), std::string::npos);
+  EXPECT_NE(md.find("Not reproduced: a variant Sylva lacks."), std::string::npos);
+  const nlohmann::json j = paper_json("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  EXPECT_TRUE(j["tables"][0]["rows"][1]["values"]["LOD0 ms"]["sylva"].is_null());
+}
+
+// The transcribed data: every table of seed 000 that Sylva runs has a thesis value for every row
+// of every column, and every row and column sets something (or the table says why not).
+TEST(PaperTables, Seed000IsCompleteAndConsistent) {
+  const std::vector<PaperTable> tables = paper_tables("000");
+  ASSERT_EQ(tables.size(), 6u);  // Tab. 5.1 - 5.6
+  for (const PaperTable& t : tables) {
+    SCOPED_TRACE(t.id);
+    EXPECT_EQ(t.thesis, "000");
+    if (!t.missing.empty()) continue;
+    EXPECT_FALSE(t.scene_json.empty());
+    ASSERT_FALSE(t.rows.empty());
+    for (const PaperColumn& c : t.columns) {
+      for (const PaperValue& v : c.values) {
+        ASSERT_EQ(v.thesis.size(), t.rows.size()) << c.name << " " << v.name;
+        for (double x : v.thesis) EXPECT_TRUE(std::isfinite(x) && x > 0.0) << c.name;
+      }
+    }
+  }
+  EXPECT_EQ(tables[0].rows.back().label, "1000");
+  EXPECT_DOUBLE_EQ(tables[0].columns[1].values[0].thesis.back(), 57.16);  // Tab. 5.1 LOD1 at 1000
+  EXPECT_FALSE(tables[4].missing.empty());                                // Tab. 5.5: animation levels
+  EXPECT_TRUE(paper_tables("001").empty());
+}
+
+}  // namespace
+}  // namespace sylva::bench
