@@ -251,6 +251,59 @@ TEST_F(SpeciesFilesGl, ALoadedTreeGetsSlices) {
   EXPECT_GT(static_cast<double>(both) / either, 0.5) << "LOD1 silhouette overlaps LOD0's: " << both << " / " << either;
 }
 
+// Single trees at given spots (`vegetation.trees.N`): species files of weight 0 place no stand,
+// the two named trees stand where they are told, the red one left of the blue one.
+TEST_F(SpeciesFilesGl, SingleTreesStandWhereTheSceneSays) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  std::vector<std::string> logged;
+  set_log_sink([&](LogLevel level, std::string_view message) {
+    if (level == LogLevel::kWarn) logged.emplace_back(message);
+  });
+  const std::string camera = R"({"position": [0, 5, 60], "yaw_deg": 0, "pitch_deg": 0, "fov_deg": 30})";
+  auto scene = open(camera, R"({"leaf_texture_size": 32, "forest": {"lod": {"enabled": false}},
+      "species_files": {"0": {"file": "species/red.json", "weight": 0}, "1": {"file": "species/blue.json", "weight": 0}},
+      "trees": {"0": {"species": "red", "position": [-6, 0]}, "1": {"species": "blue", "position": [6, 0], "yaw_deg": 90},
+                "2": {"species": "oak", "position": [0, 0]}}})");
+  set_log_sink(nullptr);
+  ASSERT_TRUE(scene);
+  auto bare = open(camera, "");
+  ASSERT_TRUE(bare);
+  const nlohmann::json stats = scene->module_stats()["vegetation"];
+  EXPECT_EQ(stats["trees"].get<int>(), 2) << "weight 0: no stand, only the single trees; " << stats.dump();
+  EXPECT_EQ(stats["trees_per_species"]["red"].get<int>(), 1) << stats.dump();
+  EXPECT_EQ(stats["trees_per_species"]["blue"].get<int>(), 1) << stats.dump();
+  const std::vector<glm::dvec3> at = scene->module("vegetation")->placed_positions(10);
+  ASSERT_EQ(at.size(), 2u);
+  EXPECT_EQ(at[0].x, -6.0);
+  EXPECT_EQ(at[0].z, 0.0);
+  EXPECT_NEAR(at[0].y, scene->ground_height(-6.0, 0.0), 1e-4);
+  EXPECT_EQ(at[1].x, 6.0);
+  std::string all;
+  for (const std::string& m : logged) all += m + "\n";
+  EXPECT_NE(all.find("vegetation.trees.2.species: no species 'oak' in the stand (red, blue)"), std::string::npos) << all;
+
+  const glm::ivec2 size(128, 96);
+  const Image with = frame(*scene, size), without = frame(*bare, size);
+  const std::vector<std::uint8_t> mask = tree_mask(with, without);
+  double red_x = 0.0, blue_x = 0.0;
+  int red = 0, blue = 0;
+  for (int y = 0; y < size.y; ++y)
+    for (int x = 0; x < size.x; ++x) {
+      if (!mask[static_cast<std::size_t>(y * size.x + x)]) continue;
+      const float r = with.at(x, y, 0), b = with.at(x, y, 2);
+      if (r > 1.5f * b) red_x += x, ++red;
+      if (b > 1.5f * r) blue_x += x, ++blue;
+    }
+  ASSERT_GT(red, 20);
+  ASSERT_GT(blue, 20);
+  std::printf("single trees: red at column %.1f, blue at %.1f\n", red_x / red, blue_x / blue);
+  // x = -6 and +6 m at 60 m: columns 64 -+ 6 / (60 tan(15 deg) * 4/3) * 64; the mean column of
+  // each tree's bark is its trunk's within a few columns (branches reach out to one side).
+  const double offset = 6.0 / (60.0 * std::tan(glm::radians(15.0)) * size.x / size.y) * size.x / 2.0;
+  EXPECT_NEAR(red_x / red, size.x / 2.0 - offset, 4.0);
+  EXPECT_NEAR(blue_x / blue, size.x / 2.0 + offset, 4.0);
+}
+
 TEST_F(SpeciesFilesGl, AFailingSpeciesFileIsLeftOutWithAWarning) {
   if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
   std::vector<std::string> logged;

@@ -70,18 +70,42 @@ struct SpeciesFileSlot {
   }
 };
 
-constexpr int kSpeciesFileSlots = 4;
+constexpr int kSlots = 4;
+constexpr const char* kSlotNames[kSlots] = {"0", "1", "2", "3"};
 
 struct SpeciesFiles {
-  std::array<SpeciesFileSlot, kSpeciesFileSlots> slot;
+  std::array<SpeciesFileSlot, kSlots> slot;
 
   template <class V>
   void visit(V& v) {
-    for (int i = 0; i < kSpeciesFileSlots; ++i) v(slot[static_cast<std::size_t>(i)], kSlotNames[i]);
+    for (int i = 0; i < kSlots; ++i) v(slot[static_cast<std::size_t>(i)], kSlotNames[i]);
   }
+};
 
- private:
-  static constexpr const char* kSlotNames[kSpeciesFileSlots] = {"0", "1", "2", "3"};
+// A tree at a given spot (seed 000's experiments need one tree at a known place, §5), besides or
+// instead of the placed stand (give every species file weight 0 for single trees only).
+struct SingleTree {
+  std::string species;        // a stand species: a preset's name or a species file's name; "" = unused
+  glm::dvec2 position{0.0};   // x, z [m]; y = the ground there
+  float yaw_deg = 0.0f;
+  float scale = 1.0f;
+
+  template <class V>
+  void visit(V& v) {
+    v(species, "species", {.max = 64.0, .help = "Species of this tree (a preset or a species file's name); empty = none", .rebuild = Rebuild::kOffline});
+    v(position, "position", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Trunk position (x, z)", .rebuild = Rebuild::kOffline});
+    v(yaw_deg, "yaw_deg", {.min = -360.0, .max = 360.0, .unit = "deg", .help = "Turn about the vertical", .rebuild = Rebuild::kOffline});
+    v(scale, "scale", {.min = 0.05, .max = 20.0, .help = "Uniform scale", .rebuild = Rebuild::kOffline});
+  }
+};
+
+struct SingleTrees {
+  std::array<SingleTree, kSlots> slot;
+
+  template <class V>
+  void visit(V& v) {
+    for (int i = 0; i < kSlots; ++i) v(slot[static_cast<std::size_t>(i)], kSlotNames[i]);
+  }
 };
 
 struct ForestSectionSettings {
@@ -100,6 +124,7 @@ struct ForestSectionSettings {
   std::uint32_t species_seed = 1;
   SpeciesMix mix;
   SpeciesFiles species_files;
+  SingleTrees trees;
   int leaf_texture_size = 128;
   vegetation::MeshSettings mesh;
   vegetation::ForestSettings forest;  // animation, shading, culling of vegetation::Forest
@@ -122,6 +147,7 @@ struct ForestSectionSettings {
     v(species_seed, "species_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the generated tree", .rebuild = Rebuild::kOffline});
     v(mix, "mix");
     v(species_files, "species_files");
+    v(trees, "trees");
     v(leaf_texture_size, "leaf_texture_size", {.min = 16, .max = 2048, .unit = "px", .help = "Procedural leaf and bark texture size (power of two)", .rebuild = Rebuild::kGpu});
     v(mesh, "mesh");
     v(forest, "forest");
@@ -163,7 +189,8 @@ struct StandEntry {
 };
 
 // The stand's species with their weights: the mix's non-zero presets in preset order, then the
-// species files with a non-zero weight in slot order; the single `species` when both are empty.
+// named species files in slot order (weight 0: only for single trees); the single `species` when
+// both are empty.
 std::vector<StandEntry> stand_species(const ForestSectionSettings& s) {
   using vegetation::SpeciesPreset;
   const std::pair<SpeciesPreset, float> all[] = {{SpeciesPreset::kBroadleaf, s.mix.broadleaf},
@@ -174,9 +201,9 @@ std::vector<StandEntry> stand_species(const ForestSectionSettings& s) {
   for (const auto& [preset, weight] : all) {
     if (weight > 0.0f) out.push_back({preset_name(preset), weight, preset, -1, {}});
   }
-  for (int i = 0; i < kSpeciesFileSlots; ++i) {
+  for (int i = 0; i < kSlots; ++i) {
     const SpeciesFileSlot& slot = s.species_files.slot[static_cast<std::size_t>(i)];
-    if (!slot.file.empty() && slot.weight > 0.0f) out.push_back({slot.file, slot.weight, std::nullopt, i, slot.file});
+    if (!slot.file.empty()) out.push_back({slot.file, slot.weight, std::nullopt, i, slot.file});
   }
   if (out.empty()) out.push_back({preset_name(s.species), 1.0f, s.species, -1, {}});
   return out;
@@ -184,18 +211,23 @@ std::vector<StandEntry> stand_species(const ForestSectionSettings& s) {
 
 // Index into the stand of a tree: a weighted pick by a hash of its trunk position (in
 // centimetres) and the placement seed, independent of the randoms that drive scale and colour.
+// stand.size() (no species) when every weight is 0: the stand then has single trees only.
 std::size_t species_of(const PlacedTree& t, const std::vector<StandEntry>& stand, std::uint32_t seed) {
   float total = 0.0f;
   for (const StandEntry& entry : stand) total += entry.weight;
+  if (!(total > 0.0f)) return stand.size();
   const float u = hash_to_unit_float(hash_i32(static_cast<std::int32_t>(std::floor(t.position.x * 100.0)),
                                               static_cast<std::int32_t>(std::floor(t.position.z * 100.0)), seed ^ 0x9e3779b9u)) *
                   total;
   float upto = 0.0f;
   for (std::size_t i = 0; i < stand.size(); ++i) {
     upto += stand[i].weight;
-    if (u < upto) return i;
+    if (u < upto && stand[i].weight > 0.0f) return i;
   }
-  return stand.size() - 1;
+  for (std::size_t i = stand.size(); i-- > 0;) {
+    if (stand[i].weight > 0.0f) return i;
+  }
+  return stand.size();
 }
 
 using Settings = SettingsOf<ForestSectionSettings>;
@@ -254,9 +286,7 @@ class ForestInstance final : public ModuleInstance {
     if (instances_dirty_) {
       instances_dirty_ = false;
       std::vector<std::vector<vegetation::TreeInstance>> per_species(stand_.size());
-      for (const auto& [cell, list] : cells_) {
-        for (const PlacedTree& t : list) per_species[species_of(t, stand_, settings().seed)].push_back(to_instance(t));
-      }
+      for_each_tree([&](const PlacedTree& t, std::size_t species) { per_species[species].push_back(to_instance(t)); });
       for (std::size_t i = 0; i < per_species.size(); ++i) {
         Status s = forest_->set_instances(static_cast<int>(i), std::move(per_species[i]));
         if (!s.ok()) log_warn("vegetation: {}", s.error().message);
@@ -279,6 +309,8 @@ class ForestInstance final : public ModuleInstance {
   Status on_map_changed(const std::string& map_id, const WorldArea& area) override {
     (void)map_id;
     SYLVA_TRY(density_map());
+    place_singles(/*warn=*/false);  // a ground edit anywhere may move them up or down
+    instances_dirty_ = true;
     const ForestPlacement p = placement();
     glm::ivec2 cmin, cmax;
     forest_cells(p, area.min, area.max, cmin, cmax);
@@ -297,13 +329,13 @@ class ForestInstance final : public ModuleInstance {
 
   nlohmann::json stats() const override {
     std::size_t trees = 0;
-    for (const auto& [cell, list] : cells_) trees += list.size();
     const vegetation::ForestStats& fs = forest_->stats();
     nlohmann::json triangles_per_tree = nlohmann::json::object(), trees_per_species = nlohmann::json::object();
     std::vector<std::size_t> counts(stand_.size(), 0);
-    for (const auto& [cell, list] : cells_) {
-      for (const PlacedTree& t : list) ++counts[species_of(t, stand_, settings().seed)];
-    }
+    for_each_tree([&](const PlacedTree&, std::size_t species) {
+      ++counts[species];
+      ++trees;
+    });
     for (std::size_t i = 0; i < stand_.size(); ++i) {
       triangles_per_tree[stand_[i].name] = forest_->asset(static_cast<int>(i)).triangles();
       trees_per_species[stand_[i].name] = counts[i];
@@ -319,24 +351,19 @@ class ForestInstance final : public ModuleInstance {
 
   std::vector<glm::dvec3> placed_positions(std::size_t max_count) const override {
     std::vector<glm::dvec3> out;
-    for (const auto& [cell, list] : cells_) {
-      for (const PlacedTree& t : list) {
-        if (out.size() >= max_count) return out;
-        out.push_back(t.position);
-      }
-    }
+    for_each_tree([&](const PlacedTree& t, std::size_t) {
+      if (out.size() < max_count) out.push_back(t.position);
+    });
     return out;
   }
 
   std::vector<render::Aabb> debug_bounds() const override {
     std::vector<render::Aabb> out;
-    for (const auto& [cell, list] : cells_) {
-      for (const PlacedTree& t : list) {
-        const vegetation::TreeAsset& asset = forest_->asset(static_cast<int>(species_of(t, stand_, settings().seed)));
-        const glm::vec3 lo = asset.bounds_min(), hi = asset.bounds_max();
-        out.push_back({t.position + glm::dvec3(lo) * static_cast<double>(t.scale), t.position + glm::dvec3(hi) * static_cast<double>(t.scale)});
-      }
-    }
+    for_each_tree([&](const PlacedTree& t, std::size_t species) {
+      const vegetation::TreeAsset& asset = forest_->asset(static_cast<int>(species));
+      const glm::vec3 lo = asset.bounds_min(), hi = asset.bounds_max();
+      out.push_back({t.position + glm::dvec3(lo) * static_cast<double>(t.scale), t.position + glm::dvec3(hi) * static_cast<double>(t.scale)});
+    });
     return out;
   }
 
@@ -429,14 +456,55 @@ class ForestInstance final : public ModuleInstance {
     for (const PlacedTree& t : place_trees(placement(), &map_->grid, ctx_.ground, s.area_min, s.area_max)) {
       cells_[{t.cell.x, t.cell.y}].push_back(t);
     }
+    place_singles(/*warn=*/true);
     instances_dirty_ = true;
     return {};
+  }
+
+  // The single trees (`trees.N`), standing on the ground; one naming no stand species is left
+  // out with a warning (when `warn`: not again at every brush dab) that lists the names there are.
+  void place_singles(bool warn) {
+    singles_.clear();
+    const ForestSectionSettings& s = settings();
+    for (int i = 0; i < kSlots; ++i) {
+      const SingleTree& st = s.trees.slot[static_cast<std::size_t>(i)];
+      if (st.species.empty()) continue;
+      const auto it = std::find_if(stand_.begin(), stand_.end(), [&](const StandEntry& e) { return e.name == st.species; });
+      if (it == stand_.end()) {
+        if (!warn) continue;
+        std::string names;
+        for (const StandEntry& e : stand_) names += (names.empty() ? "" : ", ") + e.name;
+        log_warn("vegetation.trees.{}.species: no species '{}' in the stand ({}); the tree is left out", i, st.species, names);
+        continue;
+      }
+      PlacedTree t;
+      t.position = {st.position.x, ctx_.ground ? ctx_.ground->height(st.position.x, st.position.y) : 0.0, st.position.y};
+      t.yaw = glm::radians(st.yaw_deg);
+      t.scale = st.scale;
+      t.phase = hash_to_unit_float(hash_i32(i, 0, s.seed ^ 0x51a6u));
+      t.random = hash_to_unit_float(hash_i32(i, 1, s.seed ^ 0x51a6u));
+      singles_.push_back({t, static_cast<std::size_t>(it - stand_.begin())});
+    }
+  }
+
+  // Every tree with its stand species: the placed ones (those with a species), then the singles.
+  template <class F>
+  void for_each_tree(F&& f) const {
+    const std::uint32_t seed = settings().seed;
+    for (const auto& [cell, list] : cells_) {
+      for (const PlacedTree& t : list) {
+        const std::size_t species = species_of(t, stand_, seed);
+        if (species < stand_.size()) f(t, species);
+      }
+    }
+    for (const auto& [t, species] : singles_) f(t, species);
   }
 
   ModuleBuildContext ctx_;
   std::optional<vegetation::Forest> forest_;
   std::vector<StandEntry> stand_;  // index = forest species
   std::map<std::pair<int, int>, std::vector<PlacedTree>> cells_;
+  std::vector<std::pair<PlacedTree, std::size_t>> singles_;  // single trees with their stand species
   SceneMap* map_ = nullptr;
   bool instances_dirty_ = true;
   std::uint64_t cells_replaced_ = 0;
