@@ -21,6 +21,12 @@ std::string ratio(double v, double first) {
   return fmt::format("{:.2f}x", v / first);
 }
 
+// The thesis's value in row r, as ms where the thesis gave FPS.
+double thesis_value(const PaperValue& v, std::size_t r) {
+  if (r >= v.thesis.size()) return std::nan("");
+  return v.thesis_fps ? 1000.0 / v.thesis[r] : v.thesis[r];
+}
+
 // Sylva's value of (column, value) in row r, NaN when that row did not run.
 double sylva_value(const PaperOutcome& o, std::size_t r, std::size_t c, const PaperValue& v, CostMetric cost) {
   if (r >= o.rows.size() || !o.rows[r] || c >= o.rows[r]->size()) return std::nan("");
@@ -51,6 +57,10 @@ double paper_measure(const SettingResult& result, PaperMeasure measure, CostMetr
     case PaperMeasure::kMs: return cost_of(result, cost);
     case PaperMeasure::kFragments:
       return result.frames > 0 ? static_cast<double>(result.totals.fragments) / result.frames : std::nan("");
+    case PaperMeasure::kGpuMemoryMib: {
+      const auto it = result.metrics.find("memory.gpu_mib");
+      return it == result.metrics.end() ? std::nan("") : it->second.mean;
+    }
   }
   return std::nan("");
 }
@@ -70,7 +80,7 @@ std::string paper_markdown(const std::string& thesis, const std::vector<PaperOut
     std::string head = "| " + t.row_header, rule = "|---";
     for (const PaperColumn& c : t.columns) {
       for (const PaperValue& v : c.values) {
-        head += fmt::format(" | {0} {1} thesis | x | {0} {1} Sylva | x", c.name, v.name);
+        head += fmt::format(" | {0} {1} thesis{2} | x | {0} {1} Sylva | x", c.name, v.name, v.thesis_fps ? " (1000/FPS)" : "");
         rule += "|---:|---:|---:|---:";
       }
     }
@@ -84,8 +94,8 @@ std::string paper_markdown(const std::string& thesis, const std::vector<PaperOut
       md += "| " + t.rows[r].label;
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
         for (const PaperValue& v : t.columns[c].values) {
-          const double th = r < v.thesis.size() ? v.thesis[r] : std::nan("");
-          const double th0 = v.thesis.empty() ? std::nan("") : v.thesis[0];
+          const double th = thesis_value(v, r);
+          const double th0 = thesis_value(v, 0);
           const double sy = sylva_value(o, r, c, v, cost);
           md += fmt::format(" | {} | {} | {} | {}", number(th), ratio(th, th0), number(sy),
                             ratio(sy, first_sylva(o, c, v, cost)));
@@ -117,7 +127,7 @@ nlohmann::json paper_json(const std::string& thesis, const std::vector<PaperOutc
       for (std::size_t c = 0; c < t.columns.size(); ++c) {
         for (const PaperValue& v : t.columns[c].values) {
           cells[t.columns[c].name + " " + v.name] = {
-              {"thesis", finite_or_null(r < v.thesis.size() ? v.thesis[r] : std::nan(""))},
+              {"thesis", finite_or_null(thesis_value(v, r))},
               {"sylva", finite_or_null(sylva_value(o, r, c, v, cost))}};
         }
       }

@@ -21,6 +21,7 @@ namespace sylva::bench {
 enum class PaperMeasure {
   kMs,         // time of a frame [ms]: the run's cost metric (frame_ms on llvmpipe, else gpu_ms), mean over frames
   kFragments,  // GL_SAMPLES_PASSED per frame
+  kGpuMemoryMib,  // tracked GPU memory of the scene [MiB] (bench metric memory.gpu_mib, render/gpu_memory.hpp)
 };
 
 // One reported quantity of a column, with the thesis's value for each row (NaN: not in the thesis).
@@ -28,6 +29,7 @@ struct PaperValue {
   std::string name;             // "ms", "fragments"
   PaperMeasure measure = PaperMeasure::kMs;
   std::vector<double> thesis;   // one per row of the table
+  bool thesis_fps = false;      // the thesis gave frames per second: shown as ms = 1000 / FPS
 };
 
 // One column: a setting applied on top of the row's, and what is reported of it.

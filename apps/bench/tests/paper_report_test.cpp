@@ -66,14 +66,12 @@ TEST(PaperReport, RowsNotRunAndTablesNotReproducibleAreSaidSo) {
   EXPECT_TRUE(j["tables"][0]["rows"][1]["values"]["LOD0 ms"]["sylva"].is_null());
 }
 
-// The transcribed data: every table of seed 000 that Sylva runs has a thesis value for every row
-// of every column, and every row and column sets something (or the table says why not).
-TEST(PaperTables, Seed000IsCompleteAndConsistent) {
-  const std::vector<PaperTable> tables = paper_tables("000");
-  ASSERT_EQ(tables.size(), 6u);  // Tab. 5.1 - 5.6
+// The transcribed data: every table Sylva runs has a thesis value for every row of every column,
+// and a scene (or the table says why Sylva cannot run it yet).
+void expect_complete(const std::vector<PaperTable>& tables, const std::string& thesis) {
   for (const PaperTable& t : tables) {
     SCOPED_TRACE(t.id);
-    EXPECT_EQ(t.thesis, "000");
+    EXPECT_EQ(t.thesis, thesis);
     if (!t.missing.empty()) continue;
     EXPECT_FALSE(t.scene_json.empty());
     ASSERT_FALSE(t.rows.empty());
@@ -84,10 +82,32 @@ TEST(PaperTables, Seed000IsCompleteAndConsistent) {
       }
     }
   }
+}
+
+TEST(PaperTables, Seed000IsCompleteAndConsistent) {
+  const std::vector<PaperTable> tables = paper_tables("000");
+  ASSERT_EQ(tables.size(), 6u);  // Tab. 5.1 - 5.6
+  expect_complete(tables, "000");
   EXPECT_EQ(tables[0].rows.back().label, "1000");
   EXPECT_DOUBLE_EQ(tables[0].columns[1].values[0].thesis.back(), 57.16);  // Tab. 5.1 LOD1 at 1000
   EXPECT_FALSE(tables[4].missing.empty());                                // Tab. 5.5: animation levels
   EXPECT_TRUE(paper_tables("001").empty());
+}
+
+TEST(PaperTables, Seed002FpsAreShownAsMs) {
+  const std::vector<PaperTable> tables = paper_tables("002");
+  ASSERT_EQ(tables.size(), 7u);  // 3.1 - 3.5, 3.6-3.7, 4.6-4.11
+  expect_complete(tables, "002");
+  const PaperTable& t31 = tables[0];
+  EXPECT_EQ(t31.id, "3.1");
+  ASSERT_TRUE(t31.columns[0].values[0].thesis_fps);
+  PaperOutcome o;
+  o.table = &t31;
+  o.rows.resize(t31.rows.size());
+  const std::string md = paper_markdown("002", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  // 230 FPS is 4.35 ms; 30 FPS at 2048 is 7.67x the time at 128.
+  EXPECT_NE(md.find("| 128 | 4.35 | 1.00x | – | – |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 2048 | 33.3 | 7.67x |"), std::string::npos) << md;
 }
 
 }  // namespace
