@@ -304,6 +304,32 @@ TEST_F(SpeciesFilesGl, SingleTreesStandWhereTheSceneSays) {
   EXPECT_NEAR(blue_x / blue, size.x / 2.0 + offset, 4.0);
 }
 
+// The shipped example (scenes/species/grove.json, not a golden scene): every species file loads,
+// without a warning beyond the seed example's own left-handed frames, and the trees are drawn.
+TEST_F(SpeciesFilesGl, TheShippedExampleOpens) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  std::vector<std::string> logged;
+  set_log_sink([&](LogLevel level, std::string_view message) {
+    if (level == LogLevel::kWarn) logged.emplace_back(message);
+  });
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(fs::path(SYLVA_SCENES_DIR) / "species" / "grove.json", warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  auto scene = Scene::create(std::move(*doc));
+  set_log_sink(nullptr);
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  for (const std::string& m : logged) EXPECT_NE(m.find("left-handed"), std::string::npos) << m;
+  const nlohmann::json per = (*scene)->module_stats()["vegetation"]["trees_per_species"];
+  ASSERT_EQ(per.size(), 3u) << per.dump();
+  EXPECT_GT(per["sapling"].get<int>(), 0) << per.dump();
+  EXPECT_GT(per["slender conifer"].get<int>(), 0) << per.dump();
+  EXPECT_EQ(per["seed example"].get<int>(), 1) << "the single tree" << per.dump();
+  const glm::ivec2 size(96, 54);
+  (void)frame(**scene, size);
+  EXPECT_GT((*scene)->module_stats()["vegetation"]["trees_drawn"].get<int>(), 5);
+}
+
 TEST_F(SpeciesFilesGl, AFailingSpeciesFileIsLeftOutWithAWarning) {
   if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
   std::vector<std::string> logged;
