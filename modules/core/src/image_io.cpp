@@ -99,6 +99,19 @@ Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) 
                       fmt::format("{}: image is {}x{} with {} channels, {} MiB as floats, above the limit of {} MiB", name,
                                   spec.width, spec.height, spec.nchannels, bytes >> 20, options.max_bytes >> 20));
   }
+  // A header can claim any size, and the pixels are allocated before they are decoded. Real
+  // pixel data shrinks by at most a few thousand to one (deflate 1032:1, LZW about 2700:1, then
+  // up to 4x as floats), so a file claiming more than kMaxExpansion float bytes per stored byte is
+  // corrupt or a decompression bomb: refused before the allocation (found by the image_map fuzz
+  // target: 456 MB for a file of a few hundred bytes).
+  constexpr std::uint64_t kMaxExpansion = 65536, kAlwaysAllowed = 64ull << 20;
+  const auto stored = static_cast<std::uint64_t>(fs::file_size(path, ec));
+  if (!ec && bytes > kAlwaysAllowed && bytes / kMaxExpansion > stored) {
+    return make_error(ErrorCode::kCorrupt,
+                      fmt::format("{}: header claims {}x{} with {} channels ({} MiB as floats) but the file holds only {} "
+                                  "bytes (corrupt or a decompression bomb)",
+                                  name, spec.width, spec.height, spec.nchannels, bytes >> 20, stored));
+  }
   if (spec.depth > 1) {
     return make_error(ErrorCode::kUnsupported, fmt::format("{}: volume images (depth {}) are not supported", name,
                                                            spec.depth));

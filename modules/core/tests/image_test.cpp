@@ -345,3 +345,14 @@ TEST(Image, ExrFixedSizeAttributeDeclaringAnotherSizeIsRefused) {
             std::string::npos)
       << r.error().message;
 }
+
+TEST(Image, HeaderClaimingFarMorePixelsThanTheFileCanHoldIsRefusedBeforeAllocating) {
+  // A 20-byte PGM claiming 20000 x 20000 samples (1.5 GiB as floats, under the byte budget).
+  const fs::path path = temp_dir() / "bomb.pgm";
+  write_bytes(path, std::string("P5\n20000 20000\n255\n") + std::string(4, '\x80'));
+  auto r = sylva::read_image(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(r.error().message.find("bomb.pgm: header claims 20000x20000 with 1 channels"), std::string::npos)
+      << r.error().message;
+}
