@@ -86,7 +86,8 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
   "sun": {"azimuth_deg": 200.0, "elevation_deg": 35.0},
   "render": {"shadows": {"enabled": false}},
   "terrain": {"size": 1024.0, "resolution": 257, "height": 250.0, "generator": "fbm",
-              "noise": {"octaves": 7, "frequency": 0.002, "seed": 21}, "tree": {"leaf_dimension": 17}},
+              "noise": {"octaves": 7, "frequency": 0.002, "seed": 21}, "tree": {"leaf_dimension": 17},
+              "tree_cache": {"directory": "cache", "min_samples": 0}},
   "camera_paths": {"fly": {"keys": [
     {"time_s": 0.0, "position": [-400.0, 60.0, 400.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0},
     {"time_s": 4.0, "position": [200.0, 40.0, -150.0], "height_mode": "above_ground", "yaw_deg": -40.0, "pitch_deg": -8.0}]}}
@@ -118,6 +119,12 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
     }
     EXPECT_TRUE(has_level) << s["totals"].dump();
   }
+  // The chunk-tree cache (issue 15) as columns: every setting builds its own scene from the file,
+  // so the first one built the tree into the scene's cache folder and the second reopened it.
+  ASSERT_TRUE(j["settings"][1]["metrics"].contains("terrain.tree_cache_hit")) << j["settings"][1]["metrics"].dump();
+  EXPECT_EQ(j["settings"][1]["metrics"]["terrain.tree_cache_hit"]["max"].get<double>(), 1.0);
+  EXPECT_TRUE(j["settings"][0]["metrics"].contains("terrain.tree_build_ms"));
+  EXPECT_TRUE(fs::exists(out / "cache"));
   EXPECT_LT(j["settings"][1]["totals"]["triangles"].get<std::uint64_t>(),
             j["settings"][0]["totals"]["triangles"].get<std::uint64_t>());
   auto html = sylva::read_file(out / "o" / "report.html");
