@@ -143,12 +143,19 @@ class BitmaskMesher final : public Mesher {
     full_ = n_ == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << n_) - 1;
     // The common chunk sizes get the mask pass with n known at compile time: the per-row
     // classification unrolls completely and every index step is a constant.
-    if (n_ == 32) {
-      build_masks<32>(blocks, palette);
-    } else if (n_ == 64) {
-      build_masks<64>(blocks, palette);
-    } else {
-      build_masks<0>(blocks, palette);
+    switch (n_ == 32 || n_ == 64 || n_ < 16 ? 0 : (n_ + 15) / 16) {
+      case 1: build_masks<0, 1>(blocks, palette); break;
+      case 2: build_masks<0, 2>(blocks, palette); break;
+      case 3: build_masks<0, 3>(blocks, palette); break;
+      case 4: build_masks<0, 4>(blocks, palette); break;
+      default:
+        if (n_ == 32) {
+          build_masks<32, 0>(blocks, palette);
+        } else if (n_ == 64) {
+          build_masks<64, 0>(blocks, palette);
+        } else {
+          build_masks<0, 0>(blocks, palette);
+        }
     }
     // One flag byte per block for the face loop: most faces are of plain opaque blocks and pass
     // with a single load and test.
@@ -437,7 +444,7 @@ class BitmaskMesher final : public Mesher {
   static int idx2(int a, int b, int p) { return (a + 1) * p + (b + 1); }
 
   // kN: the chunk size when known at compile time, else 0 (n_ at run time).
-  template <int kN>
+  template <int kN, int kChunks>
   void build_masks(const PaddedBlocks& blocks, const BlockPalette& palette) {
     const int n = kN > 0 ? kN : n_;
     const int p = n + 2;
@@ -465,7 +472,7 @@ class BitmaskMesher final : public Mesher {
         const auto k = static_cast<std::size_t>(yy * p + zz);
         std::uint64_t nonair = 0;
         std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
-        classify_row<kN>(row + 1, n, first_special, nonair, special);
+        classify_row<kN, kChunks>(row + 1, n, first_special, nonair, special);
         std::uint64_t alpha = 0;
         for (std::uint64_t m = special; m;) {
           const int b = std::countr_zero(m);
@@ -582,7 +589,11 @@ class BitmaskMesher final : public Mesher {
   }
 
   // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special.
-  template <int kN>
+  // kChunks (sizes other than 32 and 64, n >= 16): the row is read as kChunks groups of 16 ids,
+  // the last one ending at row[n - 1] and overlapping the one before (the bits they share are
+  // equal, so OR-ing them is harmless). A fixed count unrolls like the specialised sizes: with a
+  // run-time loop and a scalar tail, 62^3 chunks cost 1.4x a 64^3 one per voxel (issue #18).
+  template <int kN, int kChunks>
   static void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
                            std::uint64_t& special) {
     const int n = kN > 0 ? kN : n_run;
@@ -592,6 +603,25 @@ class BitmaskMesher final : public Mesher {
       const __m128i zero = _mm_setzero_si128();
       // v - (first_special - 1), saturated at 0, is zero exactly for the ids below first_special.
       const __m128i limit = _mm_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
+      // 16 ids at row + i: bit j of air / ordinary for row[i + j].
+      auto classify16 = [&](int i, std::uint32_t& air, std::uint32_t& ordinary) {
+        const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
+        const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
+        air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero))));
+        const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
+        const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
+        ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1)));
+      };
+      if constexpr (kN == 0 && kChunks > 0) {
+        for (int c = 0; c < kChunks; ++c) {
+          const int i = c + 1 < kChunks ? 16 * c : n - 16;
+          std::uint32_t air, ordinary;
+          classify16(i, air, ordinary);
+          nonair |= static_cast<std::uint64_t>(~air & 0xffff) << i;
+          special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << i;
+        }
+        return;
+      }
       // 32 ids per step (one step for a 32^3 chunk's row): one movemask pair and one
       // complement per mask instead of a loop iteration per 16.
       for (; x + 32 <= n; x += 32) {
@@ -612,31 +642,11 @@ class BitmaskMesher final : public Mesher {
         nonair |= static_cast<std::uint64_t>(~air) << x;
         special |= static_cast<std::uint64_t>(~ordinary) << x;
       }
-      // 16 ids at row + i: bit j of air / ordinary for row[i + j].
-      auto classify16 = [&](int i, std::uint32_t& air, std::uint32_t& ordinary) {
-        const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
-        const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
-        air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero))));
-        const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
-        const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
-        ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1)));
-      };
       for (; x + 16 <= n; x += 16) {
         std::uint32_t air, ordinary;
         classify16(x, air, ordinary);
         nonair |= static_cast<std::uint64_t>(~air & 0xffff) << x;
         special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << x;
-      }
-      if (x < n && n >= 16) {
-        // The last n - x ids (e.g. 14 of a 62-wide row): one overlapping load of the 16 ids
-        // ending at row[n - 1], keeping its top n - x bits. Scalar, this tail made a 62^3
-        // chunk cost 1.4x a 64^3 one per voxel (issue #18).
-        std::uint32_t air, ordinary;
-        classify16(n - 16, air, ordinary);
-        const int drop = 16 - (n - x);
-        nonair |= static_cast<std::uint64_t>((~air & 0xffff) >> drop) << x;
-        special |= static_cast<std::uint64_t>((~ordinary & 0xffff) >> drop) << x;
-        x = n;
       }
     }
 #endif
@@ -675,6 +685,18 @@ class BitmaskMesher final : public Mesher {
       const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
       const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
       same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
+    }
+    if (x < n && n >= 16) {
+      // The rest by one step overlapping the last (equal bits OR-ed twice): a scalar tail made
+      // the open rows of 62^3 chunks cost 14 compares each.
+      x = n - 16;
+      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
+      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
+      const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
+      const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
+      const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
+      same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
+      x = n;
     }
 #endif
     for (; x < n; ++x) same |= static_cast<std::uint64_t>(row[x + 1] == row[x]) << x;

@@ -138,5 +138,27 @@ TEST(MesherBitmaskShapes, RandomChunksOfEveryWidthMatchTheReference) {
   }
 }
 
+TEST(MesherBitmaskShapes, WithoutAoEveryWidthCoversLikeTheCulledMesher) {
+  // Without AO open rows go in runs of one block id (the same-id masks of a row, whose last
+  // group overlaps the one before for widths that are not a multiple of 16).
+  const auto& palette = testing::test_palette();
+  MesherOptions off;
+  off.ambient_occlusion = false;
+  for (int n : {15, 17, 47, 62, 63}) {
+    for (auto pattern : {testing::Pattern::kRandom, testing::Pattern::kMixedAlpha, testing::Pattern::kTerrain}) {
+      const PaddedBlocks blocks = testing::make_pattern(pattern, n, 5);
+      ChunkMesh reference, mesh;
+      make_mesher(MesherKind::kCulled, off)->mesh(blocks, palette, reference);
+      make_mesher(MesherKind::kBitmask, off)->mesh(blocks, palette, mesh);
+      const FaceCoverage want = testing::coverage_of(reference, n);
+      const FaceCoverage got = testing::coverage_of(mesh, n);
+      const std::string what = testing::to_string(pattern) + " n=" + std::to_string(n);
+      EXPECT_EQ(got.count, want.count) << what;
+      EXPECT_EQ(got.block, want.block) << what;
+      EXPECT_EQ(got.list, want.list) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace sylva::voxel
