@@ -63,7 +63,7 @@ struct ChunkTreeSettings {
 struct TreeCacheSettings {
   // "auto" = <temp>/sylva-terrain-cache, "" = no cache, else a folder (relative to the scene file).
   std::string directory = "auto";
-  // Fields with fewer samples are built, not cached: below about 1449^2 a build takes under ~1 s
+  // Fields with fewer samples are built, not cached: below about 1414^2 a build takes about a second
   // on 2 cores and the file (~65 B per sample) would cost more disk than the launch time it
   // saves (README, "Tree cache"). 0 caches every field.
   int min_samples = 2'000'000;
