@@ -28,6 +28,7 @@
 
 #include <sylva/core/assert.hpp>
 
+#include "mesher_bitmask_rows.hpp"
 #include "mesher_impl.hpp"
 
 #include <algorithm>
@@ -114,7 +115,7 @@ constexpr std::uint8_t kFlagCullSame = 4;   // alpha-cut block hiding faces towa
 
 class BitmaskMesher final : public Mesher {
  public:
-  explicit BitmaskMesher(const MesherOptions& options) : options_(options) {}
+  explicit BitmaskMesher(const MesherOptions& options) : options_(options), avx2_(use_avx2()) {}
   MesherKind kind() const override { return MesherKind::kBitmask; }
 
   void mesh(const PaddedBlocks& blocks, const BlockPalette& palette, ChunkMesh& out) override {
@@ -465,30 +466,13 @@ class BitmaskMesher final : public Mesher {
     ends_.resize(2 * (pp + 64));
     std::uint8_t* lo_end = ends_.data();
     std::uint8_t* hi_end = ends_.data() + pp + 64;
-    // One pass over the ids, one padded row along x (index (y, z)) at a time.
-    for (int yy = 0; yy < p; ++yy) {
-      for (int zz = 0; zz < p; ++zz) {
-        const BlockId* row = ids + static_cast<std::ptrdiff_t>(zz + p * yy) * p;
-        const auto k = static_cast<std::size_t>(yy * p + zz);
-        std::uint64_t nonair = 0;
-        std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
-        classify_row<kN, kChunks>(row + 1, n, first_special, nonair, special);
-        std::uint64_t alpha = 0;
-        for (std::uint64_t m = special; m;) {
-          const int b = std::countr_zero(m);
-          m &= m - 1;
-          if (!opaque[row[1 + b]]) alpha |= std::uint64_t{1} << b;
-        }
-        const std::uint64_t solid = nonair & ~alpha;
-        ax[k] = nonair;
-        ox[k] = solid;
-        // The same masks indexed (z, y), so +-Z slices read their rows contiguously too.
-        const auto kz = static_cast<std::size_t>(zz * p + yy);
-        az[kz] = nonair;
-        oz[kz] = solid;
-        lo_end[kz] = opaque[row[0]];
-        hi_end[kz] = opaque[row[n + 1]];
-      }
+    // One pass over the ids (mesher_bitmask_rows.hpp); AVX2 where the CPU has it, for the
+    // sizes with two 32-id groups per row.
+    const RowMasks masks{ax, ox, az, oz, lo_end, hi_end};
+    if (avx2_ && n >= 32) {
+      row_pass_avx2(ids, opaque, first_special, n, masks);
+    } else {
+      row_pass<kN, kChunks>(ids, opaque, first_special, n, masks);
     }
     // Columns along y for interior x: transpose each z-slab of the x rows (rows y in [0, n)).
     // For n <= 32 two slabs share one transpose: slab zz in the low and zz + 1 in the high 32
@@ -589,73 +573,6 @@ class BitmaskMesher final : public Mesher {
   }
 
   // nonair: bit x set when row[x] != 0; special: bit x set when row[x] >= first_special.
-  // kChunks (sizes other than 32 and 64, n >= 16): the row is read as kChunks groups of 16 ids,
-  // the last one ending at row[n - 1] and overlapping the one before (the bits they share are
-  // equal, so OR-ing them is harmless). A fixed count unrolls like the specialised sizes: with a
-  // run-time loop and a scalar tail, 62^3 chunks cost 1.4x a 64^3 one per voxel (issue #18).
-  template <int kN, int kChunks>
-  static void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
-                           std::uint64_t& special) {
-    const int n = kN > 0 ? kN : n_run;
-    int x = 0;
-#if defined(__SSE2__)
-    {
-      const __m128i zero = _mm_setzero_si128();
-      // v - (first_special - 1), saturated at 0, is zero exactly for the ids below first_special.
-      const __m128i limit = _mm_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
-      // 16 ids at row + i: bit j of air / ordinary for row[i + j].
-      auto classify16 = [&](int i, std::uint32_t& air, std::uint32_t& ordinary) {
-        const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
-        const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
-        air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero))));
-        const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
-        const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
-        ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1)));
-      };
-      if constexpr (kN == 0 && kChunks > 0) {
-        for (int c = 0; c < kChunks; ++c) {
-          const int i = c + 1 < kChunks ? 16 * c : n - 16;
-          std::uint32_t air, ordinary;
-          classify16(i, air, ordinary);
-          nonair |= static_cast<std::uint64_t>(~air & 0xffff) << i;
-          special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << i;
-        }
-        return;
-      }
-      // 32 ids per step (one step for a 32^3 chunk's row): one movemask pair and one
-      // complement per mask instead of a loop iteration per 16.
-      for (; x + 32 <= n; x += 32) {
-        const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
-        const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
-        const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 16));
-        const __m128i v3 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 24));
-        const auto air =
-            static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero)))) |
-            static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v2, zero), _mm_cmpeq_epi16(v3, zero))))
-                << 16;
-        const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
-        const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
-        const __m128i s2 = _mm_cmpeq_epi16(_mm_subs_epu16(v2, limit), zero);
-        const __m128i s3 = _mm_cmpeq_epi16(_mm_subs_epu16(v3, limit), zero);
-        const auto ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1))) |
-                              static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s2, s3))) << 16;
-        nonair |= static_cast<std::uint64_t>(~air) << x;
-        special |= static_cast<std::uint64_t>(~ordinary) << x;
-      }
-      for (; x + 16 <= n; x += 16) {
-        std::uint32_t air, ordinary;
-        classify16(x, air, ordinary);
-        nonair |= static_cast<std::uint64_t>(~air & 0xffff) << x;
-        special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << x;
-      }
-    }
-#endif
-    for (; x < n; ++x) {
-      nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
-      special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
-    }
-  }
-
   // Bit i set when b[i] != 0, i in [0, n) (b readable up to 15 bytes past n).
   static std::uint64_t bytes_to_bits(const std::uint8_t* b, int n) {
     std::uint64_t bits = 0;
@@ -758,6 +675,7 @@ class BitmaskMesher final : public Mesher {
   }
 
   MesherOptions options_;
+  bool avx2_ = false;  // the row pass's AVX2 variant (run-time dispatch, see use_avx2())
   int n_ = 0;
   int p_ = 0;
   std::uint64_t full_ = 0;

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <functional>
 #include <string>
 
@@ -156,6 +157,26 @@ TEST(MesherBitmaskShapes, WithoutAoEveryWidthCoversLikeTheCulledMesher) {
       EXPECT_EQ(got.count, want.count) << what;
       EXPECT_EQ(got.block, want.block) << what;
       EXPECT_EQ(got.list, want.list) << what;
+    }
+  }
+}
+
+TEST(MesherBitmaskShapes, Avx2AndSse2RowPassesGiveTheSameMesh) {
+  // The row pass runs AVX2 where the CPU has it (dispatch when the mesher is made) and SSE2
+  // with SYLVA_VOXEL_NO_AVX2 set: both must give the same quads, in the same order.
+  const auto& palette = testing::test_palette();
+  for (int n : {32, 33, 47, 62, 63, 64}) {
+    for (auto pattern : {testing::Pattern::kMixedAlpha, testing::Pattern::kTerrain, testing::Pattern::kRandom}) {
+      const PaddedBlocks blocks = testing::make_pattern(pattern, n, 9);
+      ChunkMesh dispatched, baseline;
+      make_mesher(MesherKind::kBitmask)->mesh(blocks, palette, dispatched);
+      ASSERT_EQ(setenv("SYLVA_VOXEL_NO_AVX2", "1", 1), 0);
+      make_mesher(MesherKind::kBitmask)->mesh(blocks, palette, baseline);
+      unsetenv("SYLVA_VOXEL_NO_AVX2");
+      const std::string what = testing::to_string(pattern) + " n=" + std::to_string(n);
+      EXPECT_EQ(dispatched.opaque, baseline.opaque) << what;
+      EXPECT_EQ(dispatched.alpha_cut, baseline.alpha_cut) << what;
+      EXPECT_FALSE(dispatched.empty()) << what;
     }
   }
 }
