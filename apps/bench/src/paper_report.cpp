@@ -30,7 +30,7 @@ double thesis_value(const PaperValue& v, std::size_t r) {
 // Sylva's value of (column, value) in row r, NaN when that row did not run.
 double sylva_value(const PaperOutcome& o, std::size_t r, std::size_t c, const PaperValue& v, CostMetric cost) {
   if (r >= o.rows.size() || !o.rows[r] || c >= o.rows[r]->size()) return std::nan("");
-  return paper_measure((*o.rows[r])[c], v.measure, cost);
+  return paper_measure((*o.rows[r])[c], v, cost);
 }
 
 // The first row with a value (the ratio's base): the thesis's first row, Sylva's first row that ran.
@@ -52,13 +52,16 @@ std::string heading(const std::string& thesis, CostMetric cost, const MachineInf
 
 }  // namespace
 
-double paper_measure(const SettingResult& result, PaperMeasure measure, CostMetric cost) {
-  switch (measure) {
+double paper_measure(const SettingResult& result, const PaperValue& value, CostMetric cost) {
+  const auto per_frame = [&](std::uint64_t total) {
+    return result.frames > 0 ? static_cast<double>(total) / result.frames : std::nan("");
+  };
+  switch (value.measure) {
     case PaperMeasure::kMs: return cost_of(result, cost);
-    case PaperMeasure::kFragments:
-      return result.frames > 0 ? static_cast<double>(result.totals.fragments) / result.frames : std::nan("");
-    case PaperMeasure::kGpuMemoryMib: {
-      const auto it = result.metrics.find("memory.gpu_mib");
+    case PaperMeasure::kFragments: return per_frame(result.totals.fragments);
+    case PaperMeasure::kPrimitives: return per_frame(result.totals.primitives);
+    case PaperMeasure::kMetric: {
+      const auto it = result.metrics.find(value.metric);
       return it == result.metrics.end() ? std::nan("") : it->second.mean;
     }
   }
@@ -110,7 +113,11 @@ std::string paper_markdown(const std::string& thesis, const std::vector<PaperOut
       const std::string rep = r < o.row_reports.size() ? o.row_reports[r] : "";
       md += " | " + (rep.empty() ? std::string("not run") : fmt::format("[{0}]({0}/report.html)", rep)) + " |\n";
     }
-    md += fmt::format("\nDifferences from the thesis: {}\n\n", t.differences);
+    md += fmt::format("\nDifferences from the thesis: {}\n", t.differences);
+    for (const PaperColumn& c : t.columns) {
+      if (!c.missing.empty()) md += fmt::format("Column \"{}\" not run: {}.\n", c.name, c.missing);
+    }
+    md += "\n";
   }
   return md;
 }
@@ -128,7 +135,8 @@ nlohmann::json paper_json(const std::string& thesis, const std::vector<PaperOutc
         for (const PaperValue& v : t.columns[c].values) {
           cells[t.columns[c].name + " " + v.name] = {
               {"thesis", finite_or_null(thesis_value(v, r))},
-              {"sylva", finite_or_null(sylva_value(o, r, c, v, cost))}};
+              {"sylva", finite_or_null(sylva_value(o, r, c, v, cost))},
+              {"column_missing", t.columns[c].missing}};
         }
       }
       // Instances per LOD level per frame, per column: what the column's setting selected.

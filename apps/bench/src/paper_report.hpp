@@ -17,7 +17,8 @@
 namespace sylva::bench {
 
 // What Sylva measured for one table: per row that ran, one SettingResult per column (same order
-// as PaperTable::columns). Rows that did not run (--quick runs the first) are std::nullopt.
+// as PaperTable::columns; a default one for a column Sylva lacks). Rows that did not run
+// (--quick runs the first) are std::nullopt.
 struct PaperOutcome {
   const PaperTable* table = nullptr;
   std::vector<std::optional<std::vector<SettingResult>>> rows;
@@ -25,8 +26,9 @@ struct PaperOutcome {
   std::string failure;                   // non-empty: the table failed to run, and why
 };
 
-// Sylva's value of one quantity for one setting (ms: the cost metric's mean; fragments: per frame).
-double paper_measure(const SettingResult& result, PaperMeasure measure, CostMetric cost);
+// Sylva's value of one quantity for one setting (ms: the cost metric's mean; counts per frame;
+// metrics their mean). NaN for a setting that did not run (a default SettingResult).
+double paper_measure(const SettingResult& result, const PaperValue& value, CostMetric cost);
 
 // Markdown of one thesis's tables (machine and date in the heading).
 std::string paper_markdown(const std::string& thesis, const std::vector<PaperOutcome>& outcomes, CostMetric cost,

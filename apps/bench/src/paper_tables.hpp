@@ -13,30 +13,39 @@
 #include <glm/glm.hpp>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace sylva::bench {
 
 // What a value of a table is.
 enum class PaperMeasure {
-  kMs,         // time of a frame [ms]: the run's cost metric (frame_ms on llvmpipe, else gpu_ms), mean over frames
-  kFragments,  // GL_SAMPLES_PASSED per frame
-  kGpuMemoryMib,  // tracked GPU memory of the scene [MiB] (bench metric memory.gpu_mib, render/gpu_memory.hpp)
+  kMs,          // time of a frame [ms]: the run's cost metric (frame_ms on llvmpipe, else gpu_ms), mean over frames
+  kFragments,   // GL_SAMPLES_PASSED per frame
+  kPrimitives,  // GL_PRIMITIVES_GENERATED per frame (after tessellation): the thesis's "polygons"
+  kMetric,      // a module metric of the bench (PaperValue::metric, mean over frames), e.g. "grass.build_ms"
 };
 
 // One reported quantity of a column, with the thesis's value for each row (NaN: not in the thesis).
 struct PaperValue {
   std::string name;             // "ms", "fragments"
   PaperMeasure measure = PaperMeasure::kMs;
-  std::vector<double> thesis;   // one per row of the table
+  std::vector<double> thesis;   // one per row of the table; NaN where the thesis has "-"
   bool thesis_fps = false;      // the thesis gave frames per second: shown as ms = 1000 / FPS
+  std::string metric;           // kMetric: the bench metric's name
 };
 
 // One column: a setting applied on top of the row's, and what is reported of it.
 struct PaperColumn {
+  PaperColumn() = default;
+  PaperColumn(std::string name_, std::vector<Assignment> assignments_, std::vector<PaperValue> values_,
+              std::string missing_ = {})
+      : name(std::move(name_)), assignments(std::move(assignments_)), values(std::move(values_)), missing(std::move(missing_)) {}
+
   std::string name;                   // "LOD0"
   std::vector<Assignment> assignments;
   std::vector<PaperValue> values;
+  std::string missing;                // non-empty: Sylva lacks this variant (why); shown, not run
 };
 
 struct PaperRow {

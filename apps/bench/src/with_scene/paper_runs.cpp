@@ -24,6 +24,7 @@ RunSpec row_spec(const PaperTable& t, std::size_t row, const PaperRunOptions& o,
   spec.overrides = t.overrides;
   spec.overrides.insert(spec.overrides.end(), t.rows[row].assignments.begin(), t.rows[row].assignments.end());
   for (const PaperColumn& c : t.columns) {
+    if (!c.missing.empty()) continue;  // a variant Sylva lacks: shown with the thesis's numbers only
     std::vector<SweepAxis> group;
     for (const Assignment& a : c.assignments) group.push_back({a.path, {a.value}});
     spec.sweep_groups.push_back(std::move(group));
@@ -56,7 +57,8 @@ PaperOutcome run_table(const PaperTable& t, const PaperRunOptions& o, const std:
     const std::string rel = fmt::format("tab-{}/row-{}", t.id, r);
     RunSpec spec = row_spec(t, r, o, thesis_dir / rel);
     cost = spec.cost;
-    out << fmt::format("paper {} tab. {} row {} ({}): {} setting(s)\n", t.thesis, t.id, r, t.rows[r].label, t.columns.size());
+    out << fmt::format("paper {} tab. {} row {} ({}): {} setting(s)\n", t.thesis, t.id, r, t.rows[r].label,
+                       spec.sweep_groups.size());
     if (Status valid = validate_spec(spec); !valid.ok()) {
       outcome.failure = fmt::format("row {}: {}", t.rows[r].label, valid.error().message);
       return outcome;
@@ -73,7 +75,13 @@ PaperOutcome run_table(const PaperTable& t, const PaperRunOptions& o, const std:
       outcome.failure = written.error().message;
       return outcome;
     }
-    outcome.rows[r] = report->settings;
+    // One result per column, in the table's order; a column Sylva lacks keeps a default result.
+    std::vector<SettingResult> per_column(t.columns.size());
+    std::size_t next = 0;
+    for (std::size_t c = 0; c < t.columns.size() && next < report->settings.size(); ++c) {
+      if (t.columns[c].missing.empty()) per_column[c] = report->settings[next++];
+    }
+    outcome.rows[r] = std::move(per_column);
     outcome.row_reports[r] = rel;
   }
   return outcome;
