@@ -304,6 +304,55 @@ TEST_F(SpeciesFilesGl, SingleTreesStandWhereTheSceneSays) {
   EXPECT_NEAR(blue_x / blue, size.x / 2.0 + offset, 4.0);
 }
 
+// A species file's "lod" and "animation" apply to its trees only: v1 = 10 m turns the tree 80 m
+// away into slices while the forest says LOD0 up to 300 m; wind_scale 0 holds it still in a
+// gale, where the forest's own scale moves it.
+TEST_F(SpeciesFilesGl, ASpeciesFilesLodAndAnimationApplyToItsTrees) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "red.json", R"({"name": "red", "model": {"objt": "../trees/seed.objt"}, "units": 2,
+      "lod": {"v1": 10, "v2": 500}, "animation": {"wind_scale": 0}})").ok());
+  std::string stand = kOneTree;
+  stand.replace(stand.find(R"("enabled": false)"), 16, R"("v1": 300, "v2": 400, "cache_directory": "")");
+  const auto open_windy = [&](const std::string& vegetation) {
+    auto scene = open(kSideCamera, vegetation);
+    if (scene) {
+      EXPECT_TRUE(scene->set_param("wind.strength", "30").ok());
+    }
+    return scene;
+  };
+  auto tuned = open_windy(stand);
+  ASSERT_TRUE(tuned);
+  const glm::ivec2 size(96, 96);
+  const auto at = [&](Scene& scene, double t) {
+    auto fb = render::Framebuffer::create({.width = size.x, .height = size.y}).value();
+    render::FrameProfiler profiler;
+    const render::Camera camera = scene.make_camera(scene.document().camera, size);
+    for (int i = 0; i < 2; ++i) {
+      scene.update(camera, t, 0.0f, size);
+      scene.render(fb, profiler);
+    }
+    return render::read_color(fb).value();
+  };
+  const auto changed = [](const Image& a, const Image& b) {
+    int n = 0;
+    for (int y = 0; y < a.height(); ++y)
+      for (int x = 0; x < a.width(); ++x)
+        if (std::abs(a.at(x, y, 0) - b.at(x, y, 0)) + std::abs(a.at(x, y, 1) - b.at(x, y, 1)) > 0.03f) ++n;
+    return n;
+  };
+  const int still = changed(at(*tuned, 2.0), at(*tuned, 3.5));
+  EXPECT_EQ(tuned->module_stats()["vegetation"]["instances_per_lod"]["lod1"].get<int>(), 1)
+      << "the species' v1 = 10 m, not the forest's 300 m: " << tuned->module_stats()["vegetation"].dump();
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "red.json", kRedSpecies).ok());
+  auto plain = open_windy(stand);
+  ASSERT_TRUE(plain);
+  const int moving = changed(at(*plain, 2.0), at(*plain, 3.5));
+  EXPECT_EQ(plain->module_stats()["vegetation"]["instances_per_lod"]["lod0"].get<int>(), 1);
+  std::printf("wind_scale 0: %d pixels change in 1.5 s of a 30 m/s wind; the forest's scale: %d\n", still, moving);
+  EXPECT_EQ(still, 0);
+  EXPECT_GT(moving, 10);
+}
+
 // The shipped example (scenes/species/grove.json, not a golden scene): every species file loads,
 // without a warning beyond the seed example's own left-handed frames, and the trees are drawn.
 TEST_F(SpeciesFilesGl, TheShippedExampleOpens) {

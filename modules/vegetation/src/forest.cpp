@@ -33,6 +33,7 @@ struct Forest::Impl {
     LodQueues queues;
     glm::vec3 sphere_center{0.0f};        // object space
     float sphere_radius = 0.0f;
+    SpeciesTuning tuning;
   };
   ForestSettings settings;
   TreeRenderer renderer;
@@ -90,9 +91,9 @@ struct Forest::Impl {
   // The instance record for the last update's camera and wind. The wind comes from the per-frame
   // split at the camera (WindField::evaluate(frame, local): float work per tree, no double noise
   // setup), the same in the colour and the shadow passes.
-  InstanceGpu record(const TreeInstance& t) const {
+  InstanceGpu record(const TreeInstance& t, const Species& s) const {
     const glm::vec3 local(t.position - origin);
-    return make_instance_gpu(t, origin, WindField::evaluate(wind_frame, local) * settings.animation.wind_scale);
+    return make_instance_gpu(t, origin, WindField::evaluate(wind_frame, local) * (settings.animation.wind_scale * s.tuning.wind_scale));
   }
 
   void report(const Status& st) {
@@ -194,6 +195,23 @@ Status Forest::set_instances(int species, std::vector<TreeInstance> instances) {
   return ok_status();
 }
 
+Status Forest::set_species_tuning(int species, const SpeciesTuning& tuning) {
+  if (species < 0 || species >= static_cast<int>(impl_->species.size()))
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("forest: species {} does not exist ({} added)", species,
+                                                               impl_->species.size()));
+  const float values[] = {tuning.v1, tuning.v2, tuning.s1, tuning.s2};
+  for (float v : values) {
+    if (!std::isfinite(v)) return make_error(ErrorCode::kInvalidArgument, fmt::format("forest: species {}: non-finite LOD threshold", species));
+  }
+  if (!(tuning.wind_scale >= 0.0f && tuning.wind_scale <= 100.0f))
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("forest: species {}: wind_scale {} is outside [0, 100]", species, tuning.wind_scale));
+  impl_->at(species).tuning = tuning;
+  return ok_status();
+}
+
+const SpeciesTuning& Forest::species_tuning(int species) const { return impl_->at(species).tuning; }
+
 std::size_t Forest::species_count() const { return impl_->species.size(); }
 const TreeModel& Forest::model(int species) const { return impl_->at(species).model; }
 const TreeMesh& Forest::mesh(int species) const { return impl_->at(species).mesh; }
@@ -248,6 +266,10 @@ void Forest::update(const render::FrameContext& frame) {
     m.ensure_spheres(s);
     LodSettings lod = st.lod;
     lod.enabled = lod.enabled && s.slices.has_value();
+    if (s.tuning.v1 >= 0.0f) lod.v1 = s.tuning.v1;
+    if (s.tuning.v2 >= 0.0f) lod.v2 = s.tuning.v2;
+    if (s.tuning.s1 >= 0.0f) lod.s1 = s.tuning.s1;
+    if (s.tuning.s2 >= 0.0f) lod.s2 = s.tuning.s2;
     const auto t0 = std::chrono::steady_clock::now();
     select_lods(lod, view, s.spheres, s.heights, s.lod_state, s.queues);
     select_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
@@ -265,7 +287,7 @@ void Forest::update(const render::FrameContext& frame) {
       upload.clear();
       upload.reserve(q.size());
       for (const LodQueueEntry& e : q) {
-        InstanceGpu g = m.record(s.instances[e.instance]);
+        InstanceGpu g = m.record(s.instances[e.instance], s);
         g.lod = glm::vec4(e.fade, e.instance < s.lod_state.level.size() ? s.lod_state.level[e.instance] : 0.0f, 0.0f, 0.0f);
         upload.push_back(g);
         if (seen[e.instance] == 0) {
@@ -341,7 +363,7 @@ Status Forest::draw_depth(const glm::mat4& relative_view_proj, const render::Fru
       float l = 0.0f;
       if (lod) l = i < s.lod_state.level.size() && !std::isnan(s.lod_state.level[i]) ? s.lod_state.level[i] : 2.0f;
       const LodDraws draws = lod_draws(l);
-      const InstanceGpu g = m.record(s.instances[i]);
+      const InstanceGpu g = m.record(s.instances[i], s);
       for (int k = 0; k < draws.count; ++k) {
         InstanceGpu r = g;
         r.lod = glm::vec4(draws.draw[static_cast<std::size_t>(k)].fade, l, 0.0f, 0.0f);

@@ -59,6 +59,61 @@ struct SpeciesTop {
   }
 };
 
+Error fail(ErrorCode code, std::string_view source, std::string_view what) {
+  return make_error(code, fmt::format("{}: {}", source, what));
+}
+
+void add_warnings(std::vector<std::string>& out, std::vector<std::string>& local, std::string_view source) {
+  for (const std::string& w : local) out.push_back(fmt::format("{}: {}", source, w));
+  local.clear();
+}
+
+// "lod": thresholds only (the bake settings are the forest's: one bake per species and forest).
+struct LodOverride {
+  LodSettings lod;
+  template <class V>
+  void visit(V& v) {
+    v(lod.v1, "v1", {.min = 0.0, .max = 1.0e7, .unit = "m", .help = "Distance where LOD0 turns into LOD1"});
+    v(lod.v2, "v2", {.min = 0.0, .max = 1.0e7, .unit = "m", .help = "Distance where LOD1 turns into LOD2"});
+    v(lod.s1, "s1", {.min = 0.0, .max = 1.0e5, .unit = "px", .help = "Projected height below which LOD1 is used"});
+    v(lod.s2, "s2", {.min = 0.0, .max = 1.0e5, .unit = "px", .help = "Projected height below which LOD2 is used"});
+  }
+};
+
+struct AnimationOverride {
+  float wind_scale = 1.0f;
+  template <class V>
+  void visit(V& v) {
+    v(wind_scale, "wind_scale", {.min = 0.0, .max = 100.0, .help = "Multiplies the forest's wind for this species"});
+  }
+};
+
+// The species' "lod" and "animation" objects: only the keys given change the forest's values.
+Result<SpeciesTuning> read_tuning(const nlohmann::json& json, std::string_view source, std::vector<std::string>& warnings) {
+  SpeciesTuning tuning;
+  std::vector<std::string> local;
+  if (const auto it = json.find("lod"); it != json.end()) {
+    if (!it->is_object()) return fail(ErrorCode::kInvalidArgument, source, "lod: must be an object (v1, v2, s1, s2)");
+    LodOverride o;
+    Status s = params_from_json(o, *it, local, "lod");
+    add_warnings(warnings, local, source);
+    if (!s.ok()) return fail(s.error().code, source, s.error().message);
+    if (it->contains("v1")) tuning.v1 = o.lod.v1;
+    if (it->contains("v2")) tuning.v2 = o.lod.v2;
+    if (it->contains("s1")) tuning.s1 = o.lod.s1;
+    if (it->contains("s2")) tuning.s2 = o.lod.s2;
+  }
+  if (const auto it = json.find("animation"); it != json.end()) {
+    if (!it->is_object()) return fail(ErrorCode::kInvalidArgument, source, "animation: must be an object (wind_scale)");
+    AnimationOverride o;
+    Status s = params_from_json(o, *it, local, "animation");
+    add_warnings(warnings, local, source);
+    if (!s.ok()) return fail(s.error().code, source, s.error().message);
+    tuning.wind_scale = o.wind_scale;
+  }
+  return tuning;
+}
+
 struct ObjtModel {
   std::string objt;
   template <class V>
@@ -76,15 +131,6 @@ struct PresetModel {
     v(seed, "seed", {.min = 0.0, .max = 4294967295.0, .help = "Generator seed"});
   }
 };
-
-Error fail(ErrorCode code, std::string_view source, std::string_view what) {
-  return make_error(code, fmt::format("{}: {}", source, what));
-}
-
-void add_warnings(std::vector<std::string>& out, std::vector<std::string>& local, std::string_view source) {
-  for (const std::string& w : local) out.push_back(fmt::format("{}: {}", source, w));
-  local.clear();
-}
 
 Result<TreeModel> load_objt_model(const nlohmann::json& model, const SpeciesTop& top, const fs::path& directory,
                                   std::string_view source, std::vector<std::string>& warnings) {
@@ -155,6 +201,10 @@ Result<SpeciesFile> parse_species(std::string_view text, const fs::path& directo
 
   nlohmann::json rest = *json;
   rest.erase("model");
+  Result<SpeciesTuning> tuning = read_tuning(rest, source, warnings);
+  if (!tuning.ok()) return tuning.error();
+  rest.erase("lod");
+  rest.erase("animation");
   SpeciesTop top;
   std::vector<std::string> local;
   Status s = params_from_json(top, rest, local);
@@ -180,6 +230,7 @@ Result<SpeciesFile> parse_species(std::string_view text, const fs::path& directo
   out.name = !top.name.empty() ? top.name : fs::path(std::string(source)).stem().string();
   // A preset's own textures unless the file picks another look.
   out.look = objt || rest.contains("look") ? top.look : preset;
+  out.tuning = *tuning;
   out.texture_seed = top.texture_seed;
   out.leaf_tint = top.leaf_tint;
   if (rest.contains("bark_color")) out.bark_color = top.bark_color;

@@ -115,6 +115,27 @@ TEST_F(SpeciesFileTest, PresetWithParametersAndColours) {
   EXPECT_GT(tex->bark.albedo.at(0, 0, 0), 1.5f * tex->bark.albedo.at(0, 0, 1)) << "red bark";
 }
 
+TEST_F(SpeciesFileTest, LodAndAnimationOverrideOnlyWhatTheyName) {
+  Result<SpeciesFile> plain = load(R"({"model": {"objt": "trees/seed.objt"}})");
+  ASSERT_TRUE(plain.ok()) << plain.error().message;
+  EXPECT_EQ(plain->tuning.wind_scale, 1.0f);
+  EXPECT_LT(plain->tuning.v1, 0.0f) << "the forest's";
+  Result<SpeciesFile> s = load(R"({"model": {"objt": "trees/seed.objt"}, "lod": {"v1": 20, "s2": 9, "slice_resolution": 64},
+                                   "animation": {"wind_scale": 0.25}})");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_EQ(s->tuning.v1, 20.0f);
+  EXPECT_LT(s->tuning.v2, 0.0f) << "not named: the forest's";
+  EXPECT_LT(s->tuning.s1, 0.0f);
+  EXPECT_EQ(s->tuning.s2, 9.0f);
+  EXPECT_EQ(s->tuning.wind_scale, 0.25f);
+  ASSERT_EQ(warnings_.size(), 1u);
+  EXPECT_NE(warnings_[0].find("oak.json: lod.slice_resolution"), std::string::npos) << warnings_[0];
+  EXPECT_NE(error_of(R"({"model": {"objt": "trees/seed.objt"}, "lod": {"v1": -3}})").find("oak.json: lod.v1"), std::string::npos);
+  EXPECT_NE(error_of(R"({"model": {"objt": "trees/seed.objt"}, "lod": 3})").find("oak.json: lod: must be"), std::string::npos);
+  EXPECT_NE(error_of(R"({"model": {"objt": "trees/seed.objt"}, "animation": {"wind_scale": 1e30}})").find("oak.json: animation.wind_scale"),
+            std::string::npos);
+}
+
 TEST_F(SpeciesFileTest, ErrorsNameTheFileAndThePath) {
   EXPECT_EQ(error_of(R"({"model": {"objt": "trees/oak.objt"}})"), "oak.json: model.objt: no such file trees/oak.objt");
   EXPECT_NE(error_of(R"({"model": {"objt": 7}})").find("oak.json: model.objt"), std::string::npos);

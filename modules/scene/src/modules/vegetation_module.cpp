@@ -397,6 +397,7 @@ class ForestInstance final : public ModuleInstance {
   struct SpeciesData {
     vegetation::TreeModel model;
     vegetation::TreeTextureSet textures;
+    vegetation::SpeciesTuning tuning;  // a species file's "lod" and "animation"
   };
   Result<SpeciesData> species_data(StandEntry& entry) const {
     const ForestSectionSettings& s = settings();
@@ -405,7 +406,7 @@ class ForestInstance final : public ModuleInstance {
       if (!model.ok()) return model.error();
       auto textures = vegetation::make_texture_set(*entry.preset, s.species_seed, s.leaf_texture_size, s.leaf_texture_size);
       if (!textures.ok()) return textures.error();
-      return SpeciesData{std::move(model).value(), std::move(textures).value()};
+      return SpeciesData{std::move(model).value(), std::move(textures).value(), {}};
     }
     std::vector<std::string> warnings;
     auto file = vegetation::load_species_file(ctx_.document->resolve(entry.file), warnings);
@@ -414,7 +415,7 @@ class ForestInstance final : public ModuleInstance {
     auto textures = vegetation::make_species_textures(*file, s.leaf_texture_size);
     if (!textures.ok()) return textures.error();
     entry.name = file->name;
-    return SpeciesData{std::move(file->model), std::move(textures).value()};
+    return SpeciesData{std::move(file->model), std::move(textures).value(), file->tuning};
   }
 
   Status build_forest() {
@@ -432,6 +433,7 @@ class ForestInstance final : public ModuleInstance {
       if (!data.ok()) return make_error(data.error().code, fmt::format("vegetation ({}): {}", entry.name, data.error().message));
       auto species = forest->add_species(data->model, data->textures, s.mesh);
       if (!species.ok()) return make_error(species.error().code, fmt::format("vegetation ({}): {}", entry.name, species.error().message));
+      SYLVA_TRY(forest->set_species_tuning(*species, data->tuning));
       // Two species with one name would share a stats key.
       for (const StandEntry& other : stand) {
         if (other.name == entry.name) entry.name += fmt::format(" ({})", entry.slot);

@@ -67,6 +67,18 @@ struct ForestSettings {
   }
 };
 
+// One species' changes to the forest's settings (a species file's "lod" and "animation",
+// species_file.hpp). The forest's settings stay live (editor, --set); these apply on top.
+struct SpeciesTuning {
+  float wind_scale = 1.0f;  // multiplies animation.wind_scale for this species' trees, [0, 100]
+  // LOD thresholds replacing lod.v1 / v2 [m] and lod.s1 / s2 [px] for this species; < 0 = the
+  // forest's (a shrub can turn into slices nearer than a tall tree).
+  float v1 = -1.0f;
+  float v2 = -1.0f;
+  float s1 = -1.0f;
+  float s2 = -1.0f;
+};
+
 struct ForestStats {
   struct Species {
     std::size_t instances = 0;
@@ -98,6 +110,9 @@ class Forest : public render::Drawable {
                           const TreeAssetOptions& options = {});
   // Generates the preset's model and textures (texture_size: leaf and bark side, a power of two).
   Result<int> add_preset(SpeciesPreset preset, std::uint32_t seed = 1, int texture_size = 256);
+  // kInvalidArgument for a bad index or a non-finite value, wind_scale outside [0, 100].
+  Status set_species_tuning(int species, const SpeciesTuning& tuning);
+  const SpeciesTuning& species_tuning(int species) const;
   // Replaces the instances of a species (kInvalidArgument for a bad index or a non-positive scale).
   Status set_instances(int species, std::vector<TreeInstance> instances);
 

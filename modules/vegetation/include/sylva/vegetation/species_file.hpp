@@ -15,8 +15,11 @@
 //                             // the preset, broadleaf for OBJT)
 //     "texture_seed": 1,
 //     "leaf_tint": [1, 1, 1], // multiplies the seasonal leaf colour (linear, [0, 4])
-//     "bark_color": [0.32, 0.24, 0.17]   // optional: the bark plates' linear albedo
-//   }
+//     "bark_color": [0.32, 0.24, 0.17],  // optional: the bark plates' linear albedo
+//     "lod": {"v1": 20, "v2": 60},       // optional: this species' LOD thresholds (v1, v2 [m],
+//                                        // s1, s2 [px]) instead of the forest's
+//     "animation": {"wind_scale": 0.5}   // optional: stiffer (< 1) or more supple (> 1) than
+//   }                                    // the forest's animation
 //
 // `parameters` are TreeSpecies fields (generator.hpp) over the preset's values, with their names,
 // ranges and nesting ("level1": {"count": 8}).
@@ -29,6 +32,7 @@
 // repairs are warnings "oak.json: ...", never silently dropped. Nothing is written.
 
 #include <sylva/core/result.hpp>
+#include <sylva/vegetation/forest.hpp>
 #include <sylva/vegetation/generator.hpp>
 #include <sylva/vegetation/tree_model.hpp>
 #include <sylva/vegetation/tree_renderer.hpp>
@@ -51,6 +55,7 @@ struct SpeciesFile {
   glm::vec3 leaf_tint{1.0f};
   std::optional<glm::vec3> bark_color;
   std::filesystem::path objt_file;  // the resolved OBJT path; empty for a preset
+  SpeciesTuning tuning;             // "lod" and "animation" (Forest::set_species_tuning)
 };
 
 // Largest accepted sizes (bytes) and tree extent (metres).
