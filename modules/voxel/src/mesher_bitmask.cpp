@@ -267,8 +267,6 @@ class BitmaskMesher final : public Mesher {
         std::fill(slot_index_.begin(), slot_index_.end(), SlotRef{});
         slice_stamp_ = 1;
       }
-      int last_slot = -1;
-      std::uint32_t last_key = 0;
       // Padded id index and word0 of bit 0 of row 0; rows step by row_ids / 1 << kRowShift.
       int x0, y0, z0;
       origin(F, s, 0, 0, x0, y0, z0);
@@ -296,18 +294,14 @@ class BitmaskMesher final : public Mesher {
         const int row_base = slice_base + r * row_ids;
         // word0 of the unit quad at bit 0; bit b adds b to its y (+-X) or x coordinate.
         const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << kRowShift);
-        std::uint64_t* slot_row = nullptr;
         // Adds the faces `bits` (one block, one uniform AO value) to the slot of `key`.
+        // (The slot table is read for every call: caching the last key mispredicts on rows
+        // whose blocks alternate.)
         auto add = [&](std::uint32_t key, std::uint64_t bits) __attribute__((always_inline)) {
-          if (last_slot < 0 || last_key != key || slot_row == nullptr) {
-            if (last_slot < 0 || last_key != key) {
-              last_slot = find_slot(key);
-              last_key = key;
-            }
-            slot_row = rows_.data() + static_cast<std::size_t>(last_slot) * 64 + static_cast<std::size_t>(r);
-            used_[static_cast<std::size_t>(last_slot)] |= std::uint64_t{1} << r;
-          }
-          *slot_row |= bits;
+          const SlotRef& e = slot_index_[(key & 0xffffu) * 4 + ((key >> 19) & 3u)];
+          const auto k = static_cast<std::size_t>(e.slice == slice_stamp_ ? e.slot : find_slot(key));
+          rows_[k * 64 + static_cast<std::size_t>(r)] |= bits;
+          used_[k] |= std::uint64_t{1} << r;
         };
         // One face at bit b: special blocks; AO open (kOpen), from the neighbourhood table
         // (kTable) or, for faces on an edge bit, from the padding blocks (kEdge).
