@@ -26,7 +26,7 @@
 //
 // Failure: every error starts with the species file's name and the JSON path, e.g.
 // "oak.json: model.objt: no such file trees/oak.objt" (kNotFound), "oak.json:3:14: ..." for
-// malformed JSON (kParse; NaN is not JSON), "oak.json: units: 1e+09 is above the maximum 1000"
+// malformed JSON (kParse; NaN is not JSON), "oak.json: units: 1000000000 is above the maximum 1000"
 // (kInvalidArgument), OBJT errors with the OBJT file and line; a file over 1 MiB (species) or
 // 64 MiB (OBJT), a model taller or wider than 1 km after scaling are kLimit. Unknown keys and OBJT
 // repairs are warnings "oak.json: ...", never silently dropped. Nothing is written.
