@@ -298,10 +298,6 @@ Result<ChunkMesh> ChunkFile::read_chunk(std::uint32_t index) const {
   return m;
 }
 
-}  // namespace sylva::terrain
-
-namespace sylva::terrain {
-
 Result<ChunkTree> ChunkFile::read_tree(const ChunkTreeSettings& settings, const BuildControl& control) const {
   const ChunkTreeSettings& stored = tree_.settings();
   auto differs = [&](const char* name, double file, double wanted) {

@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 namespace sylva::terrain {
@@ -21,14 +22,22 @@ std::uint64_t hash_value(const T& v, std::uint64_t h) {
 }
 
 // Deletes the least recently used (oldest modification time: a hit touches its file) cache files
-// beyond `keep`. Best effort: a file that cannot be removed stays.
+// beyond `keep`, and temporaries of writes killed more than an hour ago (SIGKILL or a power cut
+// leaves ".terrain-<key>.<pid>-<n>.tmp.sylvaterrain", up to a GB at 4097^2; a younger one may be
+// another launch's write in progress). Best effort: a file that cannot be removed stays.
 void prune(const std::filesystem::path& directory, int keep) {
   std::error_code ec;
+  const auto stale = std::filesystem::file_time_type::clock::now() - std::chrono::hours(1);
   std::vector<std::pair<std::filesystem::file_time_type, std::filesystem::path>> files;
   for (const auto& entry : std::filesystem::directory_iterator(directory, ec)) {
     const std::string name = entry.path().filename().string();
-    if (!name.starts_with(kPrefix) || entry.path().extension() != kExtension) continue;
-    files.emplace_back(entry.last_write_time(ec), entry.path());
+    if (entry.path().extension() != kExtension) continue;
+    const std::filesystem::file_time_type time = entry.last_write_time(ec);
+    if (name.starts_with(std::string(".") + kPrefix) && name.find(".tmp") != std::string::npos) {
+      if (!ec && time < stale) std::filesystem::remove(entry.path(), ec);
+      continue;
+    }
+    if (name.starts_with(kPrefix)) files.emplace_back(time, entry.path());
   }
   if (files.size() <= static_cast<std::size_t>(std::max(keep, 1))) return;
   std::sort(files.begin(), files.end(), [](const auto& a, const auto& b) { return a.first > b.first; });

@@ -281,6 +281,19 @@ TEST(TreeCacheBuildOrLoad, UnwritableFolderIsAWarningAndOldFilesArePruned) {
   EXPECT_FALSE(fs::exists(files[0]));
   EXPECT_TRUE(fs::exists(files[1]));
   EXPECT_TRUE(fs::exists(files[2]));
+
+  // Temporaries of killed writes: removed by the next write once older than an hour; a younger one
+  // (another launch writing now) stays.
+  const fs::path old_temp = cache / ".terrain-0123456789abcdef.99999-1.tmp.sylvaterrain";
+  const fs::path new_temp = cache / ".terrain-0123456789abcdef.99998-1.tmp.sylvaterrain";
+  std::ofstream(old_temp) << "half";
+  std::ofstream(new_temp) << "half";
+  fs::last_write_time(old_temp, fs::file_time_type::clock::now() - std::chrono::hours(2));
+  ChunkTreeSettings t = s;
+  t.flat_tolerance = 0.04f;
+  ASSERT_EQ(build_or_load_chunk_tree(field(), t, c, {})->cache, TreeCacheOutcome::kMiss);
+  EXPECT_FALSE(fs::exists(old_temp));
+  EXPECT_TRUE(fs::exists(new_temp));
 }
 
 }  // namespace
