@@ -1,0 +1,94 @@
+// Species files and the OBJT models they name (issue #16) through sylva-player: junk, truncated,
+// wrong types, NaN, huge numbers and files, a species naming itself, missing files. A bad species
+// is left out with a warning naming the slot, the file and the JSON path, and the scene still
+// plays with the good one; a scene whose every species fails is refused with that message.
+
+#include "hostile_bytes.hpp"
+#include "hostile_case.hpp"
+
+namespace sylva::hostile {
+
+namespace {
+
+const std::string kRun = "scene.json --size 32x18 --frames 1";
+
+// Seed 000 §4.3.1's plain layout: a trunk and one branch.
+std::string seed_objt() {
+  return "name = \"hostile\"\nB 0 {\n l 0\n d 5\n z 0 0 0\n k 0 5 0\n r 1 0 0\n s 0 0 -1\n t 0 1 0\n p -1\n x 0\n}\n"
+         "B 1 {\n l 1\n d 2\n z 0 3 0\n k 2 3 0\n r 0 1 0\n s 0 0 1\n t 1 0 0\n p 0\n x 0.6\n}\n";
+}
+
+// A vegetation scene whose slot 0 is a good species (good.json) and slot 1 `bad` (when given).
+std::string species_scene(const std::string& bad) {
+  std::string slots = R"("0": {"file": "good.json"})";
+  if (!bad.empty()) slots += R"(, "1": {"file": ")" + bad + R"("})";
+  return R"({"sylva_scene": 1, "name": "hostile", "camera": {"position": [0, 4, 30], "yaw_deg": 0, "pitch_deg": 0, "fov_deg": 40},
+            "ground": {"size": 100.0, "resolution": 33, "generator": "flat"},
+            "vegetation": {"area_min": [-1, -1], "area_max": [1, 1], "layout": "grid", "trees_per_hectare": 1, "leaf_texture_size": 32,
+                           "forest": {"lod": {"enabled": false}}, "species_files": {)" +
+         slots + "}}}\n";
+}
+
+// The good species and `bad.json` (with `bytes`) beside it; the scene plays (exit 0, a picture)
+// and the message names the bad file and `words`.
+HostileCase bad_species(std::string name, std::function<std::string()> bytes, std::vector<std::string> words) {
+  words.insert(words.begin(), {"vegetation.species_files.1.file", "bad.json", "left out"});
+  return {.name = std::move(name),
+          .files = {{"scene.json", [] { return species_scene("bad.json"); }},
+                    {"good.json", [] { return std::string(R"({"name": "good", "model": {"objt": "tree.objt"}})"); }},
+                    {"tree.objt", seed_objt},
+                    {"bad.json", std::move(bytes)}},
+          .args = kRun + " --screenshot shot.png",
+          .exit_code = 0,
+          .words = std::move(words),
+          .needs_module = "vegetation",
+          .picture = "shot.png"};
+}
+
+std::function<std::string()> text(std::string s) {
+  return [s] { return s; };
+}
+
+}  // namespace
+
+std::vector<HostileCase> species_file_cases() {
+  std::vector<HostileCase> cases = {
+      bad_species("SpeciesBinaryJunk", [] { return junk(3000); }, {"bad.json:1:"}),
+      bad_species("SpeciesEmptyFile", text(""), {"bad.json:1:"}),
+      bad_species("SpeciesTruncated", text(R"({"model": {"objt": "tree.o)"), {"bad.json:1:"}),
+      bad_species("SpeciesNotAnObject", text("[1, 2, 3]"), {"must be a JSON object"}),
+      bad_species("SpeciesWithoutModel", text(R"({"units": 2})"), {"model: missing"}),
+      bad_species("SpeciesUnitsWrongType", text(R"({"model": {"objt": "tree.objt"}, "units": "big"})"), {"units"}),
+      bad_species("SpeciesUnitsNaN", text(R"({"model": {"objt": "tree.objt"}, "units": NaN})"), {"bad.json:1:"}),
+      bad_species("SpeciesUnitsHuge", text(R"({"model": {"objt": "tree.objt"}, "units": 1e300})"), {"units"}),
+      bad_species("SpeciesTreeTooLarge", text(R"({"model": {"objt": "tree.objt"}, "units": 900})"), {"units", "1000 m limit"}),
+      bad_species("SpeciesTintNegative", text(R"({"model": {"objt": "tree.objt"}, "leaf_tint": [-1, 1, 1]})"), {"leaf_tint"}),
+      bad_species("SpeciesNamesItself", text(R"({"model": {"objt": "bad.json"}})"), {"model.objt", "bad.json:1"}),
+      bad_species("SpeciesObjtMissing", text(R"({"model": {"objt": "trees/oak.objt"}})"),
+                  {"model.objt: no such file trees/oak.objt"}),
+      bad_species("SpeciesObjtIsAFolder", text(R"({"model": {"objt": "."}})"), {"model.objt", "not a file"}),
+      bad_species("SpeciesPresetUnknown", text(R"({"model": {"preset": "palm"}})"), {"model.preset"}),
+      bad_species("SpeciesParameterHuge", text(R"({"model": {"preset": "birch", "parameters": {"trunk_length": 1e9}}})"),
+                  {"model.parameters.trunk_length"}),
+      bad_species("SpeciesTooBig", [] { return std::string(3u << 20, ' '); }, {"MiB limit"}),
+      {.name = "SpeciesObjtJunk",
+       .files = {{"scene.json", [] { return species_scene("bad.json"); }},
+                 {"good.json", text(R"({"model": {"objt": "tree.objt"}})")},
+                 {"tree.objt", seed_objt},
+                 {"bad.json", text(R"({"model": {"objt": "junk.objt"}})")},
+                 {"junk.objt", [] { return junk(5000); }}},
+       .args = kRun,
+       .exit_code = 0,
+       .words = {"vegetation.species_files.1.file", "bad.json: model.objt: junk.objt:", "left out"},
+       .needs_module = "vegetation"},
+      {.name = "SpeciesEveryOneFails",
+       .files = {{"scene.json", [] { return species_scene(""); }}, {"good.json", text(R"({"model": {"objt": "gone.objt"}})")}},
+       .args = kRun,
+       .exit_code = 2,
+       .words = {"good.json: model.objt: no such file gone.objt", "no species left"},
+       .needs_module = "vegetation"},
+  };
+  return cases;
+}
+
+}  // namespace sylva::hostile
