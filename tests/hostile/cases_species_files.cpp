@@ -49,6 +49,22 @@ std::function<std::string()> text(std::string s) {
   return [s] { return s; };
 }
 
+// The editor's path: a script sets a species slot on a scene that plays with the good species.
+HostileCase editor_sets(std::string name, std::string commands, int exit_code, std::vector<std::string> words) {
+  return {.name = std::move(name),
+          .tool = Tool::kEditor,
+          .files = {{"s.txt", text("load scene.json\n" + commands + "frames 1\nscreenshot shot.png 32x18\nquit\n")},
+                    {"scene.json", [] { return species_scene(""); }},
+                    {"good.json", text(R"({"name": "good", "model": {"objt": "tree.objt"}})")},
+                    {"tree.objt", seed_objt},
+                    {"bad.json", text(R"({"model": {"objt": "tree.objt"}, "units": -2})")}},
+          .args = "--script s.txt --size 32x18",
+          .exit_code = exit_code,
+          .words = std::move(words),
+          .needs_module = "vegetation",
+          .picture = exit_code == 0 ? "shot.png" : ""};
+}
+
 }  // namespace
 
 std::vector<HostileCase> species_file_cases() {
@@ -87,6 +103,10 @@ std::vector<HostileCase> species_file_cases() {
        .exit_code = 2,
        .words = {"good.json: model.objt: no such file gone.objt", "no species left"},
        .needs_module = "vegetation"},
+      editor_sets("EditorSetsABrokenSpecies", "set vegetation.species_files.1.file bad.json\nexpect vegetation.species_files.1.file bad.json\n",
+                  0, {"vegetation.species_files.1.file", "bad.json: units", "left out"}),
+      editor_sets("EditorSetsTheOnlySpeciesMissing", "set vegetation.species_files.0.file gone.json\n", 1,
+                  {"s.txt:2", "gone.json", "no such file", "no species left"}),
   };
   return cases;
 }
