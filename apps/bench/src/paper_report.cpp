@@ -111,7 +111,8 @@ std::string paper_markdown(const std::string& thesis, const std::vector<PaperOut
         }
       }
       const std::string rep = r < o.row_reports.size() ? o.row_reports[r] : "";
-      md += " | " + (rep.empty() ? std::string("not run") : fmt::format("[{0}]({0}/report.html)", rep)) + " |\n";
+      const std::string why = t.rows[r].missing.empty() ? "not run" : "not run: " + t.rows[r].missing;
+      md += " | " + (rep.empty() ? why : fmt::format("[{0}]({0}/report.html)", rep)) + " |\n";
     }
     md += fmt::format("\nDifferences from the thesis: {}\n", t.differences);
     for (const PaperColumn& c : t.columns) {

@@ -49,8 +49,13 @@ struct PaperColumn {
 };
 
 struct PaperRow {
+  PaperRow() = default;
+  PaperRow(std::string label_, std::vector<Assignment> assignments_, std::string missing_ = {})
+      : label(std::move(label_)), assignments(std::move(assignments_)), missing(std::move(missing_)) {}
+
   std::string label;                  // "10", "512 x 512", "+LOD1"
   std::vector<Assignment> assignments;
+  std::string missing;                // non-empty: Sylva cannot set this row up yet (why); shown, not run
 };
 
 struct PaperTable {
@@ -68,6 +73,7 @@ struct PaperTable {
   std::vector<Assignment> reference;
   glm::ivec2 size{1280, 720};         // the thesis's resolution
   std::string differences;            // deliberate differences from the thesis's set-up
+  bool thesis_has_numbers = true;     // false: the thesis shows figures only; Sylva's column stands alone
   std::string missing;                // non-empty: Sylva cannot run this table yet, and why
 };
 

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <ostream>
 
 namespace sylva::bench {
@@ -14,6 +15,17 @@ namespace {
 constexpr int kPaperFrames = 8;       // frames of the static camera per setting (full mode)
 constexpr int kQuickFrames = 2;
 constexpr glm::ivec2 kQuickSize{256, 144};
+
+// A table id as a folder name: "Fig. 4.7-4.10" -> "Fig-4.7-4.10" (links in paper.md stay plain).
+std::string folder_name(const std::string& id) {
+  std::string out;
+  for (char c : id) {
+    const bool keep = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-';
+    if (keep) out += c;
+    else if (!out.empty() && out.back() != '-') out += '-';
+  }
+  return out;
+}
 
 RunSpec row_spec(const PaperTable& t, std::size_t row, const PaperRunOptions& o, const std::filesystem::path& folder) {
   RunSpec spec;
@@ -52,9 +64,12 @@ PaperOutcome run_table(const PaperTable& t, const PaperRunOptions& o, const std:
   outcome.rows.resize(t.rows.size());
   outcome.row_reports.resize(t.rows.size());
   if (!t.missing.empty()) return outcome;
-  const std::size_t rows = o.quick ? 1 : t.rows.size();
-  for (std::size_t r = 0; r < rows; ++r) {
-    const std::string rel = fmt::format("tab-{}/row-{}", t.id, r);
+  bool ran_one = false;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    if (!t.rows[r].missing.empty()) continue;  // shown with the thesis's numbers, not run
+    if (o.quick && ran_one) break;             // --quick: the first row Sylva can run
+    ran_one = true;
+    const std::string rel = fmt::format("tab-{}/row-{}", folder_name(t.id), r);
     RunSpec spec = row_spec(t, r, o, thesis_dir / rel);
     cost = spec.cost;
     out << fmt::format("paper {} tab. {} row {} ({}): {} setting(s)\n", t.thesis, t.id, r, t.rows[r].label,
