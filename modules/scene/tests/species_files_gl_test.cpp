@@ -20,6 +20,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include <unistd.h>
+
 using namespace sylva;
 using namespace sylva::scene;
 namespace fs = std::filesystem;
@@ -80,7 +82,8 @@ class SpeciesFilesGl : public render::GlTest {
  protected:
   void SetUp() override {
     render::GlTest::SetUp();
-    dir_ = fs::temp_directory_path() / fmt::format("sylva_species_gl_{}", ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           fmt::format("sylva_species_gl_{}_{}", ::getpid(), ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "trees");
     fs::create_directories(dir_ / "species");

@@ -5,7 +5,8 @@
 
 #include <sylva/core/atomic_file.hpp>
 
-#include <fmt/format.h>
+#include "support/temp_path.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -52,8 +53,7 @@ L 1 {
 class SpeciesFileTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / fmt::format("sylva_species_{}", ::testing::UnitTest::GetInstance()->random_seed()) /
-           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    dir_ = testing::unique_temp(std::string("species_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "trees");
     ASSERT_TRUE(write_file_atomic(dir_ / "trees" / "seed.objt", kSeedObjt).ok());
