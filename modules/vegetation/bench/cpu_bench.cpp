@@ -1,14 +1,20 @@
 // CPU kernels of the vegetation module: tree generation, mesh building, the CPU reference of the
-// animation per vertex, texture generation and placement.
+// animation per vertex, texture generation, placement, and loading a species file.
+#include <sylva/core/atomic_file.hpp>
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/wind.hpp>
 #include <sylva/vegetation/animation.hpp>
 #include <sylva/vegetation/generator.hpp>
+#include <sylva/vegetation/objt.hpp>
 #include <sylva/vegetation/placement.hpp>
+#include <sylva/vegetation/species_file.hpp>
 #include <sylva/vegetation/textures.hpp>
 #include <sylva/vegetation/tree_mesh.hpp>
 
 #include <benchmark/benchmark.h>
+
+#include <filesystem>
+#include <unistd.h>
 
 namespace {
 
@@ -62,6 +68,30 @@ void BM_LeafTextures(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(generate_leaf_textures(s).ok());
 }
 BENCHMARK(BM_LeafTextures)->Arg(128)->Arg(256)->Unit(benchmark::kMillisecond);
+
+// A species file naming the preset's tree written as OBJT (issue #16): read, parse, validate
+// and scale; what a scene pays per species file before textures and the slice bake.
+void BM_LoadSpeciesFile(benchmark::State& state) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sylva_bench_species_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const TreeModel model = generate_tree(species_preset(static_cast<SpeciesPreset>(state.range(0)))).value();
+  if (!save_objt(dir / "tree.objt", model).ok() ||
+      !write_file_atomic(dir / "tree.json", R"({"model": {"objt": "tree.objt"}, "units": 1.5})").ok()) {
+    state.SkipWithError("cannot write the species files");
+    return;
+  }
+  std::size_t bytes = std::filesystem::file_size(dir / "tree.objt");
+  for (auto _ : state) {
+    std::vector<std::string> warnings;
+    Result<SpeciesFile> s = load_species_file(dir / "tree.json", warnings);
+    benchmark::DoNotOptimize(s.ok());
+  }
+  state.counters["branches"] = static_cast<double>(model.branches.size());
+  state.counters["leaves"] = static_cast<double>(model.leaves.size());
+  state.counters["MB/s"] = benchmark::Counter(static_cast<double>(bytes), benchmark::Counter::kIsIterationInvariantRate);
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_LoadSpeciesFile)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 void BM_PoissonPlacement(benchmark::State& state) {
   HeightField ground(257, 257, 4.0);
