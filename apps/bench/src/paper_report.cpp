@@ -30,7 +30,10 @@ double thesis_value(const PaperValue& v, std::size_t r) {
 // Sylva's value of (column, value) in row r, NaN when that row did not run.
 double sylva_value(const PaperOutcome& o, std::size_t r, std::size_t c, const PaperValue& v, CostMetric cost) {
   if (r >= o.rows.size() || !o.rows[r] || c >= o.rows[r]->size()) return std::nan("");
-  return paper_measure((*o.rows[r])[c], v, cost);
+  const double value = paper_measure((*o.rows[r])[c], v, cost);
+  const auto base = static_cast<std::size_t>(v.minus_column);
+  if (v.minus_column < 0 || base >= o.rows[r]->size()) return value;
+  return value - paper_measure((*o.rows[r])[base], v, cost);
 }
 
 // The first row with a value (the ratio's base): the thesis's first row, Sylva's first row that ran.

@@ -33,6 +33,9 @@ struct PaperValue {
   std::vector<double> thesis;   // one per row of the table; NaN where the thesis has "-"
   bool thesis_fps = false;      // the thesis gave frames per second: shown as ms = 1000 / FPS
   std::string metric;           // kMetric: the bench metric's name
+  // >= 0: Sylva's value minus the same quantity of that column in the same row (a baseline column,
+  // such as the scene without the measured object, so a count is the object's own).
+  int minus_column = -1;
 };
 
 // One column: a setting applied on top of the row's, and what is reported of it.

@@ -56,6 +56,18 @@ TEST(PaperReport, ThesisAndSylvaSideBySideWithRatiosToTheFirstRow) {
   EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["lod_instances_per_frame"]["LOD0"]["vegetation.lod0"].get<double>(), 10.0);
 }
 
+TEST(PaperReport, ABaselineColumnIsSubtracted) {
+  PaperTable t = two_row_table();
+  t.columns[0].values[1].minus_column = 1;  // LOD0 fragments minus the "empty" column's
+  t.columns.push_back({"empty", {}, {}});
+  PaperOutcome o;
+  o.table = &t;
+  o.rows = {std::vector<SettingResult>{measured(40.0, 2000, 2), measured(10.0, 1500, 2)}, std::nullopt};
+  const nlohmann::json j = paper_json("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][0]["values"]["LOD0 fragments"]["sylva"].get<double>(), 250.0);  // 1000 - 750
+  EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][0]["values"]["LOD0 ms"]["sylva"].get<double>(), 40.0);  // not subtracted
+}
+
 TEST(PaperReport, RowsNotRunAndTablesNotReproducibleAreSaidSo) {
   PaperTable t = two_row_table();
   PaperOutcome o;
