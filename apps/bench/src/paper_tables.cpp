@@ -37,19 +37,13 @@ std::string stage_000(double trees_per_hectare, bool shadows) {
 
 // Values of a column: a time (the thesis's FPS shown as ms), a count per frame, a bench metric.
 PaperValue ms(std::vector<double> thesis, bool thesis_fps = false) {
-  PaperValue v;
-  v.name = "ms";
-  v.measure = PaperMeasure::kMs;
-  v.thesis = std::move(thesis);
+  PaperValue v = paper_value("ms", PaperMeasure::kMs, std::move(thesis));
   v.thesis_fps = thesis_fps;
   return v;
 }
 PaperValue fps(std::vector<double> thesis) { return ms(std::move(thesis), true); }
 PaperValue counted(const char* name, PaperMeasure measure, std::vector<double> thesis) {
-  PaperValue v = ms(std::move(thesis));
-  v.name = name;
-  v.measure = measure;
-  return v;
+  return paper_value(name, measure, std::move(thesis));
 }
 PaperValue metric(const char* name, const char* bench_metric, std::vector<double> thesis) {
   PaperValue v = counted(name, PaperMeasure::kMetric, std::move(thesis));
@@ -59,6 +53,19 @@ PaperValue metric(const char* name, const char* bench_metric, std::vector<double
 
 std::string vec2(double x, double y) { return fmt::format("[{},{}]", x, y); }
 std::string vec3(double x, double y, double z) { return fmt::format("[{},{},{}]", x, y, z); }
+
+// A table's heading: which thesis and table, what it measures, on what, and the stage it runs on.
+PaperTable new_table(const char* thesis, const char* id, std::string title, const char* row_header,
+                     const char* hardware, std::string scene_json) {
+  PaperTable t;
+  t.thesis = thesis;
+  t.id = id;
+  t.title = std::move(title);
+  t.row_header = row_header;
+  t.thesis_hardware = hardware;
+  t.scene_json = std::move(scene_json);
+  return t;
+}
 
 // Forced LOD for a whole column (criterion distance): LOD0 everywhere, or LOD1 from 0 m on.
 const std::vector<Assignment> kAllLod0{{"vegetation.forest.lod.v1", "1000000"}, {"vegetation.forest.lod.v2", "2000000"}};
@@ -79,14 +86,10 @@ PaperRow forest_row(int n, int nx, int nz) {
 }
 
 PaperTable lod0_vs_lod1(const std::string& id, bool msaa, const std::vector<double>& lod0, const std::vector<double>& lod1) {
-  PaperTable t;
-  t.thesis = "000";
-  t.id = id;
-  t.title = fmt::format("LOD0 vs LOD1, {} (SMALL FOREST up to 50 instances, FOREST above)",
-                        msaa ? "4x multisampling" : "no multisampling");
-  t.row_header = "# instances";
-  t.thesis_hardware = kHardware000;
-  t.scene_json = stage_000(100.0, false);
+  PaperTable t = new_table("000", id.c_str(),
+                           fmt::format("LOD0 vs LOD1, {} (SMALL FOREST up to 50 instances, FOREST above)",
+                                       msaa ? "4x multisampling" : "no multisampling"),
+                           "# instances", kHardware000, stage_000(100.0, false));
   t.overrides = {{"render.msaa_samples", msaa ? "4" : "1"}};
   t.rows = {forest_row(10, 5, 2),    forest_row(25, 5, 5),     forest_row(50, 10, 5),   forest_row(100, 10, 10),
             forest_row(250, 25, 10), forest_row(500, 25, 20), forest_row(1000, 40, 25)};
@@ -100,13 +103,11 @@ PaperTable lod0_vs_lod1(const std::string& id, bool msaa, const std::vector<doub
 }
 
 PaperTable fragments_table() {
-  PaperTable t;
-  t.thesis = "000";
-  t.id = "5.3";
-  t.title = "render time against fragments (FRAGMENTS: one tree at the origin seen from 50 to 10 units, no multisampling)";
-  t.row_header = "distance";
-  t.thesis_hardware = kHardware000;
-  t.scene_json = stage_000(100.0, false);  // area (-5,-5)..(5,5) on a 10 m grid: one tree at the origin
+  // The stage's area (-5,-5)..(5,5) on a 10 m grid: one tree at the origin.
+  PaperTable t = new_table("000", "5.3",
+                           "render time against fragments (FRAGMENTS: one tree at the origin seen from 50 to 10 units, "
+                           "no multisampling)",
+                           "distance", kHardware000, stage_000(100.0, false));
   t.overrides = {{"render.msaa_samples", "1"}};
   for (int d : {50, 40, 30, 20, 10}) {
     t.rows.push_back({fmt::format("{}", d), {{"camera.position", vec3(0.0, 6.0, d)}, {"camera.pitch_deg", "0"}}});
@@ -132,15 +133,10 @@ PaperTable fragments_table() {
 }
 
 PaperTable lod_share_table() {
-  PaperTable t;
-  t.thesis = "000";
-  t.id = "5.4";
-  t.title = "share of each LOD in the render time (50 instances, fixed LOD distances)";
-  t.row_header = "configuration";
-  t.thesis_hardware = kHardware000;
   // 5 x 10 trees on a 25 m grid seen along its depth: trees from 10 to 245 m, so the default
   // thresholds (LOD1 from 45 m, LOD2 from 110 m) give all three levels.
-  t.scene_json = stage_000(16.0, false);
+  PaperTable t = new_table("000", "5.4", "share of each LOD in the render time (50 instances, fixed LOD distances)",
+                           "configuration", kHardware000, stage_000(16.0, false));
   t.overrides = {{"render.msaa_samples", "1"},
                  {"vegetation.area_max", vec2(4.5 * 25.0, 9.5 * 25.0)},
                  {"camera.position", vec3(50.0, 12.0, 9.0 * 25.0 + 10.0)},
@@ -163,12 +159,9 @@ PaperTable lod_share_table() {
 }
 
 PaperTable animation_table() {
-  PaperTable t;
-  t.thesis = "000";
-  t.id = "5.5";
-  t.title = "animation detail of LOD1 and LOD2 against render time (10/25/50/100 instances)";
-  t.row_header = "animation level";
-  t.thesis_hardware = kHardware000;
+  PaperTable t = new_table("000", "5.5",
+                           "animation detail of LOD1 and LOD2 against render time (10/25/50/100 instances)",
+                           "animation level", kHardware000, {});
   t.missing =
       "the animation level of LOD1/LOD2 (static, + trunk, + main branches, + leaves) is not selectable in Sylva yet "
       "(issue 20: 'animation level for LOD1/LOD2 as for LOD0')";
@@ -176,13 +169,8 @@ PaperTable animation_table() {
 }
 
 PaperTable shadow_table() {
-  PaperTable t;
-  t.thesis = "000";
-  t.id = "5.6";
-  t.title = "shadow-map resolution against render time (one tree, fixed light, no multisampling)";
-  t.row_header = "shadow map";
-  t.thesis_hardware = kHardware000;
-  t.scene_json = stage_000(100.0, true);
+  PaperTable t = new_table("000", "5.6", "shadow-map resolution against render time (one tree, fixed light, no multisampling)",
+                           "shadow map", kHardware000, stage_000(100.0, true));
   t.overrides = {{"render.msaa_samples", "1"}, {"camera.position", vec3(0.0, 8.0, 30.0)}, {"camera.pitch_deg", "-5"}};
   for (int r : {512, 1024, 2048}) t.rows.push_back({fmt::format("{0} x {0}", r), {{"render.shadows.resolution", fmt::format("{}", r)}}});
   auto lod1 = [](bool rewrite) {
@@ -247,15 +235,8 @@ std::vector<PaperRow> size_rows() {
   return rows;
 }
 
-PaperTable table_002(const std::string& id, const std::string& title, const std::string& row_header) {
-  PaperTable t;
-  t.thesis = "002";
-  t.id = id;
-  t.title = title;
-  t.row_header = row_header;
-  t.thesis_hardware = kHardware002;
-  t.scene_json = stage_002();
-  return t;
+PaperTable table_002(const char* id, const char* title, const char* row_header) {
+  return new_table("002", id, title, row_header, kHardware002, stage_002());
 }
 
 const std::vector<Assignment> kSeedCriterion{{"terrain.render.lod.criterion", "seed_distance"}};
@@ -377,15 +358,8 @@ const std::vector<Assignment> kClumpsOnly{{"grass.render.cull.near_distance", "0
 const std::vector<Assignment> kGroundOnly{{"grass.render.cull.near_distance", "0.5"}, {"grass.far.clumps", "false"},
                                           {"grass.far.under_layer", "true"}};
 
-PaperTable table_003(const std::string& id, const std::string& title, const std::string& row_header) {
-  PaperTable t;
-  t.thesis = "003";
-  t.id = id;
-  t.title = title;
-  t.row_header = row_header;
-  t.thesis_hardware = kHardware003;
-  t.scene_json = stage_003();
-  return t;
+PaperTable table_003(const char* id, const char* title, const char* row_header) {
+  return new_table("003", id, title, row_header, kHardware003, stage_003());
 }
 
 std::vector<PaperRow> map_rows(const std::vector<int>& sizes, std::vector<Assignment> (*place)(int)) {
@@ -485,13 +459,8 @@ std::vector<PaperTable> tables_003() {
 // tessellation levels n (Fig. 4.7-4.10). Sylva's column stands alone: the cost and image error of
 // the blade tessellation level, on the seed 003 stage (a 16 x 16 m patch seen from 10 m).
 std::vector<PaperTable> tables_001() {
-  PaperTable t;
-  t.thesis = "001";
-  t.id = "Fig. 4.7-4.10";
-  t.title = "blade tessellation level n (the thesis shows figures, no numbers)";
-  t.row_header = "n";
-  t.thesis_hardware = "none stated (the thesis reports no measurements)";
-  t.scene_json = stage_003();
+  PaperTable t = new_table("001", "Fig. 4.7-4.10", "blade tessellation level n (the thesis shows figures, no numbers)", "n",
+                           "none stated (the thesis reports no measurements)", stage_003());
   t.thesis_has_numbers = false;
   t.overrides = {{"grass.area_min", vec2(-8, -16)}, {"grass.area_max", vec2(8, 0)}, {"grass.field.density", "120"},
                  {"camera.position", vec3(0.0, 1.6, 4.0)}, {"camera.pitch_deg", "-12"},
@@ -525,14 +494,7 @@ std::vector<PaperTable> tables_004() {
   const char* hardware = "not stated; mean GPU time of the first 1000 frames";
   std::vector<PaperTable> out;
   auto table = [&](const char* id, const char* title, const char* row_header) {
-    PaperTable t;
-    t.thesis = "004";
-    t.id = id;
-    t.title = title;
-    t.row_header = row_header;
-    t.thesis_hardware = hardware;
-    t.scene_json = stage_004();
-    return t;
+    return new_table("004", id, title, row_header, hardware, stage_004());
   };
   {
     PaperTable t = table("R1", "shadow-map pass: alpha-tested, early-z or split fragment shaders", "configuration");
@@ -573,6 +535,14 @@ std::vector<PaperTable> tables_004() {
   return out;
 }
 }  // namespace
+
+PaperValue paper_value(std::string name, PaperMeasure measure, std::vector<double> thesis) {
+  PaperValue v;
+  v.name = std::move(name);
+  v.measure = measure;
+  v.thesis = std::move(thesis);
+  return v;
+}
 
 std::vector<std::string> paper_names() { return {"000", "001", "002", "003", "004"}; }
 

@@ -80,6 +80,9 @@ struct PaperTable {
   std::string missing;                // non-empty: Sylva cannot run this table yet, and why
 };
 
+// A value of a column (ms and counts per frame: see PaperMeasure) with the thesis's numbers.
+PaperValue paper_value(std::string name, PaperMeasure measure, std::vector<double> thesis);
+
 // Theses with a --paper command: "000" ... "004", in the order `--paper all` runs them.
 std::vector<std::string> paper_names();
 

@@ -2,15 +2,13 @@
 // run gets its first row measured beside the thesis's numbers, the columns select what they claim
 // (the LOD forced per column, the instance count of the row), and a thesis without transcribed
 // tables is refused as not available, never passed silently.
+#include "bench_exe.hpp"
+
 #include <sylva/core/atomic_file.hpp>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -20,19 +18,10 @@ namespace {
 
 #ifdef SYLVA_BENCH_WITH_SCENE
 
-int run(const std::string& args, const fs::path& log, std::string& output) {
-  const std::string cmd = std::string(SYLVA_BENCH_EXE) + " " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  auto text = sylva::read_file(log);
-  output = text.ok() ? *text : "";
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using sylva::bench::testing::run_bench;
 
-fs::path test_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva-bench-paper-test-" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+std::filesystem::path test_dir(const std::string& name) {
+  return sylva::bench::testing::fresh_test_dir("sylva-bench-paper-test", name);
 }
 
 const nlohmann::json& table(const nlohmann::json& paper, const std::string& id) {
@@ -52,7 +41,7 @@ struct BenchPaperAllRun {
   int code = -1;
 
   BenchPaperAllRun() : out(test_dir("all")) {
-    code = run("--paper all --quick --size 96x54 --out '" + out.string() + "'", out / "log.txt", output);
+    code = run_bench("--paper all --quick --size 96x54 --out '" + out.string() + "'", out / "log.txt", output);
   }
 
   // The thesis's paper.json, after checking every table Sylva can run: its one run row has Sylva's
@@ -180,7 +169,7 @@ TEST(BenchPaper, AllQuickFillsEveryTableSylvaCanRun) {
 TEST(BenchPaper, UnknownThesisIsRefused) {
   const fs::path out = test_dir("005");
   std::string output;
-  const int code = run("--paper 005 --quick --out '" + out.string() + "'", out / "log.txt", output);
+  const int code = run_bench("--paper 005 --quick --out '" + out.string() + "'", out / "log.txt", output);
   EXPECT_EQ(code, 2) << output;
   EXPECT_NE(output.find("--paper: \"005\" is not 000"), std::string::npos) << output;
 }

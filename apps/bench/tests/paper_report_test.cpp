@@ -10,14 +10,6 @@
 namespace sylva::bench {
 namespace {
 
-PaperValue value(const char* name, PaperMeasure measure, std::vector<double> thesis) {
-  PaperValue v;
-  v.name = name;
-  v.measure = measure;
-  v.thesis = std::move(thesis);
-  return v;
-}
-
 PaperTable two_row_table() {
   PaperTable t;
   t.thesis = "000";
@@ -26,7 +18,7 @@ PaperTable two_row_table() {
   t.row_header = "# things";
   t.thesis_hardware = "a GPU";
   t.rows = {{"10", {}}, {"20", {}}};
-  t.columns = {{"LOD0", {}, {value("ms", PaperMeasure::kMs, {2.0, 5.0}), value("fragments", PaperMeasure::kFragments, {100, 300})}}};
+  t.columns = {{"LOD0", {}, {paper_value("ms", PaperMeasure::kMs, {2.0, 5.0}), paper_value("fragments", PaperMeasure::kFragments, {100, 300})}}};
   t.differences = "none";
   return t;
 }

@@ -1,6 +1,8 @@
 // sylva-bench on a scene file through modules/scene (when the scene module is part of the
 // build): the shipped ground-only scene swept over its mesh resolution, and the scene's own
 // parameter paths in error messages.
+#include "bench_exe.hpp"
+
 #include <sylva/core/atomic_file.hpp>
 
 #include <gtest/gtest.h>
@@ -20,27 +22,16 @@ namespace {
 
 #if defined(SYLVA_BENCH_WITH_SCENE) && defined(SYLVA_BENCH_SCENES_DIR)
 
-int run(const std::string& args, const fs::path& log, std::string& output) {
-  const std::string cmd = std::string(SYLVA_BENCH_EXE) + " " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  auto text = sylva::read_file(log);
-  output = text.ok() ? *text : "";
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
+using sylva::bench::testing::run_bench;
 
-fs::path test_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva-bench-scene-test-" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path test_dir(const std::string& name) { return sylva::bench::testing::fresh_test_dir("sylva-bench-scene-test", name); }
 
 const std::string kGroundScene = std::string(SYLVA_BENCH_SCENES_DIR) + "/ground.json";
 
 TEST(BenchSceneSweep, GroundSceneResolutionSweep) {
   const fs::path out = test_dir("ground");
   std::string output;
-  const int code = run("'" + kGroundScene + "' --sweep ground.resolution=17,33 --reference ground.resolution=129 "
+  const int code = run_bench("'" + kGroundScene + "' --sweep ground.resolution=17,33 --reference ground.resolution=129 "
                        "--camera-path orbit --frames 2 --size 96x54 --warmup 1 --out '" + out.string() + "'",
                        out / "log.txt", output);
   ASSERT_EQ(code, 0) << output;
@@ -93,7 +84,7 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
     {"time_s": 4.0, "position": [200.0, 40.0, -150.0], "height_mode": "above_ground", "yaw_deg": -40.0, "pitch_deg": -8.0}]}}
 })").ok());
   std::string output;
-  const int code = run("'" + scene.string() + "' --sweep terrain.render.lod.max_pixel_error=1,4 "
+  const int code = run_bench("'" + scene.string() + "' --sweep terrain.render.lod.max_pixel_error=1,4 "
                        "--reference terrain.render.lod.max_pixel_error=0.05 --camera-path fly --frames 2 --warmup 1 "
                        "--size 96x54 --out '" + (out / "o").string() + "'",
                        out / "log.txt", output);
@@ -136,11 +127,11 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
 TEST(BenchSceneSweep, UnknownScenePathAndCameraPathAreNamed) {
   const fs::path out = test_dir("unknown");
   std::string output;
-  EXPECT_EQ(run("'" + kGroundScene + "' --sweep grass.field.density=1,2 --out '" + (out / "o").string() + "'",
+  EXPECT_EQ(run_bench("'" + kGroundScene + "' --sweep grass.field.density=1,2 --out '" + (out / "o").string() + "'",
                 out / "log.txt", output),
             2);
   EXPECT_NE(output.find("--sweep grass.field.density"), std::string::npos) << output;
-  EXPECT_EQ(run("'" + kGroundScene + "' --camera-path nowhere --out '" + (out / "o").string() + "'", out / "log2.txt",
+  EXPECT_EQ(run_bench("'" + kGroundScene + "' --camera-path nowhere --out '" + (out / "o").string() + "'", out / "log2.txt",
                 output),
             2);
   EXPECT_NE(output.find("nowhere"), std::string::npos) << output;
@@ -153,12 +144,12 @@ TEST(BenchSceneSweep, UnwritableOutFailsBeforeRendering) {
   const fs::path dir = test_dir("unwritable");
   std::string output;
   // /proc refuses new entries even to root.
-  EXPECT_EQ(run("--stability --out /proc/sylva_bench_test", dir / "log.txt", output), 1);
+  EXPECT_EQ(run_bench("--stability --out /proc/sylva_bench_test", dir / "log.txt", output), 1);
   EXPECT_NE(output.find("--out /proc/sylva_bench_test: cannot create a file in the folder /proc"), std::string::npos)
       << output;
   EXPECT_EQ(output.find("passed"), std::string::npos) << "no case may run first:\n" << output;
   std::ofstream(dir / "file.txt") << "not a folder";
-  EXPECT_EQ(run("'" + kGroundScene + "' --sweep ground.height=5,10 --out '" + (dir / "file.txt" / "o").string() + "'",
+  EXPECT_EQ(run_bench("'" + kGroundScene + "' --sweep ground.height=5,10 --out '" + (dir / "file.txt" / "o").string() + "'",
                 dir / "log2.txt", output),
             1);
   EXPECT_NE(output.find((dir / "file.txt").string() + " is not a folder"), std::string::npos) << output;

@@ -2,6 +2,8 @@
 // A tiny sweep writes all three files with one report row per setting; an unknown parameter
 // path or an out-of-range value fails before rendering with a message naming it; two runs agree
 // in every count exactly.
+#include "bench_exe.hpp"
+
 #include <sylva/core/atomic_file.hpp>
 
 #include <gtest/gtest.h>
@@ -19,27 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using sylva::bench::testing::run_bench;
+using sylva::bench::testing::RunResult;
 
-fs::path test_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva-bench-test-" + std::to_string(::getpid())) / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-RunResult run_bench(const std::string& args, const fs::path& log) {
-  const std::string cmd = std::string(SYLVA_BENCH_EXE) + " " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  RunResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  auto text = sylva::read_file(log);
-  if (text.ok()) r.output = *text;
-  return r;
-}
+fs::path test_dir(const std::string& name) { return sylva::bench::testing::fresh_test_dir("sylva-bench-test", name); }
 
 std::size_t count(const std::string& text, const std::string& needle) {
   std::size_t n = 0;
