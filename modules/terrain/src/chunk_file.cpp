@@ -14,16 +14,6 @@
 
 namespace sylva::terrain {
 
-std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  std::uint64_t h = seed;
-  for (std::size_t i = 0; i < bytes; ++i) {
-    h ^= p[i];
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
 namespace {
 
 constexpr char kMagic[8] = {'S', 'Y', 'L', 'V', 'A', 'C', 'H', 'K'};

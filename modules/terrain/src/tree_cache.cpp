@@ -4,6 +4,8 @@
 #include <sylva/core/timer.hpp>
 #include <sylva/terrain/chunk_file.hpp>
 
+#include <sylva/core/cache_directory.hpp>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -79,15 +81,7 @@ std::filesystem::path chunk_tree_cache_file(const std::filesystem::path& directo
 }
 
 std::filesystem::path resolve_tree_cache_directory(const std::string& setting, const std::filesystem::path& base) {
-  if (setting.empty()) return {};
-  if (setting == "auto") {
-    std::error_code ec;
-    const std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
-    if (ec) return {};
-    return tmp / "sylva-terrain-cache";
-  }
-  const std::filesystem::path p(setting);
-  return p.is_absolute() || base.empty() ? p : base / p;
+  return resolve_cache_directory(setting, "sylva-terrain-cache", base);
 }
 
 Result<ChunkTree> load_cached_chunk_tree(const std::filesystem::path& file, const HeightField& field,

@@ -1,6 +1,7 @@
 #include <sylva/vegetation/slice_bake.hpp>
 
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/cache_directory.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/shader_library.hpp>
@@ -328,15 +329,6 @@ Result<BakedTree> bake_tree_slices(const TreeAsset& asset, const TreeMesh& mesh,
   return out;
 }
 
-std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t h) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < bytes; ++i) {
-    h ^= p[i];
-    h *= 0x100000001b3ull;
-  }
-  return h;
-}
-
 std::uint64_t slice_cache_key(const TreeMesh& mesh, const TreeTextureSet& tex, int resolution, float margin_share) {
   std::uint64_t h = fnv1a64(&kFormatVersion, sizeof(kFormatVersion));
   h = fnv1a64(&resolution, sizeof(resolution), h);
@@ -428,14 +420,7 @@ std::filesystem::path slice_cache_file(const std::filesystem::path& directory, s
 }
 
 std::filesystem::path resolve_cache_directory(const std::string& setting) {
-  if (setting.empty()) return {};
-  if (setting == "auto") {
-    std::error_code ec;
-    const std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
-    if (ec) return {};
-    return tmp / "sylva-lod-cache";
-  }
-  return setting;
+  return sylva::resolve_cache_directory(setting, "sylva-lod-cache");
 }
 
 Result<BakedTree> bake_or_load_slices(const TreeAsset& asset, const TreeMesh& mesh, const TreeTextureSet& textures,

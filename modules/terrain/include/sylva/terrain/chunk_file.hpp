@@ -11,6 +11,7 @@
 // A truncated or corrupt file gives a clear error naming the file and what is wrong (and the
 // chunk, for a blob), never a crash.
 
+#include <sylva/core/hash.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
 
@@ -113,7 +114,7 @@ class ChunkFile {
   mutable std::ifstream in_;
 };
 
-// FNV-1a 64 of a byte range (exposed for tests that corrupt files on purpose).
-std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed = 0xcbf29ce484222325ull);
+// FNV-1a 64 of a byte range (core/hash.hpp; tests that corrupt files on purpose recompute it).
+using sylva::fnv1a64;
 
 }  // namespace sylva::terrain

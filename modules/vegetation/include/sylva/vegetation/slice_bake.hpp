@@ -33,6 +33,7 @@
 // core (write_file_atomic). A file with a wrong magic, version, key, size or checksum is rejected
 // with kCorrupt and rebaked; the rebake overwrites it.
 
+#include <sylva/core/hash.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/vegetation/tree_mesh.hpp>
 
@@ -107,7 +108,7 @@ Result<BakedTree> bake_tree_slices(const TreeAsset& asset, const TreeMesh& mesh,
 
 // Cache key: mesh vertices and records, the texture images, resolution, margin, format version.
 std::uint64_t slice_cache_key(const TreeMesh& mesh, const TreeTextureSet& textures, int resolution, float margin_share);
-std::uint64_t fnv1a64(const void* data, std::size_t bytes, std::uint64_t seed = 0xcbf29ce484222325ull);
+using sylva::fnv1a64;  // core/hash.hpp
 
 std::string serialize_slices(const BakedTree& tree, std::uint64_t key);
 // kCorrupt naming what is wrong (magic, version, key, size, checksum, dimensions).
