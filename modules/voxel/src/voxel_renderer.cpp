@@ -588,14 +588,21 @@ void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm
   // leaves, sides-only tufts, plant cubes seen edge-on) must not lose faces to culling.
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glDisable(GL_CULL_FACE);
-  bind_common(depth_program_, nullptr);
-  bind_common(plant_depth_opaque_program_, nullptr);
+  // Which fragment shader each kind of caster uses (seed 004 R1, ShadowPassShaders).
+  const ShadowPassShaders shaders = settings_.shadow_shaders;
+  render::Program& opaque_chunks = shaders == ShadowPassShaders::kAlphaTested ? depth_alpha_program_ : depth_program_;
+  render::Program& opaque_plants =
+      shaders == ShadowPassShaders::kAlphaTested ? plant_depth_program_ : plant_depth_opaque_program_;
+  render::Program& cut_chunks = shaders == ShadowPassShaders::kEarlyZ ? depth_program_ : depth_alpha_program_;
+  render::Program& cut_plants = shaders == ShadowPassShaders::kEarlyZ ? plant_depth_opaque_program_ : plant_depth_program_;
+  bind_common(opaque_chunks, nullptr);
+  bind_common(opaque_plants, nullptr);
   // Every face: a light's view is no eye position, and leaves cast through both their sides.
   constexpr double kAll = std::numeric_limits<double>::infinity();
-  draw_chunks(chunks, depth_program_, plant_depth_opaque_program_, false, relative_view_projection, origin, kAll, stats);
-  bind_common(depth_alpha_program_, nullptr);
-  bind_common(plant_depth_program_, nullptr);
-  draw_chunks(chunks, depth_alpha_program_, plant_depth_program_, true, relative_view_projection, origin, kAll, stats);
+  draw_chunks(chunks, opaque_chunks, opaque_plants, false, relative_view_projection, origin, kAll, stats);
+  bind_common(cut_chunks, nullptr);
+  bind_common(cut_plants, nullptr);
+  draw_chunks(chunks, cut_chunks, cut_plants, true, relative_view_projection, origin, kAll, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
 }
 
@@ -607,11 +614,13 @@ void VoxelRenderer::draw_shadow(const render::ShadowCasterContext& context) {
   shadow_list_.clear();
   for (auto& [c, gpu] : chunks_) {
     const bool empty = gpu->opaque_quads + gpu->alpha_quads == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
-    if (empty || !context.light_frustum.intersects(gpu->box)) continue;
+    if (empty) continue;
+    if (settings_.shadow_chunk_culling && !context.light_frustum.intersects(gpu->box)) continue;
     shadow_list_.push_back(gpu.get());
   }
   std::sort(shadow_list_.begin(), shadow_list_.end(),
             [](const ChunkGpu* a, const ChunkGpu* b) { return a->coord < b->coord; });
+  stats_.shadow_chunks_cast += shadow_list_.size();
   draw_depth_list(shadow_list_, context.relative_view_projection, context.camera->position(), stats);
 }
 

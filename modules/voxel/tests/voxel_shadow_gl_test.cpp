@@ -212,6 +212,23 @@ TEST_F(VoxelShadowGl, AlphaCutLeavesCastCutOutShadowsAndPlantsCast) {
   EXPECT_LT(uncut.lit, uncut.samples / 100);
   (*renderer)->settings().alpha_cutoff = VoxelRenderSettings{}.alpha_cutoff;
 
+  // Seed 004 R1, the shadow pass's shaders: alpha-testing every caster casts the same cut-out
+  // shadow as the split; the empty shader for every caster (early-z) casts the leaves solid.
+  (*renderer)->settings().shadow_shaders = ShadowPassShaders::kAlphaTested;
+  const render::ShadowMaps tested_maps = cast(**renderer, scene, ss);
+  const Counts tested = measure(render_pair(**renderer, scene, tested_maps), 0.0);
+  (*renderer)->settings().shadow_shaders = ShadowPassShaders::kEarlyZ;
+  const render::ShadowMaps early_maps = cast(**renderer, scene, ss);
+  const ShadowPair early_img = render_pair(**renderer, scene, early_maps);
+  const Counts early = measure(early_img, 0.0), early_stone = measure(early_img, 10.0);
+  (*renderer)->settings().shadow_shaders = ShadowPassShaders::kSplit;
+  std::printf("alpha-tested leaves: %d lit of %d; early-z leaves: %d lit of %d\n", tested.lit, tested.samples, early.lit,
+              early.samples);
+  EXPECT_EQ(tested.lit, leaf.lit);
+  EXPECT_EQ(tested.dark, leaf.dark);
+  EXPECT_LT(early.lit, early.samples / 100);
+  EXPECT_GE(early_stone.dark, early_stone.samples * 99 / 100);
+
   // Plants cast: one acacia on the ground adds shadow-map texels; cast_shadows off casts nothing.
   WorldGenSettings gs;
   gs.variants_per_species = 1;
@@ -247,6 +264,34 @@ TEST_F(VoxelShadowGl, AlphaCutLeavesCastCutOutShadowsAndPlantsCast) {
   EXPECT_GT(raised, 200u);
   EXPECT_EQ(lowered, 0u);
   EXPECT_EQ(written_texels(*off), 0u);
+}
+
+// Seed 004 §3.7.2 (R2): the shadow pass casts only the chunks inside the cascade's light frustum;
+// with the culling off it casts every chunk of the world, far ones too.
+TEST_F(VoxelShadowGl, ShadowChunkCullingLeavesOutChunksOutsideTheLightFrustum) {
+  World world;
+  add_ground(world);
+  const BlockId stone = world.palette().id("stone");
+  for (int i = 0; i < 4; ++i) (void)world.set({300 + 40 * i, 1, 300}, stone);  // four far chunks
+  remesh(world);
+  auto renderer = VoxelRenderer::create(world, nullptr);
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  auto scene = testing::VoxelGlScene::create(128, 80);
+  scene.lighting.sun_direction = glm::normalize(glm::vec3(0.3f, 1.0f, 0.2f));
+  scene.camera.set_position({-7.0, 6.0, 8.0});
+  scene.camera.look_at({3.0, 1.0, 8.0});
+  render::ShadowSettings ss;
+  ss.cascade_count = 2;
+  ss.max_distance = 40.0f;
+  (void)cast(**renderer, scene, ss);
+  const std::size_t culled = (*renderer)->frame_stats().shadow_chunks_cast;
+  (*renderer)->settings().shadow_chunk_culling = false;
+  (void)cast(**renderer, scene, ss);
+  const std::size_t all = (*renderer)->frame_stats().shadow_chunks_cast;
+  std::printf("shadow chunks cast: %zu culled, %zu without culling\n", culled, all);
+  EXPECT_GT(culled, 0u);
+  EXPECT_EQ(all, 2 * world.chunk_coords().size());  // every chunk into both cascades
+  EXPECT_LT(culled, all - 2 * 4);                    // the four far chunks were left out of both
 }
 
 TEST_F(VoxelShadowGl, SceneHookAndCasterPathsCastEachCascadeOnce) {

@@ -102,6 +102,7 @@ class VoxelInstance final : public ModuleInstance {
     return {{"chunks", s.chunks_total},       {"chunks_drawn", s.chunks_drawn}, {"quads_drawn", s.quads_drawn},
             {"plant_parts_drawn", s.plant_parts_drawn}, {"tufts_drawn", s.tufts_drawn},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
+            {"shadow_chunks_cast", s.shadow_chunks_cast},
             {"generation_ms", generation_ms_}};
   }
 

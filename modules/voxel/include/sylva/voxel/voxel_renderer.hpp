@@ -49,6 +49,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <array>
 #include <memory>
 #include <span>
 #include <string>
@@ -56,6 +57,22 @@
 #include <vector>
 
 namespace sylva::voxel {
+
+// Fragment shaders of the shadow (depth) pass, seed 004 §3.7.1 (R1): `discard` switches early depth
+// tests off, so the seed split the casters: an empty shader with early tests for opaque geometry and
+// an alpha-testing one for cut-out textures only. The two single-shader variants are the thesis's
+// comparison rows: alpha-test everything (correct, slower) or early-z everything (fast, but
+// cut-out leaves cast solid squares).
+enum class ShadowPassShaders {
+  kSplit,        // opaque: empty shader + early tests; alpha-cut: alpha test (the seed's choice)
+  kAlphaTested,  // every caster alpha-tested
+  kEarlyZ,       // every caster through the empty shader (cut-outs cast as solid quads)
+};
+constexpr std::array<EnumName<ShadowPassShaders>, 3> enum_names(ShadowPassShaders) {
+  return {{{ShadowPassShaders::kSplit, "split"},
+           {ShadowPassShaders::kAlphaTested, "alpha_tested"},
+           {ShadowPassShaders::kEarlyZ, "early_z"}}};
+}
 
 struct VoxelRenderSettings {
   float alpha_cutoff = 0.5f;        // alpha-cut threshold (the seed used 0.05 for its textures)
@@ -72,6 +89,8 @@ struct VoxelRenderSettings {
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
+  ShadowPassShaders shadow_shaders = ShadowPassShaders::kSplit;  // seed 004 R1
+  bool shadow_chunk_culling = true; // cast only chunks in the cascade's light frustum (seed 004 §3.7.2, R2)
   float sky_light = 1.5f;           // multiplier of the render core's sky / ground ambient, [0, 8]
   float bounce = 0.25f;             // albedo of the sunlit ground lighting shaded faces, [0, 1]
   // Blocks, horizontal, [0, 1e6]: 0 = no fade, no skirt, no distance culling; otherwise the fade
@@ -96,6 +115,8 @@ struct VoxelRenderSettings {
     v(leaf_back_faces_within, "leaf_back_faces_within", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Leaf cubes nearer than this also draw their far faces (seen through their holes); farther ones only the three faces turned to the camera"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
+    v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
+    v(shadow_chunk_culling, "shadow_chunk_culling", {.help = "Shadow pass casts only chunks inside the cascade's light frustum (off: every chunk)"});
     v(sky_light, "sky_light", {.min = 0.0, .max = 8.0, .help = "Multiplier of the sky and ground ambient light on every face"});
     v(bounce, "bounce", {.min = 0.0, .max = 1.0, .help = "Sun light bounced off the ground onto shaded faces (ground albedo)"});
     v(view_distance, "view_distance", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Horizontal distance where the world has faded into the sky (0 = no fade; capped by the loaded area's edge)"});
@@ -124,6 +145,7 @@ struct VoxelFrameStats {
   float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame (0: no fade)
   std::size_t point_lights = 0;
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
+  std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
 };
 
 class VoxelRenderer final : public render::Drawable {
