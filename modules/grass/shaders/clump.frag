@@ -20,11 +20,20 @@ in float c_v;
 flat in vec3 c_color;
 flat in float c_fade;
 flat in vec3 c_normal;
+flat in float c_repeat;
+flat in vec2 c_cell;
 
 out vec4 o_color;
 
 void main() {
-  vec4 t = texture(u_atlas, c_uv);
+  vec4 t;
+  vec2 du = dFdx(c_uv) * 0.5, dv = dFdy(c_uv) * 0.5;
+  if (c_repeat > 0.0) {
+    // Wide billboard: the cell repeats along the width; gradients of the unwrapped uv (no seam).
+    t = textureGrad(u_atlas, (c_cell + vec2(fract(c_uv.x), c_uv.y)) * 0.5, du, dv);
+  } else {
+    t = texture(u_atlas, c_uv);
+  }
   if (!(t.a < c_fade)) discard;
   float along = clamp(t.r * 1.2 - 0.1, 0.0, 1.0);
   vec3 albedo = grass_albedo(u_base_color, u_tip_color, along, GRASS_MEAN_DRYNESS) * c_color;

@@ -1,7 +1,9 @@
 #version 450 core
 // grass/clump.vert: two crossed vertical quads per clump (seed 003 §2.4: fixed random
 // rotation, not camera-facing), tops swaying with the shared wind like the blades' equilibrium
-// bend (wind_response * wind / stiffness).
+// bend (wind_response * wind / stiffness). The same program draws seed 003's wide billboards
+// (§2.4.3, far_field.hpp): u_wide.z = 2, as wide as a tile group, strand texture repeated along
+// the width, strands kept below fade * wide_keep (in size.z).
 #include "grass/far.glsl"
 #include "render/lib/wind.glsl"
 
@@ -14,6 +16,8 @@ uniform vec3 u_camera;
 uniform vec4 u_fades;
 uniform float u_sway;
 uniform int u_first;
+uniform vec4 u_wide;        // x wide_distance, y wide_fade [m], z level (0 clumps, 1 clumps giving way, 2 wide)
+uniform float u_cell_width; // clump_width [m]: one atlas cell across
 
 out vec3 c_rel_pos;
 out vec2 c_uv;
@@ -21,6 +25,8 @@ out float c_v;
 flat out vec3 c_color;
 flat out float c_fade;
 flat out vec3 c_normal;
+flat out float c_repeat;  // wide billboards: atlas cells across (c_uv = (u in cells, v)); 0: c_uv is the atlas uv
+flat out vec2 c_cell;
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 
@@ -30,6 +36,11 @@ void main() {
   vec2 corner = kCorners[gl_VertexID % 6];
   float d = length(c.root.xyz - u_camera);
   c_fade = grass_clump_fade(d, u_fades);
+  float wide = grass_ramp(d, u_wide.x - u_wide.y, u_wide.x);
+  if (u_wide.z == 2.0) c_fade *= wide * c.size.z;  // size.z: the group's strand keep
+  else if (u_wide.z == 1.0) c_fade *= 1.0 - wide;
+  c_repeat = 0.0;
+  c_cell = vec2(0.0);
   if (c_fade <= 0.0) {
     gl_Position = vec4(0.0, 0.0, -2.0, 1.0);  // outside the clip volume: the clump is not drawn
     c_rel_pos = vec3(0.0);
@@ -52,6 +63,11 @@ void main() {
   c_rel_pos = pos + u_origin_rel;
   float cell = c.size.w;
   c_uv = (vec2(mod(cell, 2.0), floor(cell / 2.0)) + corner) * 0.5;
+  if (u_wide.z == 2.0) {
+    c_repeat = max(1.0, floor(c.size.x / max(u_cell_width, 1e-3) + 0.5));
+    c_cell = vec2(mod(cell, 2.0), floor(cell / 2.0));
+    c_uv = vec2(corner.x * c_repeat, corner.y);
+  }
   c_v = corner.y;
   c_color = c.color.rgb;
   c_normal = normalize(cross(across, vec3(0.0, 1.0, 0.0)) * 0.5 + vec3(0.0, 1.0, 0.0));

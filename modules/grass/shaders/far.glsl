@@ -7,7 +7,7 @@
 
 struct Clump {
   vec4 root;   // xyz root (blade-set local), w rotation [rad]
-  vec4 size;   // x width, y height, z rank, w atlas cell
+  vec4 size;   // x width, y height, z rank (wide billboards: strand keep), w atlas cell
   vec4 color;  // rgb colour multiplier, w sway phase
 };
 

@@ -102,7 +102,15 @@ float slope_keep(float normal_y, float max_slope_deg) {
 float clump_fade(float d, float near_distance, const FarFieldSettings& s) {
   const float in = ramp(d, near_distance - s.clump_fade_in, near_distance);
   const float out = 1.0f - ramp(d, s.mid_distance - s.mid_fade, s.mid_distance);
-  return in * out;
+  const float wide = s.wide_billboards ? ramp(d, s.wide_distance - s.wide_fade, s.wide_distance) : 0.0f;
+  return in * out * (1.0f - wide);
+}
+
+float wide_fade_at(float d, float near_distance, const FarFieldSettings& s) {
+  if (!s.wide_billboards) return 0.0f;
+  const float in = ramp(d, near_distance - s.clump_fade_in, near_distance);
+  const float out = 1.0f - ramp(d, s.mid_distance - s.mid_fade, s.mid_distance);
+  return in * out * ramp(d, s.wide_distance - s.wide_fade, s.wide_distance);
 }
 
 float ground_fade(float d, const FarFieldSettings& s) {
@@ -115,8 +123,16 @@ float ground_coverage(float sin_elevation, float tau_side, float tau_top, float 
   return 1.0f - std::exp(-gain * (tau_top + tau_side * cot));
 }
 
-Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
-                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+namespace {
+
+// Clumps of `width` at per_m2 times the density map on a world grid of tile_size (the blades'
+// tile sampler), one GrassTile per grid cell that holds any; shared by the small clumps and the
+// wide billboards (seed 003 §2.4.1 and §2.4.3 differ only in grid, count and width). `wide`:
+// each cell is a group clipped to the map, with far.wide_per_group billboards per clipped group at
+// density 1, as wide as its longer side, their strand keep in size.z (far_field.hpp).
+Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                              const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far,
+                              double t, double per_m2, float width, std::uint32_t seed, const char* what, bool wide) {
   SYLVA_TRY(check_settings(field, blade));
   SYLVA_TRY(validate_params(far, "grass.far"));
   if (ground.samples().empty()) return make_error(ErrorCode::kInvalidArgument, "grass far field: the ground height field is empty");
@@ -124,13 +140,12 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
   set.origin = origin;
   const Rect area = maps.rect();
   if (area.empty()) return set;
-  const double t = field.tile_size;
   const Result<TileRange> range = tiles_overlapping(area, t);
   if (!range.ok()) return range.error();
   const auto [x0, x1, z0, z1] = *range;
-  const double expected = maps.density_integral(area) * far.clumps_per_m2;
+  const double expected = maps.density_integral(area) * per_m2;
   if (expected > static_cast<double>(kMaxBlades)) {
-    return make_error(ErrorCode::kLimit, fmt::format("grass.far.clumps_per_m2: {:.0f} clumps is above the limit {}", expected, kMaxBlades));
+    return make_error(ErrorCode::kLimit, fmt::format("{}: {:.0f} clumps is above the limit {}", what, expected, kMaxBlades));
   }
   const float mean_height = 0.5f * (blade.height_min + blade.height_max);
   for (std::int64_t z = z0; z < z1; ++z) {
@@ -138,8 +153,18 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
       GrassTile tile;
       tile.key = {static_cast<std::int32_t>(x), 0, static_cast<std::int32_t>(z)};
       tile.first = static_cast<std::uint32_t>(set.clumps.size());
-      // A different seed than the blades so clumps do not sit on the first blades.
-      const auto points = sample_tile_points(maps, tile.key, t, far.clumps_per_m2, field.seed ^ 0xc1a3a5u);
+      const Rect cell{{x * t, z * t}, {(x + 1) * t, (z + 1) * t}};
+      double cell_per_m2 = per_m2;
+      float cell_width = width, keep = 0.0f;
+      if (wide) {
+        const Rect clipped = cell.intersect(area);
+        if (clipped.empty()) continue;
+        const double a = clipped.size().x * clipped.size().y;
+        cell_per_m2 = far.wide_per_group / a;
+        cell_width = static_cast<float>(std::max(clipped.size().x, clipped.size().y));
+        keep = wide_keep(far, a, cell_width);
+      }
+      const auto points = sample_tile_points(maps, tile.key, t, cell_per_m2, seed);
       glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
       for (const TilePoint& p : points) {
         const double wx = p.position.x, wz = p.position.y;
@@ -151,22 +176,46 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
                                (1.0f + blade.color_variation * (2.0f * unit(p.hash, 22u) - 1.0f));
         Clump c;
         c.root = glm::vec4(root, unit(p.hash, 23u) * kPi);
-        c.size = glm::vec4(far.clump_width * (0.8f + 0.4f * unit(p.hash, 24u)), h, p.rank,
-                           std::floor(unit(p.hash, 25u) * 4.0f));
+        const float w = cell_width * (wide ? 1.0f : 0.8f + 0.4f * unit(p.hash, 24u));
+        c.size = glm::vec4(w, h, wide ? keep : p.rank, std::floor(unit(p.hash, 25u) * 4.0f));
         c.color = glm::vec4(tint, unit(p.hash, 26u));
         set.clumps.push_back(c);
-        lo = glm::min(lo, root - glm::vec3(far.clump_width + h));
-        hi = glm::max(hi, root + glm::vec3(far.clump_width + h));
+        lo = glm::min(lo, root - glm::vec3(w + h));
+        hi = glm::max(hi, root + glm::vec3(w + h));
       }
       tile.count = static_cast<std::uint32_t>(set.clumps.size()) - tile.first;
       if (tile.count == 0) continue;
       tile.bounds_min = lo;
       tile.bounds_max = hi;
-      tile.expected = maps.density_integral({{x * t, z * t}, {(x + 1) * t, (z + 1) * t}}) * far.clumps_per_m2;
+      tile.expected = maps.density_integral(cell) * cell_per_m2;
       set.tiles.push_back(tile);
     }
   }
   return set;
+}
+
+}  // namespace
+
+Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+  // A different seed than the blades so clumps do not sit on the first blades.
+  return place_clumps(field, blade, maps, ground, origin, far, field.tile_size, far.clumps_per_m2, far.clump_width,
+                      field.seed ^ 0xc1a3a5u, "grass.far.clumps_per_m2", false);
+}
+
+Result<ClumpSet> generate_wide_billboards(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                          const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+  // Seed 003 §2.4.3 / Tab. 4.2: wide_per_group billboards per (clipped) group at density 1.
+  const double group = static_cast<double>(field.tile_size) * far.wide_group;
+  return place_clumps(field, blade, maps, ground, origin, far, group, far.wide_per_group / (group * group),
+                      static_cast<float>(group), field.seed ^ 0x3f1de5u, "grass.far.wide_per_group", true);
+}
+
+float wide_keep(const FarFieldSettings& s, double group_area, float width) {
+  // Strand length per m^2 at density 1: count per m^2 x billboard width (both levels cross two quads).
+  const double small = static_cast<double>(s.clumps_per_m2) * s.clump_width;
+  const double wide = s.wide_per_group / std::max(group_area, 1e-6) * width;
+  return static_cast<float>(std::clamp(small / wide, 1e-3, 1.0));
 }
 
 Image make_clump_atlas(int size, std::uint32_t seed) {
@@ -323,6 +372,15 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   f.map_rect_ = maps.rect();
   f.clump_tiles_ = std::move(clumps->tiles);
   f.clump_count_ = clumps->clumps.size();
+  if (far.wide_billboards) {
+    auto wide = generate_wide_billboards(field, blade, *clump_maps, ground, origin, far);
+    if (!wide) return wide.error();
+    // One clump buffer: the wide billboards follow the small clumps.
+    for (GrassTile& t : wide->tiles) t.first += static_cast<std::uint32_t>(f.clump_count_);
+    f.wide_tiles_ = std::move(wide->tiles);
+    f.wide_count_ = wide->clumps.size();
+    clumps->clumps.insert(clumps->clumps.end(), wide->clumps.begin(), wide->clumps.end());
+  }
   const float side_area = field.density * 0.5f * (blade.width_min + blade.width_max) * 0.5f * (blade.height_min + blade.height_max);
   f.tau_side_ = side_area * 2.0f / kPi;
   f.tau_top_ = 0.2f * side_area;
@@ -448,15 +506,28 @@ void FarField::update(const render::Camera& camera, glm::ivec2 viewport) {
                                        camera.perspective().fov_y);
   const FarFieldSettings& s = settings_;
   visible_clump_tiles_.clear();
+  visible_wide_tiles_.clear();
   visible_chunks_.clear();
   float nearest = 0.0f, farthest = 0.0f;
   if (s.clumps) {
+    // With wide billboards on, small clumps end at wide_distance and the wide ones start
+    // wide_fade before it (clump_fade / wide_fade_at).
+    const bool wide = s.wide_billboards && !wide_tiles_.empty();
+    const float small_end = wide ? std::min(s.mid_distance, s.wide_distance) : s.mid_distance;
     for (std::uint32_t i = 0; i < clump_tiles_.size(); ++i) {
       const GrassTile& t = clump_tiles_[i];
       box_distances(camera_local_, t.bounds_min, t.bounds_max, nearest, farthest);
-      if (nearest >= s.mid_distance || farthest <= near_distance_ - s.clump_fade_in) continue;
+      if (nearest >= small_end || farthest <= near_distance_ - s.clump_fade_in) continue;
       if (!box_visible(view, t.bounds_min, t.bounds_max)) continue;
       visible_clump_tiles_.push_back(i);
+    }
+    const float wide_start = std::max(s.wide_distance - s.wide_fade, near_distance_ - s.clump_fade_in);
+    for (std::uint32_t i = 0; wide && i < wide_tiles_.size(); ++i) {
+      const GrassTile& t = wide_tiles_[i];
+      box_distances(camera_local_, t.bounds_min, t.bounds_max, nearest, farthest);
+      if (nearest >= s.mid_distance || farthest < wide_start) continue;
+      if (!box_visible(view, t.bounds_min, t.bounds_max)) continue;
+      visible_wide_tiles_.push_back(i);
     }
   }
   if (s.ground) {
@@ -478,13 +549,14 @@ void FarField::draw(render::Pass pass, const render::FrameContext& frame, render
 
 void FarField::draw_far(const render::Camera& camera, const WindField& wind, double time, render::PassStats* stats) {
   clumps_drawn_ = 0;
+  wide_drawn_ = 0;
   ground_drawn_ = 0;
   const glm::vec3 origin_rel(origin_ - camera.position());
   const FarFieldSettings& s = settings_;
   const glm::vec4 fades(near_distance_, s.clump_fade_in, s.mid_distance, s.mid_fade);
   const glm::vec2 far_fades(s.far_distance, s.far_fade);
   const bool receive = s.receive_shadows && detail::shadow_block_bound();
-  if (!visible_clump_tiles_.empty()) {
+  if (!visible_clump_tiles_.empty() || !visible_wide_tiles_.empty()) {
     const WindFrame wf = wind.frame(std::isfinite(time) ? time : 0.0, origin_);
     wind_.update(0, sizeof(WindGpuParams), &wf.gpu);
     wind_.bind_base(GL_UNIFORM_BUFFER, kWindUboBinding);
@@ -502,16 +574,28 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     atlas_.bind(0);
     clump_vao_.bind();
     p.use();
+    // u_wide: x wide_distance, y wide_fade, z level (0 small clumps without wide billboards,
+    // 1 small clumps giving way to wide ones, 2 wide billboards; their strand keep is in size.z).
+    const bool wide_on = s.wide_billboards && !wide_tiles_.empty();
+    p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, wide_on ? 1.0f : 0.0f, 0.0f));
+    p.set("u_cell_width", s.clump_width);
     for (const std::uint32_t ti : visible_clump_tiles_) {
       const GrassTile& t = clump_tiles_[ti];
       p.set("u_first", static_cast<int>(t.first));
       glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(t.count));
       clumps_drawn_ += t.count;
     }
+    if (!visible_wide_tiles_.empty()) p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, 2.0f, 0.0f));
+    for (const std::uint32_t ti : visible_wide_tiles_) {
+      const GrassTile& t = wide_tiles_[ti];
+      p.set("u_first", static_cast<int>(t.first));
+      glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(t.count));
+      wide_drawn_ += t.count;
+    }
     if (stats) {
-      stats->draw_calls += visible_clump_tiles_.size();
-      stats->instances += clumps_drawn_;
-      stats->triangles += 4 * clumps_drawn_;
+      stats->draw_calls += visible_clump_tiles_.size() + visible_wide_tiles_.size();
+      stats->instances += clumps_drawn_ + wide_drawn_;
+      stats->triangles += 4 * (clumps_drawn_ + wide_drawn_);
     }
   }
   if (!visible_chunks_.empty()) {

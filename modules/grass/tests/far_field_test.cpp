@@ -69,6 +69,45 @@ TEST(GrassFarField, ClumpsFollowTheMapAndAreWorldAnchored) {
   EXPECT_NE(e.error().message.find("grass.far.clumps_per_m2"), std::string::npos);
 }
 
+// Seed 003 Tab. 4.2: 20 wide billboards per 5 x 5-tile group at the densest, 20 ceil(N/5)^2 for
+// an N x N map of 1 m tiles (groups clipped to the map), each no wider than its group.
+TEST(GrassFarField, WideBillboardsAreTwentyPerGroupOfFiveByFiveTiles) {
+  GrassFieldSettings field;
+  field.tile_size = 1.0f;
+  BladeSettings blade;
+  FarFieldSettings far;
+  far.wide_billboards = true;
+  const HeightField ground = testing::make_ground(-10.0, 110.0);
+  for (const int n : {1, 4, 8, 32, 64}) {
+    Image ones(8, 8, 1);
+    for (float& v : ones.data()) v = 1.0f;
+    const GrassMaps maps = GrassMaps::from_images({{0, 0}, {n, n}}, &ones, nullptr, nullptr).value();
+    auto w = generate_wide_billboards(field, blade, maps, ground, {0, 0, 0}, far);
+    ASSERT_TRUE(w.ok()) << w.error().message;
+    const int groups = (n + 4) / 5;
+    EXPECT_EQ(static_cast<int>(w->tiles.size()), groups * groups) << n;
+    EXPECT_NEAR(static_cast<double>(w->clumps.size()), 20.0 * groups * groups, 0.5 * groups) << n;  // thesis: 20, 20, 80, 980, 3380
+    for (const Clump& c : w->clumps) {
+      EXPECT_LE(c.size.x, std::min(5.0f, static_cast<float>(n)) + 1e-4f);
+      EXPECT_GT(c.size.z, 0.0f);  // the group's strand keep
+      EXPECT_LE(c.size.z, 1.0f);
+    }
+  }
+  // The wide level takes over from the small clumps: their fades add up to one clump's fade.
+  far.wide_distance = 80.0f;
+  far.wide_fade = 20.0f;
+  for (float d = 0.0f; d < 300.0f; d += 2.5f) {
+    FarFieldSettings off = far;
+    off.wide_billboards = false;
+    EXPECT_NEAR(clump_fade(d, 50.0f, far) + wide_fade_at(d, 50.0f, far), clump_fade(d, 50.0f, off), 1e-6f) << d;
+  }
+  EXPECT_EQ(wide_fade_at(55.0f, 50.0f, far), 0.0f);
+  EXPECT_EQ(clump_fade(100.0f, 50.0f, far), 0.0f);
+  // Threshold shift: a full 5 m group of 20 billboards has 4 m of strands per m^2 against the small
+  // clumps' 0.81, so each wide strand is kept with 0.2025.
+  EXPECT_NEAR(wide_keep(far, 25.0, 5.0f), 0.81f / 4.0f, 1e-6f);
+}
+
 TEST(GrassFarField, GroundTextureAlphaIsUniformAndTiles) {
   const Image tex = make_ground_texture(64, 3);
   // Equalised: the share of texels below t is t.

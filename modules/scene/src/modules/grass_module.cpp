@@ -161,6 +161,9 @@ class GrassInstance final : public ModuleInstance {
       j["clumps"] = far_->clump_count();
       j["clumps_drawn"] = far_->last_clumps_drawn();
       j["ground_chunks_drawn"] = far_->last_ground_chunks_drawn();
+      // Seed 003's wide billboards over tile groups (grass.far.wide_billboards, Tab. 4.2).
+      j["wide_billboards"] = far_->wide_billboard_count();
+      j["wide_billboards_drawn"] = far_->last_wide_billboards_drawn();
       // The three levels of seed 003: blades near (counted as triangles, see CountedBlades),
       // billboard clumps in the middle, ground-layer chunks far.
       j["instances_per_lod"] = {{"clumps", far_->last_clumps_drawn()}, {"ground_chunks", far_->last_ground_chunks_drawn()}};

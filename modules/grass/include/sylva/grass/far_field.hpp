@@ -39,6 +39,18 @@
 // field of field_color.hpp, and `clump_brightness` / `ground_brightness` calibrate their means
 // to the blades' (grass_band_gl_test measures the field's brightness in distance bins).
 //
+// Wide billboards (seed 003 §2.4.3, Tab. 4.2; off by default). A second middle sub-level:
+// beyond wide_distance the small clumps give way (cross-fade over wide_fade) to wide_per_group
+// billboards per group of wide_group x wide_group tiles (the thesis: 20 per 5 x 5 tiles at the
+// densest; 20 ceil(N/5)^2 for an N x N map). A group is clipped to the map (the thesis groups the
+// map's tiles), holds wide_per_group x its mean density of billboards (stochastic rounding), each
+// as wide as the clipped group's longer side, so no billboard reaches far beyond the grass. They
+// are clumps (same record, shaders and sway) placed by the tile sampler on the group grid. The
+// strand texture repeats along the width (strands keep their size) and a strand is kept below
+// fade * wide_keep, wide_keep = min(1, small strand length per m^2 / wide strand length per
+// m^2) per group (in Clump::size.z): the thesis's "shifted alpha threshold" (§2.4.2), so the wide
+// level shows about as much grass as the small one. Not worth it on small maps (thesis §4.2).
+//
 // Height fields only (a mesh field has no far field: draw its blades to near_distance).
 
 #include <sylva/core/height_field.hpp>
@@ -93,6 +105,12 @@ struct FarFieldSettings {
   // No far grass on cliffs: clumps and the ground layer thin out between max_slope_deg - 8 and
   // max_slope_deg of ground slope, so margins that reach mountains leave their rock bare.
   float max_slope_deg = 40.0f;    // [deg]; 90 = grass on any slope
+  // Wide billboards (header comment; seed 003 §2.4.3, Tab. 4.2). Off: the shipped look.
+  bool wide_billboards = false;
+  float wide_distance = 80.0f;    // small clumps are replaced from here on [m]
+  float wide_fade = 20.0f;        // small -> wide cross-fade band before wide_distance [m]
+  int wide_group = 5;             // tiles per side of a group (thesis: 5)
+  float wide_per_group = 20.0f;   // wide billboards per group at density 1 (thesis: 20)
 
   template <class V>
   void visit(V& v) {
@@ -127,6 +145,15 @@ struct FarFieldSettings {
                                        .help = "The ground layer continues this far beyond the grass area", .rebuild = Rebuild::kOffline});
     v(max_slope_deg, "max_slope_deg", {.min = 8.0f, .max = 90.0f, .unit = "deg",
                                        .help = "Clumps and the ground layer thin out on slopes steeper than this", .rebuild = Rebuild::kOffline});
+    v(wide_billboards, "wide_billboards", {.help = "Seed 003 wide billboards over tile groups beyond wide_distance",
+                                           .rebuild = Rebuild::kOffline});
+    v(wide_distance, "wide_distance", {.min = 0.0f, .max = 10000.0f, .unit = "m",
+                                       .help = "Wide billboards replace the small clumps from this distance"});
+    v(wide_fade, "wide_fade", {.min = 0.0f, .max = 1000.0f, .unit = "m", .help = "Small-to-wide billboard cross-fade band"});
+    v(wide_group, "wide_group", {.min = 1, .max = 64, .help = "Tiles per side of a wide-billboard group",
+                                 .rebuild = Rebuild::kOffline});
+    v(wide_per_group, "wide_per_group", {.min = 1.0f, .max = 1000.0f, .help = "Wide billboards per group at density 1",
+                                         .rebuild = Rebuild::kOffline});
   }
 };
 
@@ -137,8 +164,14 @@ Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin);
 // Share in [0, 1] of far grass kept on ground whose normal has this y (max_slope_deg above).
 float slope_keep(float normal_y, float max_slope_deg);
 
-// Fade weights in [0, 1] of the three representations at distance d (header comment).
+// Fade weights in [0, 1] of the three representations at distance d (header comment). With
+// wide_billboards, clump_fade is the small clumps' (times 1 - the wide ramp) and wide_fade_at the
+// wide billboards' share before wide_keep.
 float clump_fade(float distance, float near_distance, const FarFieldSettings& s);
+float wide_fade_at(float distance, float near_distance, const FarFieldSettings& s);
+// wide_keep of the header comment, in (0, 1], for a group of `group_area` [m^2] whose
+// billboards are `width` [m] wide.
+float wide_keep(const FarFieldSettings& s, double group_area, float width);
 float ground_fade(float distance, const FarFieldSettings& s);
 // Ground coverage model (above); sin_elevation = |dot(view direction, surface normal)|.
 float ground_coverage(float sin_elevation, float tau_side, float tau_top, float gain);
@@ -146,7 +179,7 @@ float ground_coverage(float sin_elevation, float tau_side, float tau_top, float 
 // One clump (std430, 3 x vec4 = 48 bytes; shaders/far.glsl mirrors it).
 struct Clump {
   glm::vec4 root;   // xyz root (blade-set local), w rotation [rad]
-  glm::vec4 size;   // x width, y height [m], z rank [0, 1), w atlas cell (0..3)
+  glm::vec4 size;   // x width, y height [m], z rank [0, 1) (wide billboards: strand keep), w atlas cell (0..3)
   glm::vec4 color;  // rgb colour multiplier (per clump variation x tint), w sway phase [0, 1)
 };
 static_assert(sizeof(Clump) == 48);
@@ -160,6 +193,10 @@ struct ClumpSet {
 // World-anchored clumps for every tile overlapping maps.rect() (same tiles as the blades).
 Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                                  const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
+
+// Wide billboards over groups of far.wide_group^2 tiles (header comment); tiles are the groups.
+Result<ClumpSet> generate_wide_billboards(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                          const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
 
 // Procedural textures (deterministic for a seed). Billboard atlas: 2 x 2 cells of `size`/2,
 // RGBA: rgb strand colour (root dark, tip light), a = strand threshold (graded, uniform in
@@ -196,6 +233,8 @@ class FarField : public render::Drawable {
   std::size_t clump_count() const { return clump_count_; }
   std::uint64_t last_clumps_drawn() const { return clumps_drawn_; }
   std::uint64_t last_ground_chunks_drawn() const { return ground_drawn_; }
+  std::size_t wide_billboard_count() const { return wide_count_; }
+  std::uint64_t last_wide_billboards_drawn() const { return wide_drawn_; }
 
  private:
   struct GroundChunk {
@@ -218,6 +257,10 @@ class FarField : public render::Drawable {
   std::vector<GroundChunk> chunks_;
   std::vector<std::uint32_t> visible_clump_tiles_;
   std::vector<std::uint32_t> visible_chunks_;
+  std::vector<GrassTile> wide_tiles_;  // groups; `first` indexes the clump buffer after the small clumps
+  std::vector<std::uint32_t> visible_wide_tiles_;
+  std::size_t wide_count_ = 0;
+  std::uint64_t wide_drawn_ = 0;
   std::size_t clump_count_ = 0;
   std::uint64_t clumps_drawn_ = 0;
   std::uint64_t ground_drawn_ = 0;
