@@ -8,6 +8,7 @@
 layout(location = 0) in uvec2 a_grid;    // root-grid point (gx, gz)
 layout(location = 1) in vec3 a_height;   // x: height h, y: morph target G, z: morph error [m]
 layout(location = 2) in float a_skirt;   // metres to hang below the surface (skirt bottoms), else 0
+layout(location = 3) in float a_centre;  // 1: an hq2 leaf centre at (gx + 0.5, gz + 0.5), else 0
 
 uniform ivec2 u_origin;       // grid point near the camera
 uniform vec3 u_camera;        // camera - world(origin) in x/z; camera height in y [m]
@@ -24,8 +25,10 @@ out float v_morph;   // morph weight (debug view)
 invariant gl_Position;
 
 void main() {
-  precise float rx = float(int(a_grid.x) - u_origin.x) * u_spacing - u_camera.x;
-  precise float rz = float(int(a_grid.y) - u_origin.y) * u_spacing - u_camera.z;
+  // + 0.0 for every grid point leaves its float unchanged, bit for bit.
+  precise float centre_offset = 0.5 * a_centre;
+  precise float rx = (float(int(a_grid.x) - u_origin.x) + centre_offset) * u_spacing - u_camera.x;
+  precise float rz = (float(int(a_grid.y) - u_origin.y) + centre_offset) * u_spacing - u_camera.z;
   float h = a_height.x;
   float g = a_height.y;
   precise float ry0 = h - u_camera.y;
@@ -46,7 +49,7 @@ void main() {
   precise float y = h + (g - h) * mu;
   precise float ry = y - u_camera.y;
   v_rel = vec3(rx, ry - a_skirt, rz);
-  v_grid = vec2(a_grid);
+  v_grid = vec2(a_grid) + centre_offset;
   v_morph = mu;
   gl_Position = u_view_projection * vec4(v_rel, 1.0);
 }

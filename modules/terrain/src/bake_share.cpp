@@ -39,6 +39,10 @@ Status check_options(const BakeOptions& o) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("bake: --tiles {}/{}: the share index must be in 0..{}", o.share, o.shares, o.shares - 1));
   }
+  if (o.tree.tessellation != Tessellation::kRtin) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "bake: chunk files hold RTIN trees; terrain.tree.tessellation = hq0/hq1/hq2 is built in memory only");
+  }
   return ok_status();
 }
 

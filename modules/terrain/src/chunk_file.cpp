@@ -28,6 +28,11 @@ Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::file
                                                                  const ChunkTree& layout,
                                                                  const std::filesystem::path& overwrite) {
   SYLVA_TRY(check_replaceable(path));
+  if (layout.settings().tessellation != Tessellation::kRtin) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: chunk files hold RTIN trees; terrain.tree.tessellation = hq0/hq1/hq2 is built in "
+                                  "memory only", path.string()));
+  }
   std::unique_ptr<ChunkFileWriter> w(new ChunkFileWriter());
   w->path_ = path;
   w->header_.assign(kHeaderBytes, '\0');

@@ -1,6 +1,7 @@
 #include <sylva/terrain/chunk_tree.hpp>
 
 #include "chunk_build.hpp"
+#include "grid_tessellation.hpp"
 #include "parallel.hpp"
 #include "rtin.hpp"
 
@@ -161,6 +162,8 @@ struct ChunkBuildContext {
   bool optimize;
 };
 
+void finish_chunk(const ChunkBuildContext& ctx, Chunk& chunk, ChunkMesh mesh, double max_err);
+
 // Triangulates one chunk at its level, measures its error and fills its vertex data (except
 // morph_error, which needs every chunk's error bound first).
 void build_chunk(const ChunkBuildContext& ctx, Chunk& chunk) {
@@ -173,6 +176,15 @@ void build_chunk(const ChunkBuildContext& ctx, Chunk& chunk) {
   const std::int32_t n = static_cast<std::int32_t>(tree.leaf_intervals());
   const std::int32_t x0 = static_cast<std::int32_t>(chunk.key.x) * size;
   const std::int32_t z0 = static_cast<std::int32_t>(chunk.key.z) * size;
+  const Tessellation tessellation = tree.settings().tessellation;
+  if (tessellation != Tessellation::kRtin) {
+    // The seed's full grids (seed 002 §3.3, hq 0/1/2).
+    ChunkMesh mesh;
+    const double err = detail::build_grid_chunk(
+        {&hg, tessellation, level, tree.levels(), x0, z0, size, ctx.columns, ctx.rows}, mesh);
+    finish_chunk(ctx, chunk, std::move(mesh), err);
+    return;
+  }
 
   thread_local std::vector<std::int32_t> local;
   thread_local std::vector<Tri> stack;
@@ -247,7 +259,16 @@ void build_chunk(const ChunkBuildContext& ctx, Chunk& chunk) {
     mesh.indices.push_back(vertex_of(p2));
     measure(p0, p1, p2);
   }
+  finish_chunk(ctx, chunk, std::move(mesh), max_err);
+}
 
+// Error, counts, height range and (kept meshes) vertex-cache order and edge lists of a chunk whose
+// triangles and vertices are made.
+void finish_chunk(const ChunkBuildContext& ctx, Chunk& chunk, ChunkMesh mesh, double max_err) {
+  const ChunkTree& tree = *ctx.tree;
+  const std::int32_t size = static_cast<std::int32_t>(tree.chunk_size(chunk.key.level));
+  const std::int32_t x0 = static_cast<std::int32_t>(chunk.key.x) * size;
+  const std::int32_t z0 = static_cast<std::int32_t>(chunk.key.z) * size;
   chunk.error = round_up(max_err);
   chunk.triangle_count = static_cast<std::uint32_t>(mesh.indices.size() / 3);
   chunk.vertex_count = static_cast<std::uint32_t>(mesh.vertices.size());
@@ -278,6 +299,7 @@ void build_chunk(const ChunkBuildContext& ctx, Chunk& chunk) {
   const std::int32_t x1 = x0 + size, z1 = z0 + size;
   for (std::uint32_t i = 0; i < mesh.vertices.size(); ++i) {
     const ChunkVertex& v = mesh.vertices[i];
+    if (v.centre != 0) continue;  // inside a leaf square (hq2), never on an edge
     const std::int32_t x = static_cast<std::int32_t>(v.gx), z = static_cast<std::int32_t>(v.gz);
     if (x == x0) mesh.edges[kWest].push_back(i);
     if (x == x1) mesh.edges[kEast].push_back(i);
@@ -526,6 +548,10 @@ Result<RegionRebuild> ChunkTree::rebuild_region(const HeightField& field, int x0
   if (!settings_.keep_meshes) {
     return make_error(ErrorCode::kInvalidArgument,
                       "terrain.tree.keep_meshes: rebuild_region needs the chunk meshes (keep_meshes = true)");
+  }
+  if (settings_.tessellation != Tessellation::kRtin) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "terrain.tree.tessellation: rebuild_region updates RTIN trees only; rebuild the whole tree");
   }
   if (field.columns() != columns_ || field.rows() != rows_ || field.spacing() != spacing_ ||
       field.origin() != origin_ ||

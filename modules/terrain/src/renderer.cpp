@@ -18,7 +18,7 @@ void register_terrain_shaders();  // generated from modules/terrain/shaders (cma
 namespace sylva::terrain {
 
 namespace {
-constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2;
+constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2, kAttrCentre = 3;
 }  // namespace
 
 LodView TerrainRenderer::view_for(const render::Camera& camera, glm::ivec2 viewport) {
@@ -162,6 +162,7 @@ TerrainRenderer::GpuMesh* TerrainRenderer::gpu_mesh(std::uint32_t chunk) {
   g.vao = render::VertexArray::create();
   g.vao.attribute_int(kAttrGrid, 0, 2, GL_UNSIGNED_INT, offsetof(ChunkVertex, gx));
   g.vao.attribute(kAttrHeight, 0, 3, GL_FLOAT, offsetof(ChunkVertex, height));
+  g.vao.attribute(kAttrCentre, 0, 1, GL_UNSIGNED_BYTE, offsetof(ChunkVertex, centre));
   g.vao.vertex_buffer(0, g.vertices, sizeof(ChunkVertex));
   g.vao.index_buffer(g.indices);
   g.index_count = static_cast<std::uint32_t>(m->indices.size());
@@ -285,7 +286,8 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
   bool& uploaded = shadow ? shadow_batch_uploaded_ : batch_uploaded_;
   program.use();
   set_frame_uniforms(program, view_projection);
-  glVertexAttrib1f(kAttrSkirt, 0.0f);  // bodies have no skirt attribute array
+  glVertexAttrib1f(kAttrSkirt, 0.0f);   // bodies have no skirt attribute array
+  glVertexAttrib1f(kAttrCentre, 0.0f);  // seams and skirts hold edge points only, never centres
   for (const SelectedChunk& s : selection.chunks) {
     if (cull != nullptr) {
       render::Aabb box;

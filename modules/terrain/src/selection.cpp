@@ -14,6 +14,11 @@ bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSett
   const ChunkNode& c = tree_->nodes()[index];
   *rho = 0.0;
   if (c.level + 1 >= tree_->levels()) return true;  // leaves are the finest there is
+  if (settings.criterion == LodCriterion::kBruteForce) {
+    // Seed 002 Tab. 3.1's unoptimised rendering: refine to the leaves everywhere.
+    *rho = 1e30;
+    return false;
+  }
   if (settings.criterion == LodCriterion::kSeedDistance) {
     // Seed 002 §2.3: chunk_error = vertex spacing of the chunk, d = distance to its centre.
     const double chunk_error = static_cast<double>(tree_->step(c.level)) * tree_->spacing();
@@ -41,8 +46,10 @@ const Selection& LodSelector::select(const LodView& view, const LodSettings& set
   sel.stats = SelectionStats{};
   sel.stats.chunks_per_level.assign(static_cast<std::size_t>(tree_->levels()), 0);
   sel.morph = settings.criterion == LodCriterion::kScreenSpaceError && settings.morph_fraction > 0.0f;
-  sel.bound_certified = settings.criterion == LodCriterion::kScreenSpaceError &&
-                        (!sel.morph || settings.morph_fraction <= tree_->settings().max_morph_fraction + 1e-6f);
+  // Brute force draws the leaves, whose error is the finest the tree has (0 for exact leaves).
+  sel.bound_certified = settings.criterion == LodCriterion::kBruteForce ||
+                        (settings.criterion == LodCriterion::kScreenSpaceError &&
+                         (!sel.morph || settings.morph_fraction <= tree_->settings().max_morph_fraction + 1e-6f));
 
   const std::vector<ChunkNode>& nodes = tree_->nodes();
   stack_.clear();

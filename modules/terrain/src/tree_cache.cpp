@@ -123,7 +123,8 @@ Result<CachedChunkTree> build_or_load_chunk_tree(const HeightField& field, const
                                                  const BuildControl& control) {
   CachedChunkTree out;
   const std::filesystem::path directory = resolve_tree_cache_directory(cache.directory, base);
-  const bool use = !directory.empty() && settings.keep_meshes &&
+  // The seed's hq tessellations are built in memory only (chunk files hold RTIN trees).
+  const bool use = !directory.empty() && settings.keep_meshes && settings.tessellation == Tessellation::kRtin &&
                    field.samples().size() >= static_cast<std::size_t>(std::max(cache.min_samples, 0));
   std::uint64_t key = 0;
   if (use) {

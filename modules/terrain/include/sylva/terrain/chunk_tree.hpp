@@ -30,6 +30,11 @@
 // only on the point, never on the chunk that holds it, so every chunk computes the same morphed
 // position for a shared point (see vertex_position.hpp). Coordinates: x/z ground plane, y up,
 // metres; grid point (gx, gz) is field sample (gx, gz) at world origin + (gx, gz) * spacing.
+//
+// Tessellation (settings.hpp): the seed's hq0/hq1/hq2 modes replace the RTIN by the level's full
+// grid (grid_tessellation.hpp): same levels, chunks, measured errors, morph data and seams (edge
+// vertices are the level's grid points, so same-level chunks share them); hq2 adds a centre
+// vertex per square whose height is interpolated, not a field sample.
 
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/result.hpp>
@@ -65,6 +70,9 @@ struct ChunkVertex {
   float morph_error = 0.0f;      // metres; error_bound of the coarser chunk(s) containing the point
   std::uint8_t intro_level = 0;  // coarsest level whose mesh contains the point
   std::uint8_t outside = 0;      // 1 = padding (outside the field)
+  // 1 = the point is (gx + 0.5, gz + 0.5): the centre of a leaf square of an hq2 tree (settings.hpp
+  // Tessellation), whose height is the mean of the square's corners. 0 in RTIN/hq0/hq1 trees.
+  std::uint8_t centre = 0;
 };
 
 struct ChunkMesh {
@@ -151,7 +159,8 @@ class ChunkTree {
   // of other chunks is refreshed where the coarser surface or bounds changed (`updated`), and the
   // selection nodes and report are recomputed. Cost: the padded height and error grids are
   // recomputed in full (O(N^2), a few ms at 257^2), the chunk meshes only for `rebuilt`.
-  // Errors: keep_meshes false (kInvalidArgument; the morph data lives in the meshes), a field of
+  // Errors: keep_meshes false (kInvalidArgument; the morph data lives in the meshes), a tree of
+  // the seed's hq tessellations (kInvalidArgument: rebuild it whole), a field of
   // another size/spacing/origin or NaN/Inf samples in the rectangle (kInvalidArgument); the tree
   // is unchanged on error. An empty rectangle changes nothing.
   Result<RegionRebuild> rebuild_region(const HeightField& field, int x0, int z0, int x1, int z1);

@@ -10,6 +10,8 @@
 //     exact for errors that are not small against the distance).
 //   kSeedDistance: spacing * lod_distance / d <= 1 with d the distance to the chunk's centre, as
 //     in the seed; no error bound, no morphing.
+//   kBruteForce: every chunk is refined down to the leaves (seed 002 Tab. 3.1, "unoptimised"):
+//     the full-resolution mesh, no morphing, culled only when frustum_cull is on.
 // After the traversal each drawn chunk learns, for each edge, whether the chunk across it is
 // coarser, and which one: the seams are built from that.
 

@@ -11,6 +11,25 @@
 
 namespace sylva::terrain {
 
+// How a level's grid is triangulated (seed 002 §3.3 "Tessellation modes", -hq 0/1/2, beside
+// Sylva's RTIN). The hq modes keep every sample of the level's grid (no flat reduction):
+//   kRtin: right-triangulated irregular network reduced where flat (default; README "Meshes").
+//   kHq0:  method A, 2 triangles per grid square, always the same diagonal ((x0,z0)-(x1,z1)).
+//   kHq1:  method B, 2 triangles per square, the diagonal chosen from the corner heights: the one
+//          whose two ends differ less (the seed's rule is not given; this is the extraction's
+//          [Inference]). The levels' triangulations are then not nested (a fully morphed vertex
+//          can still pop by the difference of the two diagonals).
+//   kHq2:  method C, 4 triangles per square around a centre vertex whose height is the mean of
+//          the 4 corners (twice the triangles, ~2x the vertices). Leaf centres lie half a sample
+//          off the grid (ChunkVertex::centre).
+// Measured triangles and errors follow from the meshes in every mode; the chunk file, the bake
+// and the tree cache hold RTIN trees only (the hq modes are built in memory, for comparison).
+enum class Tessellation : std::uint8_t { kRtin, kHq0, kHq1, kHq2 };
+constexpr std::array<EnumName<Tessellation>, 4> enum_names(Tessellation) {
+  return {{{Tessellation::kRtin, "rtin"}, {Tessellation::kHq0, "hq0"}, {Tessellation::kHq1, "hq1"},
+           {Tessellation::kHq2, "hq2"}}};
+}
+
 // Offline build of the chunk quadtree (seed 002 §2.2, Ulrich 2002). Changing any of these
 // means rebuilding the tree (Rebuild::kOffline).
 struct ChunkTreeSettings {
@@ -39,6 +58,8 @@ struct ChunkTreeSettings {
   // Refuse to build when the error grid would need more bytes than this (a clear kLimit error
   // instead of running the machine out of memory).
   double max_build_bytes = 3.0e9;
+  // Mesh of each level (above): rtin (default) or the seed's hq0/hq1/hq2 full grids.
+  Tessellation tessellation = Tessellation::kRtin;
 
   template <class V>
   void visit(V& v) {
@@ -55,6 +76,8 @@ struct ChunkTreeSettings {
       .rebuild = Rebuild::kOffline});
     v(max_build_bytes, "max_build_bytes", {.min = 1e6, .max = 1e12, .unit = "B",
       .help = "Memory cap of the build's error grid", .log_scale = true});
+    v(tessellation, "tessellation", {.help = "rtin (reduced where flat) or the seed's full grids hq0, hq1, hq2",
+      .rebuild = Rebuild::kOffline});
   }
 };
 
@@ -89,9 +112,13 @@ enum class LodCriterion : std::uint8_t {
   // Seed 002 §2.3: chunk_error * lod_distance / d <= 1, chunk_error = the chunk's sample spacing,
   // d = distance to the chunk centre. Kept for comparison; it does not bound the pixel error.
   kSeedDistance,
+  // No LOD: every leaf (the full-resolution mesh) is drawn, the "unoptimised rendering" baseline
+  // of seed 002 Tab. 3.1. Frustum culling still follows LodSettings::frustum_cull.
+  kBruteForce,
 };
-constexpr std::array<EnumName<LodCriterion>, 2> enum_names(LodCriterion) {
-  return {{{LodCriterion::kScreenSpaceError, "screen_space_error"}, {LodCriterion::kSeedDistance, "seed_distance"}}};
+constexpr std::array<EnumName<LodCriterion>, 3> enum_names(LodCriterion) {
+  return {{{LodCriterion::kScreenSpaceError, "screen_space_error"}, {LodCriterion::kSeedDistance, "seed_distance"},
+           {LodCriterion::kBruteForce, "brute_force"}}};
 }
 
 // How chunks of different LOD are joined.
@@ -121,7 +148,7 @@ struct LodSettings {
       .help = "Largest allowed projected height error (tau)", .log_scale = true});
     v(morph_fraction, "morph_fraction", {.min = 0.0, .max = 1.0,
       .help = "Share of a LOD range used to morph towards the parent"});
-    v(criterion, "criterion", {.help = "screen_space_error (Ulrich) or seed_distance (seed 002)"});
+    v(criterion, "criterion", {.help = "screen_space_error (Ulrich), seed_distance (seed 002) or brute_force (no LOD)"});
     v(lod_distance, "lod_distance", {.min = 0.01, .max = 1e6, .unit = "m",
       .help = "Seed criterion: distance per metre of sample spacing", .log_scale = true});
     v(crack_fix, "crack_fix", {.help = "seams, skirts or none"});

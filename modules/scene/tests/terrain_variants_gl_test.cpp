@@ -1,0 +1,87 @@
+// Seed 002's variants reached from a scene file's terrain section (issue 20): the brute-force
+// criterion (Tab. 3.1 "unoptimised": every sample at full resolution) and the tessellation modes
+// hq 0/1/2 beside RTIN (Tab. 3.2 / 3.5: triangles and memory). The counts are the terrain
+// module's stats after a rendered frame, the memory what render/gpu_memory.hpp tracks for it.
+#include <sylva/render/framebuffer.hpp>
+#include <sylva/render/gpu_memory.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/render/testing.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/scene.hpp>
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+using namespace sylva;
+using namespace sylva::scene;
+
+namespace {
+
+using TerrainVariantsGl = render::GlTest;
+
+struct Drawn {
+  std::uint64_t triangles = 0, chunks = 0, mesh_bytes = 0, held_bytes = 0;
+};
+
+// A 128 m terrain of 129^2 samples, 17-vertex chunks (4 levels, 64 leaves), seen from a corner.
+Drawn draw(const std::string& tessellation, const std::string& lod) {
+  const std::string text = R"({"terrain": {"size": 128, "resolution": 129, "height": 24, "generator": "fbm",
+      "noise": {"frequency": 0.01, "octaves": 2, "seed": 4}, "tree": {"leaf_dimension": 17, "tessellation": ")" +
+                           tessellation + R"("}, "render": {"lod": )" + lod + R"(}},
+    "camera": {"position": [-70, 40, 70], "yaw_deg": -45, "pitch_deg": -20},
+    "render": {"shadows": {"enabled": false}}})";
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::from_text(text, "variants.json", warnings);
+  EXPECT_TRUE(doc.ok()) << doc.error().message;
+  if (!doc.ok()) return {};
+  const auto before = render::gpu_memory_usage()["terrain"].total();
+  auto scene = Scene::create(std::move(*doc));
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  if (!scene.ok()) return {};
+  auto fb = render::Framebuffer::create({.width = 64, .height = 36}).value();
+  render::FrameProfiler profiler;
+  const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, {64, 36});
+  (*scene)->update(camera, 0.0, 0.0f, {64, 36});
+  (*scene)->render(fb, profiler);
+  const nlohmann::json s = (*scene)->module_stats()["terrain"];
+  return {s["triangles"].get<std::uint64_t>(), s["chunks_drawn"].get<std::uint64_t>(),
+          s["gpu_bytes"].get<std::uint64_t>(), render::gpu_memory_usage()["terrain"].total() - before};
+}
+
+const std::string kBruteForce = R"({"criterion": "brute_force", "frustum_cull": false})";
+const std::string kSeedCriterion = R"({"criterion": "seed_distance", "lod_distance": 20})";
+
+TEST_F(TerrainVariantsGl, BruteForceDrawsTheFullResolutionGrid) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  const Drawn hq0 = draw("hq0", kBruteForce);
+  EXPECT_EQ(hq0.chunks, 64u) << "every leaf";
+  EXPECT_EQ(hq0.triangles, 2u * 128u * 128u) << "2 triangles per sample square";
+  const Drawn rtin = draw("rtin", kBruteForce);
+  EXPECT_EQ(rtin.chunks, 64u);
+  EXPECT_LE(rtin.triangles, hq0.triangles) << "exact leaves drop only exactly interpolated samples";
+  EXPECT_GT(rtin.triangles, hq0.triangles * 9 / 10);
+  const Drawn lod = draw("rtin", "{}");
+  EXPECT_LT(lod.triangles, rtin.triangles / 2) << "the default criterion draws far fewer";
+}
+
+TEST_F(TerrainVariantsGl, TessellationModesOrderTrianglesAndMemoryAsTheSeed) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  // Every leaf drawn: the same chunks in every mode.
+  const Drawn hq0 = draw("hq0", kBruteForce), hq1 = draw("hq1", kBruteForce), hq2 = draw("hq2", kBruteForce);
+  EXPECT_EQ(hq1.triangles, hq0.triangles) << "method B: 2 triangles per square, like A";
+  EXPECT_EQ(hq2.triangles, 2 * hq0.triangles) << "method C: 4 triangles per square";
+  EXPECT_EQ(hq1.mesh_bytes, hq0.mesh_bytes);
+  EXPECT_GT(hq2.mesh_bytes, hq0.mesh_bytes * 3 / 2) << "centre vertices and twice the indices";
+  EXPECT_GT(hq2.held_bytes, hq0.held_bytes) << "the tracked GPU memory the bench reports";
+  EXPECT_GT(hq0.held_bytes, hq0.mesh_bytes);
+  // The thesis's criterion picks chunks by spacing alone: RTIN's flat reduction draws fewer.
+  const Drawn rtin_seed = draw("rtin", kSeedCriterion), hq0_seed = draw("hq0", kSeedCriterion),
+              hq2_seed = draw("hq2", kSeedCriterion);
+  EXPECT_GT(hq0_seed.chunks, 1u);
+  EXPECT_LT(hq0_seed.chunks, 64u) << "a mix of levels";
+  EXPECT_LT(rtin_seed.triangles, hq0_seed.triangles);
+  EXPECT_GT(hq2_seed.triangles, hq0_seed.triangles * 3 / 2);
+}
+
+}  // namespace
