@@ -77,7 +77,7 @@ ShadowCascades compute_shadow_cascades(const Camera& camera, const glm::vec3& to
   const double k2 = tan_x * tan_x + tan_y * tan_y;
   const glm::dvec3 cam = camera.position();
   const glm::dvec3 fwd(out.view_forward);
-  const glm::vec4 bias_scale = in.cascade_bias_scale;
+  const std::array<glm::vec4, 2> bias_scale{in.cascade_bias_scale, in.cascade_bias_scale_far};
 
   float slice_near = near_plane;
   for (int i = 0; i < count; ++i) {
@@ -144,7 +144,7 @@ ShadowCascades compute_shadow_cascades(const Camera& camera, const glm::vec3& to
     sc.far_depth = static_cast<float>(f);
     sc.radius = static_cast<float>(r);
     sc.texel_size = static_cast<float>(texel);
-    sc.bias_scale = std::max(finite_or(bias_scale[i], 1.0f), 0.0f);
+    sc.bias_scale = std::max(finite_or(bias_scale[static_cast<std::size_t>(i / 4)][i % 4], 1.0f), 0.0f);
     sc.center = right * (lx) + up * (ly) + back * (lz);
     slice_near = static_cast<float>(f);
   }

@@ -12,17 +12,20 @@ namespace sylva::render {
 namespace {
 
 // std140 mirror of SylvaShadows in shaders/lib/shadows.glsl (keep in sync; sizes asserted).
+// Per-cascade scalars are packed four to a vec4 (std140 would pad a float[8] to 16 bytes each).
+constexpr int kCascadeVec4s = (kMaxShadowCascades + 3) / 4;
 struct ShadowBlock {
   glm::mat4 matrix[kMaxShadowCascades];  // camera-relative -> (u, v, depth)
-  glm::vec4 split_far;                   // far view depth of each cascade [m]
-  glm::vec4 texel;                       // world texel size per cascade [m]
-  glm::vec4 bias_scale;                  // per-cascade bias factor
+  glm::vec4 split_far[kCascadeVec4s];    // far view depth of each cascade [m]
+  glm::vec4 texel[kCascadeVec4s];        // world texel size per cascade [m]
+  glm::vec4 bias_scale[kCascadeVec4s];   // per-cascade bias factor
   glm::vec4 view_forward;                // xyz camera forward, w blend fraction
   glm::vec4 light_direction;             // xyz toward the sun
   glm::vec4 bias;                        // x slope bias, y min bias, z normal offset [texels]
   glm::ivec4 params;                     // x count, y pcf radius, z enabled, w resolution
 };
-static_assert(sizeof(ShadowBlock) == 4 * 64 + 7 * 16, "std140 layout of SylvaShadows");
+static_assert(sizeof(ShadowBlock) == kMaxShadowCascades * 64 + (3 * kCascadeVec4s + 4) * 16,
+              "std140 layout of SylvaShadows");
 
 const ShadowCasterContext* g_active_cascade = nullptr;
 
@@ -145,9 +148,9 @@ void ShadowMaps::upload_uniforms(bool enabled) {
   for (int i = 0; i < kMaxShadowCascades; ++i) {
     const ShadowCascade& c = cascades_.cascades[static_cast<std::size_t>(i)];
     b.matrix[i] = i < count ? c.relative_texture : glm::mat4(1.0f);
-    b.split_far[i] = i < count ? c.far_depth : 0.0f;
-    b.texel[i] = i < count ? c.texel_size : 0.0f;
-    b.bias_scale[i] = i < count ? c.bias_scale : 1.0f;
+    b.split_far[i / 4][i % 4] = i < count ? c.far_depth : 0.0f;
+    b.texel[i / 4][i % 4] = i < count ? c.texel_size : 0.0f;
+    b.bias_scale[i / 4][i % 4] = i < count ? c.bias_scale : 1.0f;
   }
   b.view_forward = glm::vec4(cascades_.view_forward, std::clamp(settings_.blend_fraction, 0.0f, 0.5f));
   b.light_direction = glm::vec4(cascades_.light_direction, 0.0f);

@@ -26,6 +26,8 @@ namespace sylva::render {
 namespace {
 
 constexpr int kSize = 128;
+// The cascade index the test shader writes to blue, times 0.1 (distinct up to 8 cascades in 8 bits).
+constexpr float kCascadeCode = 0.1f;
 
 struct Box {
   glm::vec3 lo, hi;
@@ -104,7 +106,7 @@ in float v_tag;
 layout(location = 0) out vec4 o_color;
 void main() {
   float s = sylva_shadow(v_rel, normalize(v_normal));
-  o_color = vec4(s, v_tag, float(sylva_shadow_cascade(v_rel)) * 0.25, 1.0);
+  o_color = vec4(s, v_tag, float(sylva_shadow_cascade(v_rel)) * 0.1, 1.0);  // kCascadeCode
 }
 )");
   // Fixed world points: pixel (x, y) of the target is the ground point u_origin_rel + (x*s, 0, y*s).
@@ -245,7 +247,7 @@ Classification classify(const Image& img, const Camera& cam, const ShadowMaps& m
       std::optional<glm::dvec3> p = ground_point(cam, x, row);
       if (!p || std::abs(p->x) > 39.0 || std::abs(p->z) > 39.0) continue;
       p->y = 1e-4;  // just above the ground, so a horizontal sun ray still meets the box
-      const int cascade = static_cast<int>(std::lround(img.at(x, row, 2) * 4.0f));
+      const int cascade = static_cast<int>(std::lround(img.at(x, row, 2) / kCascadeCode));
       if (cascade >= maps.cascades().count) continue;
       const double texel = maps.cascades().cascades[static_cast<std::size_t>(cascade)].texel_size;
       // Edge band in light-space texels (perpendicular to the sun, where texels live): the
@@ -522,42 +524,58 @@ TEST_F(ShadowMapsGl, SubTexelCameraMotionKeepsShadowEdges) {
 
 TEST_F(ShadowMapsGl, CascadeSelectionFollowsViewDepth) {
   ShadowScene scene({{-2, 0, -2}, {2, 3, 2}});
-  ShadowSettings settings = test_settings();
-  settings.cascade_count = 4;
-  Result<ShadowMaps> maps = ShadowMaps::create(settings);
-  ASSERT_TRUE(maps.ok());
-  maps->add_caster(scene.caster());
-  const Camera cam = make_camera({0.0, 3.0, 10.0}, {0.0, 0.0, -2.0});
-  ASSERT_TRUE(maps->render(cam, sun_direction(1.0f, 0.8f)).ok());
-  const Image img = scene.draw(*maps, cam);
-  int checked = 0, agree = 0;
-  std::vector<int> seen(5, 0);
-  for (int row = 0; row < kSize; ++row) {
-    for (int x = 0; x < kSize; ++x) {
-      if (img.at(x, row, 3) < 0.5f || img.at(x, row, 1) > 0.5f) continue;
-      const std::optional<glm::dvec3> p = ground_point(cam, x, row);
-      if (!p || std::abs(p->x) > 39.0 || std::abs(p->z) > 39.0) continue;
-      const float depth = glm::dot(glm::vec3(*p - cam.position()), cam.forward());
-      int expected = maps->cascades().count;
-      for (int i = maps->cascades().count - 1; i >= 0; --i) {
-        if (depth < maps->cascades().cascades[static_cast<std::size_t>(i)].far_depth) expected = i;
+  for (const int count : {4, kMaxShadowCascades}) {
+    SCOPED_TRACE(count);
+    ShadowSettings settings = test_settings();
+    settings.cascade_count = count;
+    Result<ShadowMaps> maps = ShadowMaps::create(settings);
+    ASSERT_TRUE(maps.ok());
+    maps->add_caster(scene.caster());
+    const Camera cam = make_camera({0.0, 3.0, 10.0}, {0.0, 0.0, -2.0});
+    ASSERT_TRUE(maps->render(cam, sun_direction(1.0f, 0.8f)).ok());
+    const Image img = scene.draw(*maps, cam);
+    int checked = 0, agree = 0;
+    float nearest = INFINITY, farthest = 0.0f;  // view depths of the checked ground
+    std::vector<int> seen(static_cast<std::size_t>(count) + 1, 0);
+    for (int row = 0; row < kSize; ++row) {
+      for (int x = 0; x < kSize; ++x) {
+        if (img.at(x, row, 3) < 0.5f || img.at(x, row, 1) > 0.5f) continue;
+        const std::optional<glm::dvec3> p = ground_point(cam, x, row);
+        if (!p || std::abs(p->x) > 39.0 || std::abs(p->z) > 39.0) continue;
+        const float depth = glm::dot(glm::vec3(*p - cam.position()), cam.forward());
+        nearest = std::min(nearest, depth);
+        farthest = std::max(farthest, depth);
+        int expected = maps->cascades().count;
+        for (int i = maps->cascades().count - 1; i >= 0; --i) {
+          if (depth < maps->cascades().cascades[static_cast<std::size_t>(i)].far_depth) expected = i;
+        }
+        const int got = static_cast<int>(std::lround(img.at(x, row, 2) / kCascadeCode));
+        ++checked;
+        if (got == expected) ++agree;
+        ++seen[static_cast<std::size_t>(std::clamp(got, 0, count))];
       }
-      const int got = static_cast<int>(std::lround(img.at(x, row, 2) * 4.0f));
-      ++checked;
-      if (got == expected) ++agree;
-      ++seen[static_cast<std::size_t>(std::clamp(got, 0, 4))];
     }
-  }
-  ASSERT_GT(checked, 2000);
-  EXPECT_GE(agree, checked * 0.995) << agree << " of " << checked;
-  for (int i = 0; i < 4; ++i) EXPECT_GT(seen[static_cast<std::size_t>(i)], 0) << "cascade " << i << " never used";
-  // Splits grow with distance (practical scheme) and each cascade starts where the last ended.
-  for (int i = 1; i < 4; ++i) {
-    const ShadowCascade& a = maps->cascades().cascades[static_cast<std::size_t>(i - 1)];
-    const ShadowCascade& b = maps->cascades().cascades[static_cast<std::size_t>(i)];
-    EXPECT_EQ(a.far_depth, b.near_depth);
-    EXPECT_GT(b.far_depth - b.near_depth, a.far_depth - a.near_depth);
-    EXPECT_GT(b.texel_size, a.texel_size);
+    ASSERT_GT(checked, 2000);
+    EXPECT_GE(agree, checked * 0.995) << agree << " of " << checked;
+    // Every cascade whose depth range the visible ground crosses is used (eight cascades start
+    // nearer than the nearest ground in view).
+    for (int i = 0; i < count; ++i) {
+      const ShadowCascade& c = maps->cascades().cascades[static_cast<std::size_t>(i)];
+      if (c.far_depth < nearest + 0.1f || c.near_depth > farthest - 0.1f) continue;
+      EXPECT_GT(seen[static_cast<std::size_t>(i)], 0) << "cascade " << i << " never used";
+    }
+    if (count == 4) {
+      EXPECT_GT(std::min({seen[0], seen[1], seen[2], seen[3]}), 0) << "with four cascades the ground crosses all";
+    }
+    EXPECT_GT(seen[static_cast<std::size_t>(count - 1)], 0) << "the last cascade never used";
+    // Splits grow with distance (practical scheme) and each cascade starts where the last ended.
+    for (int i = 1; i < count; ++i) {
+      const ShadowCascade& a = maps->cascades().cascades[static_cast<std::size_t>(i - 1)];
+      const ShadowCascade& b = maps->cascades().cascades[static_cast<std::size_t>(i)];
+      EXPECT_EQ(a.far_depth, b.near_depth);
+      EXPECT_GT(b.far_depth - b.near_depth, a.far_depth - a.near_depth);
+      EXPECT_GT(b.texel_size, a.texel_size);
+    }
   }
 }
 
@@ -568,7 +586,8 @@ TEST_F(ShadowMapsGl, CascadeCountAndResolutionChangeAtRunTime) {
   maps->add_caster(scene.caster());
   const Camera cam = make_camera({2.0, 6.0, 8.0}, {0.0, 0.0, -2.0});
   const glm::vec3 sun = sun_direction(-1.9f, 0.7f);
-  for (const auto& [count, resolution] : {std::pair{1, 512}, std::pair{4, 256}, std::pair{2, 1024}, std::pair{3, 512}}) {
+  for (const auto& [count, resolution] :
+       {std::pair{1, 512}, std::pair{4, 256}, std::pair{kMaxShadowCascades, 256}, std::pair{2, 1024}, std::pair{3, 512}}) {
     maps->settings().cascade_count = count;
     maps->settings().resolution = resolution;
     PassStats stats;
@@ -580,7 +599,9 @@ TEST_F(ShadowMapsGl, CascadeCountAndResolutionChangeAtRunTime) {
     int max_cascade = 0;
     for (int row = 0; row < kSize; ++row) {
       for (int x = 0; x < kSize; ++x) {
-        if (img.at(x, row, 3) > 0.5f) max_cascade = std::max(max_cascade, static_cast<int>(std::lround(img.at(x, row, 2) * 4.0f)));
+        if (img.at(x, row, 3) > 0.5f) {
+          max_cascade = std::max(max_cascade, static_cast<int>(std::lround(img.at(x, row, 2) / kCascadeCode)));
+        }
       }
     }
     EXPECT_LE(max_cascade, count) << "a cascade beyond the count was selected";

@@ -42,7 +42,8 @@
 namespace sylva::render {
 
 // Cascade arrays in the shader are sized for this many; the count changes at run time below it.
-inline constexpr int kMaxShadowCascades = 4;
+// Eight: seed 004 compared 3 against 5 cascades (R3, §3.8), and large views want more.
+inline constexpr int kMaxShadowCascades = 8;
 
 struct ShadowSettings {
   bool enabled = true;
@@ -55,7 +56,8 @@ struct ShadowSettings {
   float slope_bias = 0.0085f;    // seed §3.3
   float min_bias = 0.00085f;     // seed §3.3
   float normal_offset = 1.0f;    // receiver offset along the normal [(pcf_radius + 1) texels]
-  glm::vec4 cascade_bias_scale{1.0f, 1.0f, 1.0f, 1.0f};  // the seed's cascadeBiases
+  glm::vec4 cascade_bias_scale{1.0f, 1.0f, 1.0f, 1.0f};  // the seed's cascadeBiases, cascades 1-4
+  glm::vec4 cascade_bias_scale_far{1.0f, 1.0f, 1.0f, 1.0f};  // the same for cascades 5-8
   bool snap_to_texels = true;    // off only to demonstrate shimmer
   float caster_reach = 500.0f;   // casters this far toward the sun beyond a cascade survive culling [m]
 
@@ -71,7 +73,8 @@ struct ShadowSettings {
     v(slope_bias, "slope_bias", {.min = 0.0, .max = 0.1, .help = "Seed bias: max(slope_bias*(1-N.L), min_bias)"});
     v(min_bias, "min_bias", {.min = 0.0, .max = 0.1, .help = "Seed bias floor"});
     v(normal_offset, "normal_offset", {.min = 0.0, .max = 8.0, .help = "Receiver offset along the normal, in filter half-widths"});
-    v(cascade_bias_scale, "cascade_bias_scale", {.min = 0.0, .max = 100.0, .help = "Per-cascade bias factor"});
+    v(cascade_bias_scale, "cascade_bias_scale", {.min = 0.0, .max = 100.0, .help = "Per-cascade bias factor (cascades 1-4)"});
+    v(cascade_bias_scale_far, "cascade_bias_scale_far", {.min = 0.0, .max = 100.0, .help = "Per-cascade bias factor (cascades 5-8)"});
     v(snap_to_texels, "snap_to_texels", {.help = "Snap cascades to whole texels (no shimmer)"});
     v(caster_reach, "caster_reach", {.min = 0.0, .max = 1.0e5, .unit = "m", .help = "Caster culling reach toward the sun"});
   }
@@ -90,7 +93,7 @@ struct ShadowCascade {
   float far_depth = 0.0f;     // view depth where it ends [m]
   float radius = 0.0f;        // bounding-sphere radius = half the side of the light frustum [m]
   float texel_size = 0.0f;    // world size of one shadow texel [m]
-  float bias_scale = 1.0f;    // cascade_bias_scale[i]
+  float bias_scale = 1.0f;    // cascade_bias_scale[i] (cascade_bias_scale_far[i - 4] from the fifth on)
   glm::dvec3 center{0.0};     // snapped sphere centre, world [m]
 };
 

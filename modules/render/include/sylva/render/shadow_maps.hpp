@@ -8,7 +8,7 @@
 //   kShadowUniformBinding = 2   std140 block SylvaShadows (matrices, splits, bias, counts)
 //   kShadowTextureUnit    = 15  sampler2DArrayShadow sylva_shadow_map (compare GL_GEQUAL)
 // Cascade count and resolution change at run time: the texture is reallocated, shaders are
-// never recompiled (arrays are sized kMaxShadowCascades = 4; the seed had to recompile, §4.8).
+// never recompiled (arrays are sized kMaxShadowCascades = 8; the seed had to recompile, §4.8).
 //
 // Depth convention: reversed like the camera (shadow_cascades.hpp): cleared to 0, drawn with
 // GL_GREATER, 1 = nearest to the sun. During render() GL_DEPTH_CLAMP is on so casters between
