@@ -18,6 +18,7 @@ uniform vec3 u_base_color;
 uniform vec3 u_tip_color;
 uniform vec4 u_shading;   // x translucency, y ambient, z root_occlusion, w specular
 uniform int u_receive_shadows;
+uniform vec2 u_color_motion;  // seed 003 motion by colour (color.glsl grass_color_pulse)
 
 out vec4 o_color;
 
@@ -32,6 +33,7 @@ void main() {
   // Dry tips: a per-blade random decorrelated from the ambient shade random (both from te_shade).
   float dryness = grass_blade_dryness(fract(te_shade * 7.31));
   vec3 albedo = grass_albedo(u_base_color, u_tip_color, v, dryness) * te_color_mult;
+  albedo *= grass_color_pulse(u_color_motion, fract(te_shade * 3.17));  // per-blade phase
   float ao = mix(1.0 - u_shading.z, 1.0, smoothstep(0.0, 1.0, v));
   // A blade is not a flat card: its cross-section is curved and it sits in a canopy lit from
   // above, so the sun and the sky are gathered with the normal leaned towards up. With the bare

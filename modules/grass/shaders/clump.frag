@@ -13,6 +13,7 @@ uniform vec3 u_base_color;
 uniform vec3 u_tip_color;
 uniform int u_receive_shadows;  // sun term times the render core's cascaded shadows
 uniform vec3 u_shading;         // x brightness (calibration), y ambient, z translucency (the blades' shading)
+uniform vec2 u_color_motion;    // seed 003 motion by colour (color.glsl grass_color_pulse)
 
 in vec3 c_rel_pos;
 in vec2 c_uv;
@@ -22,6 +23,7 @@ flat in float c_fade;
 flat in vec3 c_normal;
 flat in float c_repeat;
 flat in vec2 c_cell;
+flat in float c_phase;
 
 out vec4 o_color;
 
@@ -37,6 +39,7 @@ void main() {
   if (!(t.a < c_fade)) discard;
   float along = clamp(t.r * 1.2 - 0.1, 0.0, 1.0);
   vec3 albedo = grass_albedo(u_base_color, u_tip_color, along, GRASS_MEAN_DRYNESS) * c_color;
+  albedo *= grass_color_pulse(u_color_motion, c_phase);
   float ao = mix(0.35, 1.0, smoothstep(0.0, 1.0, c_v));
   float lit = u_receive_shadows != 0 ? sylva_shadow(c_rel_pos, c_normal) : 1.0;
   vec3 color = albedo * grass_canopy_light(normalize(c_rel_pos), u_shading.z, lit, u_shading.y) * ao * u_shading.x;

@@ -27,6 +27,7 @@ flat out float c_fade;
 flat out vec3 c_normal;
 flat out float c_repeat;  // wide billboards: atlas cells across (c_uv = (u in cells, v)); 0: c_uv is the atlas uv
 flat out vec2 c_cell;
+flat out float c_phase;   // per-clump phase of the colour motion (the sway phase)
 
 const vec2 kCorners[6] = vec2[](vec2(0, 0), vec2(1, 0), vec2(1, 1), vec2(0, 0), vec2(1, 1), vec2(0, 1));
 
@@ -40,6 +41,7 @@ void main() {
   if (u_wide.z == 2.0) c_fade *= wide * c.size.z;  // size.z: the group's strand keep
   else if (u_wide.z == 1.0) c_fade *= 1.0 - wide;
   c_repeat = 0.0;
+  c_phase = c.color.w;
   c_cell = vec2(0.0);
   if (c_fade <= 0.0) {
     gl_Position = vec4(0.0, 0.0, -2.0, 1.0);  // outside the clip volume: the clump is not drawn

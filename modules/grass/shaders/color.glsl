@@ -15,6 +15,11 @@ const float GRASS_MEAN_DRYNESS = 0.18;
 // from a distance the upper half of the blades is what is seen (the rest is hidden by neighbours).
 const float GRASS_SEEN_V = 0.7;
 
+// Seed 003 §3.4 motion by colour: c = tex (k0 + k1 s), s = sin(freq t + phase), k0 = 1,
+// k1 = motion.x; motion.y = 2 pi freq t (field_color.hpp color_motion_uniform), phase01 in [0, 1).
+// motion.x = 0 gives exactly 1 (off).
+float grass_color_pulse(vec2 motion, float phase01) { return 1.0 + motion.x * sin(motion.y + 6.2831853 * phase01); }
+
 // Per-blade tip dryness from a uniform random in [0, 1): 45 % of the blades turn partly to straw.
 float grass_blade_dryness(float r) { return 0.8 * smoothstep(0.55, 1.0, r); }
 

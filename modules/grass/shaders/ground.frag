@@ -27,6 +27,7 @@ uniform vec3 u_coverage;     // x tau_side, y tau_top, z gain (far_field.hpp cov
 uniform vec4 u_shading;      // x brightness (calibration), y ambient, z under-layer on (0/1), w under-layer shade
 uniform float u_translucency;  // the blades' shading.translucency
 uniform float u_max_slope_deg; // far_field.hpp slope_keep()
+uniform vec2 u_color_motion;   // seed 003 §3.4.3: the far layer pulses in sync (phase 0)
 
 in vec3 g_local;
 in vec3 g_rel_pos;
@@ -59,6 +60,7 @@ void main() {
   if (!top && !under) discard;
   vec3 albedo = grass_mean_albedo(u_base_color, u_tip_color) * g_color * (t.rgb * 1.4);
   if (!top) albedo *= u_shading.w;
+  albedo *= grass_color_pulse(u_color_motion, 0.0);
   float lit = u_receive_shadows != 0 ? sylva_shadow(g_rel_pos, n) : 1.0;
   vec3 color = albedo * grass_canopy_light(g_rel_pos / max(distance, 1e-6), u_translucency, lit, u_shading.y) * u_shading.x;
   o_color = vec4(apply_fog(color, g_rel_pos), 1.0);

@@ -556,6 +556,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
   const glm::vec4 fades(near_distance_, s.clump_fade_in, s.mid_distance, s.mid_fade);
   const glm::vec2 far_fades(s.far_distance, s.far_fade);
   const bool receive = s.receive_shadows && detail::shadow_block_bound();
+  const glm::vec2 color_motion = color_motion_uniform(color_motion_, color_motion_hz_, time);
   if (!visible_clump_tiles_.empty() || !visible_wide_tiles_.empty()) {
     const WindFrame wf = wind.frame(std::isfinite(time) ? time : 0.0, origin_);
     wind_.update(0, sizeof(WindGpuParams), &wf.gpu);
@@ -571,6 +572,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_tip_color", tip_color_);
     p.set("u_receive_shadows", receive ? 1 : 0);
     p.set("u_shading", glm::vec3(s.clump_brightness, ambient_, translucency_));
+    p.set("u_color_motion", color_motion);
     atlas_.bind(0);
     clump_vao_.bind();
     p.use();
@@ -618,6 +620,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_lift_per_m", s.lift_per_m);
     p.set("u_max_slope_deg", s.max_slope_deg);
     p.set("u_translucency", translucency_);
+    p.set("u_color_motion", color_motion);
     ground_texture_.bind(0);
     density_.bind(1);
     ground_vao_.bind();

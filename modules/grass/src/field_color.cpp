@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace sylva::grass {
 
@@ -33,6 +34,12 @@ glm::vec3 field_color(double x, double z, const BladeSettings& blade, std::uint3
   const float value = 2.0f * hash_to_unit_float(hash_u32(h, 0x5au)) - 1.0f;
   m *= 1.0f + blade.clump_variation * (hue * glm::vec3(0.4f, 0.05f, -0.4f) + value * glm::vec3(0.3f));
   return glm::clamp(m, glm::vec3(0.3f), glm::vec3(1.7f));
+}
+
+glm::vec2 color_motion_uniform(float amplitude, float hz, double time) {
+  const double turns = std::isfinite(time) ? static_cast<double>(hz) * time : 0.0;
+  const double phase = 2.0 * std::numbers::pi * (turns - std::floor(turns));
+  return {amplitude, static_cast<float>(std::isfinite(phase) ? phase : 0.0)};
 }
 
 }  // namespace sylva::grass

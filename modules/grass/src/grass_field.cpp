@@ -4,6 +4,7 @@
 
 #include <sylva/core/assert.hpp>
 #include <sylva/core/log.hpp>
+#include <sylva/grass/field_color.hpp>
 #include <sylva/render/frame_context.hpp>
 
 #include <fmt/format.h>
@@ -184,6 +185,7 @@ void GrassField::set_cull_uniforms(const render::Program& p, const CullView& vie
 
 void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind) {
   ++frame_;
+  time_ = time;
   shadow_stats_ = {};
   const CullSettings& cs = settings_.cull;
   // Cull view in blade-set local coordinates: VP * translate(origin - camera).
@@ -369,6 +371,7 @@ void GrassField::draw_blades(const render::Camera& camera, render::PassStats* st
   const ShadingSettings& sh = settings_.shading;
   draw_.set("u_shading", glm::vec4(sh.translucency, sh.ambient, sh.root_occlusion, sh.specular));
   draw_.set("u_receive_shadows", sh.receive_shadows && detail::shadow_block_bound() ? 1 : 0);
+  draw_.set("u_color_motion", color_motion_uniform(sh.color_motion, sh.color_motion_hz, time_));
 
   vao_.bind();
   draw_.use();

@@ -94,5 +94,21 @@ TEST(GrassFieldColor, FarGrassThinsOutOnSteepSlopes) {
   EXPECT_EQ(slope_keep(y(80.0f), 90.0f), 1.0f);  // 90 degrees: grass on any slope
 }
 
+// Seed 003 §3.4 motion by colour: the phase 2 pi f t is reduced in double precision, so it is
+// exact after days of simulation time, and bad times give phase 0.
+TEST(GrassFieldColor, ColorMotionPhaseStaysExactForLongTimes) {
+  constexpr double kTwoPi = 6.283185307179586;
+  EXPECT_FLOAT_EQ(color_motion_uniform(0.3f, 0.5f, 0.5).y, static_cast<float>(kTwoPi / 4.0));
+  EXPECT_EQ(color_motion_uniform(0.3f, 0.5f, 0.5).x, 0.3f);
+  const double day = 86400.0 * 3.0 + 0.5;  // 3 days + a quarter period at 0.5 Hz
+  EXPECT_NEAR(color_motion_uniform(0.3f, 0.5f, day).y, kTwoPi / 4.0, 1e-6);
+  for (const double t : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), -1e300}) {
+    const glm::vec2 u = color_motion_uniform(0.3f, 0.5f, t);
+    EXPECT_TRUE(std::isfinite(u.y)) << t;
+    EXPECT_GE(u.y, 0.0f) << t;
+    EXPECT_LE(u.y, static_cast<float>(kTwoPi)) << t;
+  }
+}
+
 }  // namespace
 }  // namespace sylva::grass

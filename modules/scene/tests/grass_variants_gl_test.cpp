@@ -1,3 +1,5 @@
+// The thesis variants of the grass module (issue #20), each through a scene, off by default.
+//
 // Seed 003's wide billboards (§2.4.3, Tab. 4.2) through a scene: grass.far.wide_billboards
 // replaces the small billboard clumps beyond grass.far.wide_distance by wide_per_group (20)
 // billboards per group of 5 x 5 tiles, each as wide as the group. The thesis's claims, checked on
@@ -9,6 +11,14 @@
 //  - the picture changes, but the share of the picture the grass covers stays within 40 % (the
 //    strand threshold shift, wide_keep);
 //  - on from the middle of the field, both levels are drawn and the near small clumps stay.
+//
+// Seed 003's motion by colour (§3.4, grass.render.shading.color_motion): blades and clumps take
+// albedo x (1 + k1 sin(2 pi f t + phase)) with a phase of their own, the far ground layer pulses
+// in sync (phase 0). Checked a half period apart (sin +1 against -1) on a static field (physics
+// off, no wind): off, the two pictures are the same; on, with the ground layer alone every
+// changed pixel is brighter at the crest, by (1 + k1) / (1 - k1); with the blades alone some are
+// brighter and some darker.
+//
 // Parameters are set with Scene::set_param, the path of `--set` and the editor's panel.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
@@ -18,8 +28,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
+#include <vector>
 #include <cstdlib>
 #include <string>
 
@@ -29,6 +42,7 @@ using namespace sylva::scene;
 namespace {
 
 using GrassWideBillboardsGl = render::GlTest;
+using GrassColorMotionGl = render::GlTest;
 
 // 40 x 40 m of grass at density 1 in front of the camera, 4 m tiles: 2 x 2 groups of 20 m.
 constexpr const char* kStage = R"json({
@@ -53,16 +67,19 @@ struct Frame {
   std::uint64_t clumps = 0, wide = 0, wide_total = 0;
 };
 
-Frame render_frame(Scene& scene, const render::Camera& camera) {
+// Two frames, the last at `time` [s].
+Frame render_frame(Scene& scene, const render::Camera& camera, double time = 1.0 / 30.0) {
   auto fb = render::Framebuffer::create({.width = kSize.x, .height = kSize.y, .color_formats = {GL_RGBA16F}}).value();
   render::FrameProfiler profiler;
   for (int i = 0; i < 2; ++i) {
-    scene.update(camera, 1.0 / 30.0 * i, 1.0f / 30.0f, kSize);
+    scene.update(camera, time + (i - 1) / 30.0, 1.0f / 30.0f, kSize);
     scene.render(fb, profiler);
   }
   const nlohmann::json g = scene.module_stats()["grass"];
-  return {render::read_color(fb).value(), g["clumps_drawn"].get<std::uint64_t>(), g["wide_billboards_drawn"].get<std::uint64_t>(),
-          g["wide_billboards"].get<std::uint64_t>()};
+  // Without the far field (grass.far_field false) the module reports no far counts.
+  const std::uint64_t none = 0;
+  return {render::read_color(fb).value(), g.value("clumps_drawn", none), g.value("wide_billboards_drawn", none),
+          g.value("wide_billboards", none)};
 }
 
 bool differs(const Image& a, const Image& b, int x, int y) {
@@ -82,16 +99,28 @@ double changed_share(const Image& with, const Image& bare) {
   return static_cast<double>(n) / static_cast<double>(kSize.x * kSize.y);
 }
 
+std::unique_ptr<Scene> make_scene(const char* json) {
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::from_text(json, "grass variants stage", warnings);
+  EXPECT_TRUE(doc.ok()) << doc.error().message;
+  if (!doc.ok()) return nullptr;
+  auto made = Scene::create(std::move(*doc));
+  EXPECT_TRUE(made.ok()) << made.error().message;
+  if (!made.ok()) return nullptr;
+  return std::move(*made);
+}
+
+double luminance(const Image& im, int x, int y) {
+  return 0.2126 * im.at(x, y, 0) + 0.7152 * im.at(x, y, 1) + 0.0722 * im.at(x, y, 2);
+}
+
 }  // namespace
 
 TEST_F(GrassWideBillboardsGl, WideBillboardsReplaceSmallOnesBeyondTheirDistance) {
   if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
-  std::vector<std::string> warnings;
-  auto doc = SceneDocument::from_text(kStage, "wide billboards stage", warnings);
-  ASSERT_TRUE(doc.ok()) << doc.error().message;
-  auto made = Scene::create(std::move(*doc));
-  ASSERT_TRUE(made.ok()) << made.error().message;
-  Scene& scene = **made;
+  std::unique_ptr<Scene> made = make_scene(kStage);
+  ASSERT_TRUE(made);
+  Scene& scene = *made;
   const render::Camera camera = scene.make_camera(scene.document().camera, kSize);
 
   const Frame small = render_frame(scene, camera);
@@ -144,4 +173,80 @@ TEST_F(GrassWideBillboardsGl, WideBillboardsReplaceSmallOnesBeyondTheirDistance)
   // The bottom rows (ground nearer than 20 m) are drawn by small clumps only, as without wide billboards
   // ... unless a 20 m wide billboard rooted beyond 20 m leans into them, so compare shares, not pixels.
   EXPECT_NEAR(changed_share(mixed.image, bare.image) / cover_small, 1.0, 0.25);
+}
+
+// A static field (physics off, no wind) of blades to 30 m, no clumps, the ground layer from the
+// camera on (under_layer), seen from 1.7 m; linear output (no tone mapping).
+constexpr const char* kColorStage = R"json({
+  "sylva_scene": 1,
+  "name": "colour motion stage",
+  "camera": {"position": [0.0, 1.7, -2.0], "height_mode": "absolute", "yaw_deg": 0.0, "pitch_deg": -15.0, "fov_deg": 60.0},
+  "sun": {"follow_clock": false, "azimuth_deg": 200.0, "elevation_deg": 35.0, "fog_density": 0.0},
+  "wind": {"direction_deg": 20.0, "strength": 0.0, "gust_amplitude": 0.0},
+  "ground": {"size": 256.0, "resolution": 33, "generator": "flat"},
+  "grass": {"area_min": [-30.0, -60.0], "area_max": [30.0, 0.0],
+            "field": {"density": 60.0, "tile_size": 4.0},
+            "render": {"simulate": false, "cull": {"near_distance": 30.0}},
+            "far": {"clumps": false, "under_layer": true, "clump_margin": 0.0, "ground_margin": 0.0}},
+  "render": {"shadows": {"enabled": false}, "msaa_samples": 1, "tone_map": false}
+})json";
+
+TEST_F(GrassColorMotionGl, BladesPulseOutOfPhaseAndTheFarLayerInSync) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  std::unique_ptr<Scene> made = make_scene(kColorStage);
+  ASSERT_TRUE(made);
+  Scene& scene = *made;
+  const render::Camera camera = scene.make_camera(scene.document().camera, kSize);
+  // 0.5 Hz: t = 0.5 s is the crest of the far layer's sine, t = 1.5 s its trough.
+  ASSERT_TRUE(scene.set_param("grass.render.shading.color_motion_hz", "0.5").ok());
+  const Image off_crest = render_frame(scene, camera, 0.5).image;
+  const Image off_trough = render_frame(scene, camera, 1.5).image;
+  EXPECT_LT(changed_share(off_crest, off_trough), 0.001) << "off (the default): a static field does not change";
+
+  ASSERT_TRUE(scene.set_param("grass.render.shading.color_motion", "0.3").ok());
+  const Frame both_crest = render_frame(scene, camera, 0.5), both_trough = render_frame(scene, camera, 1.5);
+  if (const char* dir = std::getenv("SYLVA_TEST_DUMP")) {  // pictures for a look (not needed by the test)
+    (void)write_image(std::string(dir) + "/color_crest.png", both_crest.image, PixelFormat::kU8);
+    (void)write_image(std::string(dir) + "/color_trough.png", both_trough.image, PixelFormat::kU8);
+  }
+  EXPECT_GT(changed_share(both_crest.image, both_trough.image), 0.3) << "the grass pulses";
+
+  // Crest against trough per changed pixel: how many are brighter at the crest, darker, and the
+  // median luminance ratio (linear output: tone mapping off).
+  struct Pulse {
+    std::size_t brighter = 0, darker = 0;
+    double median_ratio = 0.0;
+  };
+  auto pulse = [&] {
+    const Image crest = render_frame(scene, camera, 0.5).image, trough = render_frame(scene, camera, 1.5).image;
+    Pulse p;
+    std::vector<double> ratios;
+    for (int y = 0; y < kSize.y; ++y) {
+      for (int x = 0; x < kSize.x; ++x) {
+        if (!differs(crest, trough, x, y)) continue;
+        const double a = luminance(crest, x, y), b = luminance(trough, x, y);
+        (a > b ? p.brighter : p.darker) += 1;
+        if (b > 0.0) ratios.push_back(a / b);
+      }
+    }
+    std::sort(ratios.begin(), ratios.end());
+    if (!ratios.empty()) p.median_ratio = ratios[ratios.size() / 2];
+    return p;
+  };
+  // The ground layer alone (blades end at 0.5 m): in sync, by (1 + k1) / (1 - k1).
+  ASSERT_TRUE(scene.set_param("grass.render.cull.near_distance", "0.5").ok());
+  const Pulse layer = pulse();
+  // The blades alone (no far field): each with its own phase.
+  ASSERT_TRUE(scene.set_param("grass.render.cull.near_distance", "30").ok());
+  ASSERT_TRUE(scene.set_param("grass.far_field", "false").ok());
+  const Pulse blades = pulse();
+  std::printf("layer: brighter %zu darker %zu median ratio %.3f; blades: brighter %zu darker %zu median ratio %.3f\n",
+              layer.brighter, layer.darker, layer.median_ratio, blades.brighter, blades.darker, blades.median_ratio);
+  ASSERT_GT(layer.brighter, static_cast<std::size_t>(kSize.x * kSize.y / 5));
+  EXPECT_LT(layer.darker, layer.brighter / 100) << "the far layer pulses in sync";
+  EXPECT_NEAR(layer.median_ratio, 1.3 / 0.7, 0.1) << "by (1 + k1) / (1 - k1)";
+  const double n = static_cast<double>(blades.brighter + blades.darker);
+  ASSERT_GT(n, 0.05 * kSize.x * kSize.y);
+  EXPECT_GT(static_cast<double>(blades.brighter), 0.25 * n) << "blades have phases of their own";
+  EXPECT_GT(static_cast<double>(blades.darker), 0.25 * n) << "blades have phases of their own";
 }

@@ -130,6 +130,7 @@ class GrassInstance final : public ModuleInstance {
       far_->set_near(s.render.cull.near_distance, s.render.physics.wind_response,
                      0.5f * (s.blade.stiffness_min + s.blade.stiffness_max), s.render.base_color, s.render.tip_color,
                      s.render.shading.ambient, s.render.shading.translucency);
+      far_->set_color_motion(s.render.shading.color_motion, s.render.shading.color_motion_hz);
     }
   }
 

@@ -224,6 +224,11 @@ class FarField : public render::Drawable {
   // so the far representations match the near field.
   void set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
                 const glm::vec3& tip_color, float ambient = 0.35f, float translucency = 0.5f);
+  // Seed 003 §3.4 motion by colour (ShadingSettings::color_motion, color_motion_hz); 0 = off.
+  void set_color_motion(float amplitude, float hz) {
+    color_motion_ = amplitude;
+    color_motion_hz_ = hz;
+  }
 
   void update(const render::FrameContext& frame) override;
   void draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) override;
@@ -253,6 +258,8 @@ class FarField : public render::Drawable {
   glm::vec3 tip_color_{0.32f, 0.50f, 0.13f};
   float ambient_ = 0.35f;
   float translucency_ = 0.5f;
+  float color_motion_ = 0.0f;
+  float color_motion_hz_ = 0.5f;
   std::vector<GrassTile> clump_tiles_;
   std::vector<GroundChunk> chunks_;
   std::vector<std::uint32_t> visible_clump_tiles_;

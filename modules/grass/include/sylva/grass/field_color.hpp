@@ -28,4 +28,9 @@ inline constexpr float kMeanTipDryness = 0.18f;
 // Deterministic in (x, z, seed); finite for finite input (non-finite input gives (1, 1, 1)).
 glm::vec3 field_color(double x, double z, const BladeSettings& blade, std::uint32_t seed);
 
+// Seed 003 §3.4 motion by colour, the uniform of color.glsl grass_color_pulse(): x amplitude
+// (ShadingSettings::color_motion), y = 2 pi hz t reduced to [0, 2 pi) in double precision, so the
+// pulse stays smooth after days of simulation time. Non-finite time gives phase 0.
+glm::vec2 color_motion_uniform(float amplitude, float hz, double time);
+
 }  // namespace sylva::grass

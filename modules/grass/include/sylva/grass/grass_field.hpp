@@ -226,6 +226,7 @@ class GrassField : public render::Drawable {
   glm::dvec3 origin_{0.0};
   std::vector<GrassTile> tiles_;
   std::vector<std::uint32_t> tile_chunk_;  // chunk of each tile
+  double time_ = 0.0;                  // simulation time of the last update() [s] (colour motion)
   std::vector<double> tile_sim_time_;  // last time each tile was simulated; < 0: never
   std::size_t blade_count_ = 0;
   float max_height_ = 0.0f;

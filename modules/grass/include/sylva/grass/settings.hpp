@@ -154,6 +154,12 @@ struct ShadingSettings {
   float root_occlusion = 0.7f; // how much darker the root is than the tip (0 = none)
   float specular = 0.15f;      // strength of a soft sheen
   bool receive_shadows = true; // sun light is multiplied by the render core's cascaded shadows
+  // Seed 003 §3.4 motion by colour (off by default): every blade, clump and ground-layer texel
+  // takes albedo x (1 + color_motion sin(2 pi color_motion_hz t + 2 pi phase)), phase random per
+  // blade and per clump, 0 for the whole ground layer (the thesis's far pulse, in sync so that
+  // tiles show no seams). field_color.hpp color_motion_uniform(), color.glsl grass_color_pulse().
+  float color_motion = 0.0f;   // k1 of c = tex (1 + k1 s) [0, 1); 0 = off
+  float color_motion_hz = 0.5f; // [Hz]
 
   template <class V>
   void visit(V& v) {
@@ -162,6 +168,9 @@ struct ShadingSettings {
     v(root_occlusion, "root_occlusion", {.min = 0.0f, .max = 1.0f, .help = "Darkening towards the root"});
     v(specular, "specular", {.min = 0.0f, .max = 1.0f, .help = "Sheen strength"});
     v(receive_shadows, "receive_shadows", {.help = "Blades receive the sun's cascaded shadows"});
+    v(color_motion, "color_motion", {.min = 0.0f, .max = 0.9f,
+                                     .help = "Seed 003 motion by colour: amplitude of the sine-modulated brightness (0 = off)"});
+    v(color_motion_hz, "color_motion_hz", {.min = 0.0f, .max = 10.0f, .unit = "Hz", .help = "Frequency of the colour motion"});
   }
 };
 
