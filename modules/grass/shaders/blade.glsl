@@ -95,6 +95,20 @@ float grass_distance_keep(float d, vec4 thinning) {
   return mix(1.0, thinning.z, clamp(t, 0.0, 1.0));
 }
 
+// Segments along a blade (culling.hpp tessellation_segments). tess: x max_tess_level, y
+// pixels_per_segment, z law (0 projected size, 1 seed 001 eq. 2.3 distance law); near_distance
+// is eq. 2.3's d_max; ppr pixels per radian.
+float grass_segments(vec3 p0, vec3 p1, vec3 p2, float height, vec3 camera, float ppr, vec3 tess, float near_distance) {
+  if (tess.z > 0.5) {
+    float n = ceil(tess.x * (1.0 - length(p0 - camera) / max(near_distance, 1e-3)));
+    return clamp(n, 1.0, max(tess.x, 1.0));
+  }
+  vec3 mid = grass_bezier(p0, p1, p2, 0.5);
+  float d = max(length(mid - camera), 1e-3);
+  float px = height * ppr / d;
+  return clamp(ceil(px / max(tess.y, 1e-3)), 1.0, max(tess.x, 1.0));
+}
+
 float grass_width_scale(float keep, float compensation) {
   float compensated = 1.0 / max(keep, 0.25);
   return mix(1.0, compensated, clamp(compensation, 0.0, 1.0));

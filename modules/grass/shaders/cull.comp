@@ -19,7 +19,7 @@ uniform float u_ppr;          // pixels per radian
 uniform vec4 u_thinning;      // start, near_distance, min_keep, enabled
 uniform vec4 u_cull;          // x density_scale, y width_compensation, z frustum on, w orientation on
 uniform vec2 u_orientation;   // x threshold, y max px
-uniform vec2 u_tess;          // x max level, y pixels per segment
+uniform vec3 u_tess;          // x max level, y pixels per segment, z distance law (blade.glsl grass_segments)
 
 shared uint s_counts[6];
 
@@ -59,11 +59,7 @@ uint cull(Blade b) {
 }
 
 uint segments_of(Blade b) {
-  vec3 mid = grass_bezier(b.v0.xyz, b.v1.xyz, b.v2.xyz, 0.5);
-  float d = max(length(mid - u_camera), 1e-3);
-  float px = b.v1.w * u_ppr / d;
-  float n = ceil(px / max(u_tess.y, 1e-3));
-  return uint(clamp(n, 1.0, max(u_tess.x, 1.0)));
+  return uint(grass_segments(b.v0.xyz, b.v1.xyz, b.v2.xyz, b.v1.w, u_camera, u_ppr, u_tess, u_thinning.y));
 }
 
 void main() {

@@ -90,6 +90,11 @@ CullResult cull_blade(const Blade& blade, const CullView& view, const CullSettin
 }
 
 int tessellation_segments(const Blade& blade, const CullView& view, const CullSettings& s) {
+  if (s.distance_tess_law) {  // seed 001 eq. 2.3 (culling.hpp)
+    const float d = glm::length(blade.root() - view.camera);
+    const float n = std::ceil(s.max_tess_level * (1.0f - d / std::max(s.near_distance, 1e-3f)));
+    return static_cast<int>(std::clamp(std::isfinite(n) ? n : 1.0f, 1.0f, std::max(s.max_tess_level, 1.0f)));
+  }
   const glm::vec3 mid = bezier_point(blade.root(), blade.control(), blade.tip(), 0.5f);
   const float distance = std::max(glm::length(mid - view.camera), 1e-3f);
   const float px = blade.height() * view.pixels_per_radian / distance;

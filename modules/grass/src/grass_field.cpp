@@ -180,7 +180,7 @@ void GrassField::set_cull_uniforms(const render::Program& p, const CullView& vie
   p.set("u_ppr", view.pixels_per_radian);
   p.set("u_thinning", glm::vec4(c.thinning_start, c.near_distance, c.thinning_min_keep, c.distance_thinning ? 1.0f : 0.0f));
   p.set("u_cull", glm::vec4(c.density_scale, c.width_compensation, c.frustum ? 1.0f : 0.0f, c.orientation ? 1.0f : 0.0f));
-  p.set("u_tess", glm::vec2(c.max_tess_level, c.pixels_per_segment));
+  p.set("u_tess", glm::vec3(c.max_tess_level, c.pixels_per_segment, c.distance_tess_law ? 1.0f : 0.0f));
 }
 
 void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind) {

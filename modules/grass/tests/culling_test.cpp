@@ -238,6 +238,27 @@ TEST(GrassCulling, TessellationFollowsProjectedSize) {
   }
 }
 
+// Seed 001 eq. 2.3 (cull.distance_tess_law): n = ceil(s (1 - d / d_max)) from the root distance,
+// whatever the projected size, at least 1 (beyond d_max the blade is culled, not drawn at 0).
+TEST(GrassCulling, DistanceLawIsSeed001Equation23) {
+  Blade b{};
+  b.v0 = glm::vec4(0, 0, 0, 0);
+  b.v1 = glm::vec4(0, 0.5f, 0, 0.5f);
+  b.v2 = glm::vec4(0, 0.5f, 0, 0.01f);
+  b.up = glm::vec4(0, 1, 0, 1);
+  CullSettings s;
+  s.distance_tess_law = true;
+  s.max_tess_level = 8.0f;
+  s.near_distance = 40.0f;
+  for (const float d : {0.0f, 4.0f, 10.0f, 20.0f, 35.0f, 39.9f, 60.0f}) {
+    const View v = make_view({0, 0.0f, d}, {0, 0.0f, -1.0f});
+    const int expected = std::clamp(static_cast<int>(std::ceil(8.0f * (1.0f - d / 40.0f))), 1, 8);
+    EXPECT_EQ(tessellation_segments(b, v.cull, s), expected) << d;
+  }
+  s.near_distance = 0.5f;  // smallest setting: finite, 1 segment far out
+  EXPECT_EQ(tessellation_segments(b, make_view({0, 0, 1000.0f}, {0, 0, 0}).cull, s), 1);
+}
+
 TEST(GrassCulling, SubDrawsStayUnderTheTessellatedVertexBudget) {
   // Invariant: blades_per_draw(L) blades at the most segments L can produce (2 (ceil(L) + 1)
   // vertices each, L capped at 64) never exceed kTessVerticesPerDraw, and a sub-draw holds at

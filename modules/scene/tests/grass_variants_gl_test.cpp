@@ -19,6 +19,11 @@
 // changed pixel is brighter at the crest, by (1 + k1) / (1 - k1); with the blades alone some are
 // brighter and some darker.
 //
+// Seed 001's distance law for the tessellation level (eq. 2.3, grass.render.cull.distance_tess_law):
+// n = ceil(s (1 - d / d_max)) depends on distance alone, so the blade triangles of one view are the
+// same at 256x144 and 512x288, while Sylva's projected-size law gives the larger picture more
+// segments; and halving s halves the segments of the near blades.
+//
 // Parameters are set with Scene::set_param, the path of `--set` and the editor's panel.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
@@ -43,6 +48,7 @@ namespace {
 
 using GrassWideBillboardsGl = render::GlTest;
 using GrassColorMotionGl = render::GlTest;
+using GrassTessellationLawGl = render::GlTest;
 
 // 40 x 40 m of grass at density 1 in front of the camera, 4 m tiles: 2 x 2 groups of 20 m.
 constexpr const char* kStage = R"json({
@@ -64,22 +70,23 @@ constexpr glm::ivec2 kSize(256, 144);
 
 struct Frame {
   Image image;
-  std::uint64_t clumps = 0, wide = 0, wide_total = 0;
+  std::uint64_t clumps = 0, wide = 0, wide_total = 0, blade_triangles = 0;
 };
 
-// Two frames, the last at `time` [s].
-Frame render_frame(Scene& scene, const render::Camera& camera, double time = 1.0 / 30.0) {
-  auto fb = render::Framebuffer::create({.width = kSize.x, .height = kSize.y, .color_formats = {GL_RGBA16F}}).value();
+// `frames` frames of `size`, the last at `time` [s].
+Frame render_frame(Scene& scene, const render::Camera& camera, double time = 1.0 / 30.0, glm::ivec2 size = kSize,
+                   int frames = 2) {
+  auto fb = render::Framebuffer::create({.width = size.x, .height = size.y, .color_formats = {GL_RGBA16F}}).value();
   render::FrameProfiler profiler;
-  for (int i = 0; i < 2; ++i) {
-    scene.update(camera, time + (i - 1) / 30.0, 1.0f / 30.0f, kSize);
+  for (int i = 0; i < frames; ++i) {
+    scene.update(camera, time + (i + 1 - frames) / 30.0, 1.0f / 30.0f, size);
     scene.render(fb, profiler);
   }
   const nlohmann::json g = scene.module_stats()["grass"];
   // Without the far field (grass.far_field false) the module reports no far counts.
   const std::uint64_t none = 0;
   return {render::read_color(fb).value(), g.value("clumps_drawn", none), g.value("wide_billboards_drawn", none),
-          g.value("wide_billboards", none)};
+          g.value("wide_billboards", none), g.value("blade_triangles", none)};
 }
 
 bool differs(const Image& a, const Image& b, int x, int y) {
@@ -249,4 +256,34 @@ TEST_F(GrassColorMotionGl, BladesPulseOutOfPhaseAndTheFarLayerInSync) {
   ASSERT_GT(n, 0.05 * kSize.x * kSize.y);
   EXPECT_GT(static_cast<double>(blades.brighter), 0.25 * n) << "blades have phases of their own";
   EXPECT_GT(static_cast<double>(blades.darker), 0.25 * n) << "blades have phases of their own";
+}
+
+TEST_F(GrassTessellationLawGl, DistanceLawIgnoresResolution) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  std::unique_ptr<Scene> made = make_scene(kColorStage);  // static blades to 30 m
+  ASSERT_TRUE(made);
+  Scene& scene = *made;
+  // The visible set must not depend on the resolution: no edge-on test (it is in pixels).
+  ASSERT_TRUE(scene.set_param("grass.render.cull.orientation", "false").ok());
+  ASSERT_TRUE(scene.set_param("grass.far_field", "false").ok());
+  const glm::ivec2 big(512, 288);
+  auto triangles = [&](glm::ivec2 size) {
+    const render::Camera camera = scene.make_camera(scene.document().camera, size);
+    return render_frame(scene, camera, 1.0 / 30.0, size, 4).blade_triangles;
+  };
+  const std::uint64_t projected_small = triangles(kSize), projected_big = triangles(big);
+  ASSERT_TRUE(scene.set_param("grass.render.cull.distance_tess_law", "true").ok());
+  const std::uint64_t distance_small = triangles(kSize), distance_big = triangles(big);
+  ASSERT_TRUE(scene.set_param("grass.render.cull.max_tess_level", "4").ok());
+  const std::uint64_t distance_s4 = triangles(kSize);
+  std::printf("blade triangles: projected law %llu at 256x144, %llu at 512x288; distance law %llu, %llu; s = 4: %llu\n",
+              static_cast<unsigned long long>(projected_small), static_cast<unsigned long long>(projected_big),
+              static_cast<unsigned long long>(distance_small), static_cast<unsigned long long>(distance_big),
+              static_cast<unsigned long long>(distance_s4));
+  ASSERT_GT(projected_small, 1000u);
+  EXPECT_GT(projected_big, projected_small + projected_small / 5) << "the projected law follows the pixels";
+  EXPECT_EQ(distance_small, distance_big) << "eq. 2.3 follows the distance only";
+  EXPECT_NE(distance_small, projected_small);
+  // ceil(4 (1 - x)) is about half of ceil(8 (1 - x)): 2 triangles per segment.
+  EXPECT_NEAR(static_cast<double>(distance_s4) / static_cast<double>(distance_small), 0.5, 0.08);
 }

@@ -30,6 +30,11 @@
 //
 // Tessellation: segments = clamp(ceil(projected blade height [px] / pixels_per_segment), 1,
 // max_tess_level), i.e. seed 001 eq. 2.3 driven by screen size instead of linear distance.
+// With cull.distance_tess_law (off by default) the seed's own law: segments =
+// clamp(ceil(max_tess_level (1 - d / near_distance)), 1, max_tess_level), d = root distance
+// (eq. 2.3 with s = max_tess_level, d_max = near_distance; its level 0 beyond d_max is the
+// culling at near_distance). It ignores resolution and field of view, so a blade gets as many
+// segments in a 256 px picture as in a 4K one.
 
 #include <sylva/grass/blade.hpp>
 #include <sylva/grass/generator.hpp>

@@ -125,6 +125,7 @@ struct CullSettings {
   float density_scale = 1.0f;          // global quality knob: share of each tile's blades used
   float max_tess_level = 8.0f;         // most segments along a blade (seed's smoothness factor s)
   float pixels_per_segment = 6.0f;     // one segment per this many projected pixels of blade height
+  bool distance_tess_law = false;      // seed 001 eq. 2.3: segments from distance alone (culling.hpp)
 
   template <class V>
   void visit(V& v) {
@@ -144,6 +145,8 @@ struct CullSettings {
     v(max_tess_level, "max_tess_level", {.min = 1.0f, .max = 64.0f, .help = "Most segments per blade"});
     v(pixels_per_segment, "pixels_per_segment", {.min = 0.5f, .max = 200.0f, .unit = "px",
                                                  .help = "Projected blade height per segment"});
+    v(distance_tess_law, "distance_tess_law",
+      {.help = "Seed 001 eq. 2.3: segments = ceil(max_tess_level (1 - d / near_distance)) instead of the projected size"});
   }
 };
 
