@@ -217,6 +217,8 @@ void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, 
   out.reserve(out.size() + points.size());
   for (const TilePoint& p : points) {
     const double x = p.position.x, z = p.position.y;
+    // Seed 001 Algorithm 2: a blade is kept only where the height map exceeds the threshold.
+    if (field.height_threshold > 0.0f && !(maps.height_scale(x, z) > field.height_threshold)) continue;
     const double y = ground.height(x, z);
     glm::vec3 up(0.0f, 1.0f, 0.0f);
     if (field.up_normal_blend > 0.0f) up = glm::normalize(glm::mix(up, ground.normal(x, z), field.up_normal_blend));

@@ -24,10 +24,15 @@
 // same at 256x144 and 512x288, while Sylva's projected-size law gives the larger picture more
 // segments; and halving s halves the segments of the near blades.
 //
+// Seed 001's height threshold (Algorithm 2, grass.field.height_threshold): with the grass height
+// map painted to 0.05 on the left half of the field, threshold 0.1 removes the blades there and
+// keeps the others; 0 (off) keeps them all.
+//
 // Parameters are set with Scene::set_param, the path of `--set` and the editor's panel.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
 #include <sylva/render/testing.hpp>
+#include <sylva/scene/map_grid.hpp>
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
@@ -49,6 +54,7 @@ namespace {
 using GrassWideBillboardsGl = render::GlTest;
 using GrassColorMotionGl = render::GlTest;
 using GrassTessellationLawGl = render::GlTest;
+using GrassHeightThresholdGl = render::GlTest;
 
 // 40 x 40 m of grass at density 1 in front of the camera, 4 m tiles: 2 x 2 groups of 20 m.
 constexpr const char* kStage = R"json({
@@ -286,4 +292,34 @@ TEST_F(GrassTessellationLawGl, DistanceLawIgnoresResolution) {
   EXPECT_NE(distance_small, projected_small);
   // ceil(4 (1 - x)) is about half of ceil(8 (1 - x)): 2 triangles per segment.
   EXPECT_NEAR(static_cast<double>(distance_s4) / static_cast<double>(distance_small), 0.5, 0.08);
+}
+
+TEST_F(GrassHeightThresholdGl, BladesBelowTheThresholdAreDiscarded) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  std::unique_ptr<Scene> made = make_scene(kColorStage);  // 60 x 60 m at 60 blades per m^2
+  ASSERT_TRUE(made);
+  Scene& scene = *made;
+  const render::Camera camera = scene.make_camera(scene.document().camera, kSize);
+  auto blades = [&] {
+    render_frame(scene, camera);  // an edited map regenerates at the next frame
+    return scene.module_stats()["grass"]["blades"].get<std::uint64_t>();
+  };
+  const std::uint64_t all = blades();
+  ASSERT_TRUE(scene.set_param("grass.field.height_threshold", "0.1").ok());
+  EXPECT_EQ(blades(), all) << "a height map of 1 everywhere keeps every blade";
+
+  SceneMap* map = scene.map("grass.height");
+  ASSERT_NE(map, nullptr);
+  MapGrid& g = map->grid;
+  for (int y = 0; y < g.height; ++y)
+    for (int x = 0; x < g.width / 2; ++x) g.values[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x)] = 0.05f;
+  ASSERT_TRUE(scene.map_changed("grass.height", {0, 0, g.width, g.height}).ok());
+  const std::uint64_t kept = blades();
+  ASSERT_TRUE(scene.set_param("grass.field.height_threshold", "0").ok());
+  const std::uint64_t off = blades();
+  std::printf("blades: %llu all, %llu with the left half at height 0.05 and threshold 0.1, %llu with the threshold off\n",
+              static_cast<unsigned long long>(all), static_cast<unsigned long long>(kept), static_cast<unsigned long long>(off));
+  EXPECT_EQ(off, all) << "off: short blades stay (min_height)";
+  // The right half and the bilinear band up to the threshold between the halves (< 1 texel) stay.
+  EXPECT_NEAR(static_cast<double>(kept) / static_cast<double>(all), 0.5, 0.02);
 }

@@ -24,6 +24,9 @@ struct GrassFieldSettings {
   float tile_size = 4.0f;     // side of a placement / culling tile [m]
   std::uint32_t seed = 1;     // changes every blade of the field
   float up_normal_blend = 0.0f;  // 0: blades grow along world up on height fields; 1: along the ground normal
+  // Seed 001 Algorithm 2: no blade where the height map is at or below this [0, 1] (the thesis's
+  // code: 0.1); 0 = off (then min_height keeps painted-short blades visible instead).
+  float height_threshold = 0.0f;
 
   template <class V>
   void visit(V& v) {
@@ -34,6 +37,9 @@ struct GrassFieldSettings {
     v(seed, "seed", {.min = 0.0f, .max = 4294967295.0, .help = "Random seed of the field", .rebuild = Rebuild::kOffline});
     v(up_normal_blend, "up_normal_blend", {.min = 0.0f, .max = 1.0f,
                                            .help = "On height fields: 0 = blades grow vertically, 1 = along the ground normal", .rebuild = Rebuild::kOffline});
+    v(height_threshold, "height_threshold", {.min = 0.0f, .max = 1.0f,
+                                             .help = "Seed 001 Algorithm 2: no blades where the height map is at or below this (0 = off)",
+                                             .rebuild = Rebuild::kOffline});
   }
 };
 
