@@ -537,7 +537,8 @@ void ChunkTree::fill_level_report() {
     LevelReport& r = report_.levels[static_cast<std::size_t>(c.key.level)];
     ++r.chunks;
     r.triangles += c.triangle_count;
-    r.grid_triangles += 2ull * n_ * n_;
+    // The level's full grid: 2 triangles per square, 4 with the seed's hq2 centres.
+    r.grid_triangles += (settings_.tessellation == Tessellation::kHq2 ? 4ull : 2ull) * n_ * n_;
     r.max_error = std::max(r.max_error, c.error);
   }
 }

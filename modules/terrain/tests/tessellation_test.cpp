@@ -75,6 +75,7 @@ TEST(Tessellation, CountsPerChunkFollowTheSeedsMethods) {
       }
     }
     totals[static_cast<int>(t)] = tree.report().triangles();
+    for (const LevelReport& l : tree.report().levels) EXPECT_EQ(l.triangles, l.grid_triangles) << "the full grid";
   }
   EXPECT_EQ(totals[1], totals[2]);
   EXPECT_EQ(totals[3], 2 * totals[1]);

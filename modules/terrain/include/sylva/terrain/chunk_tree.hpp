@@ -107,7 +107,7 @@ struct LevelReport {
   int level = 0;
   std::uint32_t chunks = 0;
   std::uint64_t triangles = 0;      // after flat reduction
-  std::uint64_t grid_triangles = 0; // what the level's full grid would have
+  std::uint64_t grid_triangles = 0; // what the level's full grid would have (2 per square, 4 in hq2)
   float max_error = 0.0f;           // largest measured delta of the level [m]
 };
 

@@ -7,7 +7,8 @@
 //
 // Camera-relative: x and z are (integer grid offset from a grid point near the camera) * spacing
 // minus the camera's small offset from that point, so a terrain 1e5 m from the origin keeps
-// sub-millimetre precision and no chunk-dependent origin enters the result.
+// sub-millimetre precision and no chunk-dependent origin enters the result. An hq2 leaf centre
+// (ChunkVertex::centre) adds half a grid interval to the offset; every other point adds 0.0.
 //
 // Morphing (CDLOD-style, per point): a vertex moves from its height h to the coarser level's
 // surface height G as its distance d to the camera grows from (1 - f) * m1 to m1, where
