@@ -2,6 +2,7 @@
 // criterion (Tab. 3.1 "unoptimised": every sample at full resolution) and the tessellation modes
 // hq 0/1/2 beside RTIN (Tab. 3.2 / 3.5: triangles and memory). The counts are the terrain
 // module's stats after a rendered frame, the memory what render/gpu_memory.hpp tracks for it.
+#include <sylva/core/log.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/gpu_memory.hpp>
 #include <sylva/render/queries.hpp>
@@ -20,12 +21,7 @@ namespace {
 
 using TerrainVariantsGl = render::GlTest;
 
-struct Drawn {
-  std::uint64_t triangles = 0, chunks = 0, mesh_bytes = 0, held_bytes = 0;
-};
-
-// A 128 m terrain of 129^2 samples, 17-vertex chunks (4 levels, 64 leaves), seen from a corner.
-Drawn draw(const std::string& tessellation, const std::string& lod) {
+std::unique_ptr<Scene> make_scene(const std::string& tessellation, const std::string& lod) {
   const std::string text = R"({"terrain": {"size": 128, "resolution": 129, "height": 24, "generator": "fbm",
       "noise": {"frequency": 0.01, "octaves": 2, "seed": 4}, "tree": {"leaf_dimension": 17, "tessellation": ")" +
                            tessellation + R"("}, "render": {"lod": )" + lod + R"(}},
@@ -34,17 +30,32 @@ Drawn draw(const std::string& tessellation, const std::string& lod) {
   std::vector<std::string> warnings;
   auto doc = SceneDocument::from_text(text, "variants.json", warnings);
   EXPECT_TRUE(doc.ok()) << doc.error().message;
-  if (!doc.ok()) return {};
-  const auto before = render::gpu_memory_usage()["terrain"].total();
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  if (!doc.ok()) return nullptr;
   auto scene = Scene::create(std::move(*doc));
   EXPECT_TRUE(scene.ok()) << scene.error().message;
-  if (!scene.ok()) return {};
+  return scene.ok() ? std::move(*scene) : nullptr;
+}
+
+void render_once(Scene& scene) {
   auto fb = render::Framebuffer::create({.width = 64, .height = 36}).value();
   render::FrameProfiler profiler;
-  const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, {64, 36});
-  (*scene)->update(camera, 0.0, 0.0f, {64, 36});
-  (*scene)->render(fb, profiler);
-  const nlohmann::json s = (*scene)->module_stats()["terrain"];
+  const render::Camera camera = scene.make_camera(scene.document().camera, {64, 36});
+  scene.update(camera, 0.0, 0.0f, {64, 36});
+  scene.render(fb, profiler);
+}
+
+struct Drawn {
+  std::uint64_t triangles = 0, chunks = 0, mesh_bytes = 0, held_bytes = 0;
+};
+
+// A 128 m terrain of 129^2 samples, 17-vertex chunks (4 levels, 64 leaves), seen from a corner.
+Drawn draw(const std::string& tessellation, const std::string& lod) {
+  const auto before = render::gpu_memory_usage()["terrain"].total();
+  auto scene = make_scene(tessellation, lod);
+  if (!scene) return {};
+  render_once(*scene);
+  const nlohmann::json s = scene->module_stats()["terrain"];
   return {s["triangles"].get<std::uint64_t>(), s["chunks_drawn"].get<std::uint64_t>(),
           s["gpu_bytes"].get<std::uint64_t>(), render::gpu_memory_usage()["terrain"].total() - before};
 }
@@ -82,6 +93,32 @@ TEST_F(TerrainVariantsGl, TessellationModesOrderTrianglesAndMemoryAsTheSeed) {
   EXPECT_LT(hq0_seed.chunks, 64u) << "a mix of levels";
   EXPECT_LT(rtin_seed.triangles, hq0_seed.triangles);
   EXPECT_GT(hq2_seed.triangles, hq0_seed.triangles * 3 / 2);
+}
+
+// Painting an hq tree rebuilds it whole (the seed's grids have no partial rebuild), without the
+// failed-partial-rebuild warning, and the rebuilt tree is still hq2.
+TEST_F(TerrainVariantsGl, PaintingAnHqTerrainRebuildsTheWholeTree) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  auto scene = make_scene("hq2", kBruteForce);
+  ASSERT_TRUE(scene);
+  render_once(*scene);
+  const nlohmann::json before = scene->module_stats()["terrain"];
+  SceneMap* map = scene->map("terrain.height");
+  ASSERT_NE(map, nullptr);
+  for (int j = 60; j < 70; ++j)
+    for (int i = 60; i < 70; ++i) map->grid.at(i, j) += 12.0f;
+  ASSERT_TRUE(scene->map_changed("terrain.height", {60, 60, 70, 70}).ok());
+  std::vector<std::string> warnings;
+  set_log_sink([&](LogLevel level, std::string_view m) {
+    if (level >= LogLevel::kWarn) warnings.emplace_back(m);
+  });
+  render_once(*scene);
+  set_log_sink(nullptr);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  const nlohmann::json after = scene->module_stats()["terrain"];
+  EXPECT_EQ(after["tree_rebuilds"].get<int>(), before["tree_rebuilds"].get<int>() + 1);
+  EXPECT_EQ(after["tree_partial_rebuilds"].get<int>(), 0);
+  EXPECT_EQ(after["triangles"].get<std::uint64_t>(), 4u * 128u * 128u) << "still hq2, every leaf";
 }
 
 }  // namespace

@@ -10,7 +10,8 @@
 // TerrainRenderer::apply_height_edit, which re-triangulates only the chunks the region can change
 // (ChunkTree::rebuild_region) and re-uploads only those; a failure falls back to a full rebuild.
 // The number and CPU time of rebuilds and the chunks rebuilt by the last edit are in the stats.
-// Other modules standing on the ground re-seat only what the region touches.
+// Other modules standing on the ground re-seat only what the region touches. A tree of the seed's
+// hq grids (terrain.tree.tessellation = hq0/hq1/hq2) has no partial rebuild: it is rebuilt whole.
 //
 // Tree cache (issue 15, terrain/tree_cache.hpp): "terrain.tree_cache" names the folder where a
 // built chunk tree is kept, keyed by the field's samples and the tree settings, so the next launch
@@ -197,6 +198,14 @@ class TerrainInstance final : public ModuleInstance {
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
   void apply_edit() {
     Stopwatch watch;
+    if (settings().tree.tessellation != terrain::Tessellation::kRtin) {
+      // The seed's hq grids have no partial rebuild (chunk_tree.hpp): rebuild the whole tree.
+      Status s = build();
+      if (!s.ok()) log_warn("terrain: rebuilding after an edit failed: {}", s.error().message);
+      chunks_rebuilt_ = renderer_->tree().chunk_count();
+      chunks_updated_ = 0;
+      return;
+    }
     auto changed = renderer_->apply_height_edit(*ctx_.ground, dirty_[0], dirty_[1], dirty_[2], dirty_[3]);
     if (changed.ok()) {
       ++partial_rebuilds_;
