@@ -4,6 +4,7 @@
 // scheme): same operations in the same order, float throughout. One work group per tile job.
 #include "grass/blade.glsl"
 #include "render/lib/wind.glsl"
+#include "grass/seed001_wind.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -16,6 +17,9 @@ uniform vec4 u_physics;      // x gravity, y front_gravity, z wind_response, w c
 uniform vec2 u_substep;      // x max_substep, y max_substeps
 uniform int u_sphere_count;
 uniform vec3 u_wind_offset;  // blade-set origin minus the wind frame origin [m]
+uniform int u_seed001_on;    // 1: seed 001's wind function (grass/seed001_wind.glsl) instead of u_wind
+uniform vec4 u_seed001_wind; // k1, k2, k3, strength
+uniform float u_seed001_time; // wrapped simulation time [s]
 
 const float kMaxWind = 1000.0;
 const float kMaxStiffness = 1.0e9;
@@ -176,7 +180,8 @@ void main() {
   for (uint i = gl_LocalInvocationID.x; i < job.count; i += gl_WorkGroupSize.x) {
     uint index = job.first + i;
     Blade b = blades[index];
-    vec3 wind = sylva_wind(u_wind, b.v0.xyz + u_wind_offset);
+    vec3 wind = u_seed001_on != 0 ? grass_seed001_wind(b.v0.xyz, u_seed001_time, u_seed001_wind)
+                                  : sylva_wind(u_wind, b.v0.xyz + u_wind_offset);
     simulate(b, wind, job.dt);
     blades[index].v1 = b.v1;
     blades[index].v2 = b.v2;

@@ -236,6 +236,10 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
     if (!spheres.empty()) spheres_.update(std::span<const glm::vec4>(spheres));
     physics_.set("u_sphere_count", static_cast<int>(spheres.size()));
     physics_.set("u_wind_offset", glm::vec3(0.0f));
+    const Seed001WindSettings& sw = ps.seed001_wind;
+    physics_.set("u_seed001_on", sw.enabled ? 1 : 0);
+    physics_.set("u_seed001_wind", glm::vec4(sw.k1, sw.k2, sw.k3, sw.strength));
+    physics_.set("u_seed001_time", seed001_wind_time(sane_time ? time : 0.0));
     sim_query_.begin(frame_);
     physics_.use();
     for (const Chunk& c : chunks_) {

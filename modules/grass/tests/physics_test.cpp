@@ -1,5 +1,6 @@
 // Blade physics behaviour: rest pose, recovery, gravity, wind, collisions, sub-step convergence.
 #include <sylva/grass/physics.hpp>
+#include <sylva/grass/seed001_wind.hpp>
 
 #include <gtest/gtest.h>
 
@@ -158,6 +159,34 @@ TEST(GrassPhysics, BatchSamplesWindAtEachRoot) {
   for (int i = 0; i < 60; ++i) simulate_blades(blades, wind, 1.0f / 60.0f, no_gravity());
   EXPECT_LT(std::abs(blades[0].tip().x), 1e-4f);
   EXPECT_GT(blades[1].tip().x - 10.0f, 0.05f);
+}
+
+// Seed 001 eq. 2.7/4.2: bounded by strength (1 + 2 + 1) along x and (1 + 1 + 0.5) along z, finite
+// on the lines where cos(k2 pi z) = 0 (eps 0.05), leaning towards +x/+z on average; time wraps.
+TEST(GrassSeed001Wind, BoundedFiniteAndLeaningLikeTheThesis) {
+  Seed001WindSettings s;
+  s.strength = 2.0f;
+  glm::dvec3 mean(0.0);
+  int n = 0;
+  for (float x = -20.0f; x <= 20.0f; x += 0.37f) {
+    for (float z = -20.0f; z <= 20.0f; z += 0.25f) {  // z = k * 0.25: on the singular lines for k2 = 2
+      for (const float t : {0.0f, 1.3f, 100.0f}) {
+        const glm::vec3 w = seed001_wind({x, 0.1f, z}, t, s);
+        ASSERT_TRUE(std::isfinite(w.x) && std::isfinite(w.z)) << x << " " << z;
+        EXPECT_LE(std::abs(w.x), 2.0f * 4.0f + 1e-4f);
+        EXPECT_LE(std::abs(w.z), 2.0f * 2.5f + 1e-4f);
+        EXPECT_EQ(w.y, 0.0f);
+        mean += glm::dvec3(w);
+        ++n;
+      }
+    }
+  }
+  mean /= n;
+  EXPECT_GT(mean.x, 1.0);  // long_x's +1 offset times strength 2
+  EXPECT_GT(mean.z, 0.5);
+  EXPECT_NEAR(seed001_wind_time(2.0 * 3.141592653589793 * 1000.0 + 1.0), 1.0f, 1e-4f);
+  EXPECT_EQ(seed001_wind_time(std::nan("")), 0.0f);
+  EXPECT_GE(seed001_wind_time(-5.0), 0.0f);
 }
 
 }  // namespace

@@ -28,6 +28,10 @@
 // map painted to 0.05 on the left half of the field, threshold 0.1 removes the blades there and
 // keeps the others; 0 (off) keeps them all.
 //
+// Seed 001's wind function (eq. 2.7/4.2, grass.render.physics.seed001_wind): like the thesis's it
+// has its own fixed direction, so turning the scene's wind by 180 deg leaves the blades' pose (the
+// picture) as it was, while the shared wind field bends them the other way.
+//
 // Parameters are set with Scene::set_param, the path of `--set` and the editor's panel.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
@@ -55,6 +59,7 @@ using GrassWideBillboardsGl = render::GlTest;
 using GrassColorMotionGl = render::GlTest;
 using GrassTessellationLawGl = render::GlTest;
 using GrassHeightThresholdGl = render::GlTest;
+using GrassSeed001WindGl = render::GlTest;
 
 // 40 x 40 m of grass at density 1 in front of the camera, 4 m tiles: 2 x 2 groups of 20 m.
 constexpr const char* kStage = R"json({
@@ -322,4 +327,33 @@ TEST_F(GrassHeightThresholdGl, BladesBelowTheThresholdAreDiscarded) {
   EXPECT_EQ(off, all) << "off: short blades stay (min_height)";
   // The right half and the bilinear band up to the threshold between the halves (< 1 texel) stay.
   EXPECT_NEAR(static_cast<double>(kept) / static_cast<double>(all), 0.5, 0.02);
+}
+
+TEST_F(GrassSeed001WindGl, TheThesisWindIgnoresTheSceneWindDirection) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  std::unique_ptr<Scene> made = make_scene(kColorStage);
+  ASSERT_TRUE(made);
+  Scene& scene = *made;
+  const render::Camera camera = scene.make_camera(scene.document().camera, kSize);
+  ASSERT_TRUE(scene.set_param("grass.far_field", "false").ok());  // clumps sway with the scene's wind
+  ASSERT_TRUE(scene.set_param("grass.render.simulate", "true").ok());
+  ASSERT_TRUE(scene.set_param("wind.strength", "8").ok());
+  // Each picture: the blades' pose after 12 frames of physics from the same start.
+  auto pose = [&](const char* direction_deg) {
+    EXPECT_TRUE(scene.set_param("wind.direction_deg", direction_deg).ok());
+    EXPECT_TRUE(scene.set_param("grass.field.seed", "2").ok());  // regenerate twice: blades start at rest
+    EXPECT_TRUE(scene.set_param("grass.field.seed", "1").ok());
+    return render_frame(scene, camera, 12.0 / 30.0, kSize, 12).image;
+  };
+  const double field_turned = changed_share(pose("20"), pose("200"));
+  ASSERT_TRUE(scene.set_param("grass.render.physics.seed001_wind.enabled", "true").ok());
+  const Image a = pose("20"), b = pose("200");
+  const double seed_turned = changed_share(a, b);
+  ASSERT_TRUE(scene.set_param("grass.render.physics.seed001_wind.k1", "5").ok());
+  const double k1_changed = changed_share(a, pose("20"));
+  std::printf("pixels changed by turning the scene wind 180 deg: wind field %.4f, seed 001 wind %.4f; k1 1 -> 5: %.4f\n",
+              field_turned, seed_turned, k1_changed);
+  EXPECT_GT(field_turned, 0.05) << "the shared wind field bends the blades its way";
+  EXPECT_LT(seed_turned, 0.005) << "the thesis's wind has its own direction";
+  EXPECT_GT(k1_changed, 0.02) << "k1 shapes the short waves";
 }

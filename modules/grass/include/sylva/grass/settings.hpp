@@ -9,6 +9,7 @@
 // -> nothing, they are read every frame.
 
 #include <sylva/core/params.hpp>
+#include <sylva/grass/seed001_wind.hpp>
 
 #include <glm/glm.hpp>
 
@@ -100,6 +101,7 @@ struct PhysicsSettings {
   // colliders every frame; radius 0 turns it off. Centre = camera position + offset [m].
   float camera_collider_radius = 0.0f;
   glm::vec3 camera_collider_offset{0.0f, -1.2f, 0.0f};
+  Seed001WindSettings seed001_wind;  // seed 001's own wind function instead of the scene's (off)
 
   template <class V>
   void visit(V& v) {
@@ -114,6 +116,7 @@ struct PhysicsSettings {
                                                          .help = "Sphere around the camera pushing blades aside (0 = off)"});
     v(camera_collider_offset, "camera_collider_offset", {.min = -100.0f, .max = 100.0f, .unit = "m",
                                                          .help = "Centre of the camera sphere relative to the camera"});
+    v(seed001_wind, "seed001_wind");
   }
 };
 
