@@ -61,20 +61,27 @@ int fixed_value_size(const std::string& type) {
 }
 
 // Bytes a channel list occupies as OpenEXR reads it (per channel: name, 16 bytes of type,
-// linearity and sampling; an empty name ends it); -1 when it does not end within `limit`.
+// linearity and sampling; an empty name ends it, and the library reads up to that end whatever
+// size the header declared); -1 when the list does not end within `limit` bytes.
 std::int64_t channel_list_bytes(std::ifstream& in, std::int64_t limit) {
   const std::streampos start = in.tellg();
   std::string channel;
   std::int64_t used = 0;
-  while (used < limit) {
-    if (!read_name(in, 255, channel)) return -1;
+  std::int64_t result = -1;
+  while (read_name(in, 255, channel)) {
     used += static_cast<std::int64_t>(channel.size()) + 1;
-    if (channel.empty()) break;
-    in.seekg(16, std::ios::cur);
+    if (used > limit) break;
+    if (channel.empty()) {
+      result = used;
+      break;
+    }
     used += 16;
+    if (used > limit) break;
+    in.seekg(16, std::ios::cur);
   }
+  in.clear();
   in.seekg(start);
-  return used <= limit ? used : -1;
+  return result;
 }
 
 // What one part's header says about the size of its offset table.
@@ -86,20 +93,15 @@ struct PartShape {
 
 }  // namespace
 
-bool has_exr_magic(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::array<unsigned char, 4> head{};
-  if (!in.read(reinterpret_cast<char*>(head.data()), head.size())) return false;
-  return head == kMagic;
-}
-
 Status check_exr_header(const fs::path& path, std::string_view display, int max_side) {
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 8> start{};
+  const bool whole_start = static_cast<bool>(in.read(reinterpret_cast<char*>(start.data()), start.size()));
+  if (in.gcount() < 4 || !std::equal(kMagic.begin(), kMagic.end(), start.begin())) return {};  // not an EXR
   std::error_code ec;
   const auto file_size = static_cast<std::int64_t>(fs::file_size(path, ec));
   if (ec) return make_error(ErrorCode::kNotFound, fmt::format("{}: cannot read ({})", display, ec.message()));
-  std::ifstream in(path, std::ios::binary);
-  std::array<unsigned char, 8> start{};
-  if (!in.read(reinterpret_cast<char*>(start.data()), start.size())) {
+  if (!whole_start) {
     return make_error(ErrorCode::kCorrupt, fmt::format("{}: truncated OpenEXR file ({} bytes)", display, file_size));
   }
   const auto flags = static_cast<std::uint32_t>(little_endian(start.data() + 4, 4));

@@ -19,10 +19,8 @@
 
 namespace sylva::detail {
 
-// True when the file starts with the OpenEXR magic number (0x762f3101).
-bool has_exr_magic(const std::filesystem::path& path);
-
-// Walks every header of the EXR file at `path` (single or multi-part). Refuses (kCorrupt) an
+// When the file at `path` starts with the OpenEXR magic number (0x762f3101), walks every header
+// (single or multi-part); any other file passes untouched. Refuses (kCorrupt) an
 // attribute whose declared size is negative or larger than the rest of the file, a name longer
 // than the format allows, a header that never ends; refuses (kLimit) a data window wider or taller
 // than `max_side` and a part whose offset table could not fit in the file. Messages start with

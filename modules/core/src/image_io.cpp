@@ -70,7 +70,7 @@ Result<Image> read_image(const fs::path& path, const ImageReadOptions& options) 
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: is a folder, not an image", name));
   }
   // OpenEXR allocates whatever its header declares before it checks the file holds it.
-  if (detail::has_exr_magic(path)) SYLVA_TRY(detail::check_exr_header(path, name, options.max_side));
+  SYLVA_TRY(detail::check_exr_header(path, name, options.max_side));
   // Keep stored values as they are: no premultiplication by alpha (PNG would otherwise
   // associate alpha on read), since our alpha channels are masks and coverage, not opacity.
   OIIO::ImageSpec config;

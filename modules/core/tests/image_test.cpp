@@ -356,3 +356,18 @@ TEST(Image, HeaderClaimingFarMorePixelsThanTheFileCanHoldIsRefusedBeforeAllocati
   EXPECT_NE(r.error().message.find("bomb.pgm: header claims 20000x20000 with 1 channels"), std::string::npos)
       << r.error().message;
 }
+
+TEST(Image, ExrChannelListLongerThanDeclaredIsRefused) {
+  // OpenEXR reads a channel list up to its empty name whatever size the header declares: a list
+  // one byte longer than declared would put the library out of step with Sylva's walk.
+  const fs::path path = temp_dir() / "long_channels.exr";
+  auto [bytes, size_at] = exr_with_attribute(path, "channels");
+  std::int32_t declared = 0;
+  std::memcpy(&declared, bytes.data() + size_at, 4);
+  put_le32(bytes, size_at, declared - 1);
+  write_bytes(path, bytes);
+  auto r = sylva::read_image(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(r.error().message.find("channel list \"channels\" does not fill its"), std::string::npos) << r.error().message;
+}
