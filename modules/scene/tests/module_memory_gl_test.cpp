@@ -9,6 +9,8 @@
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include "render_once.hpp"
+
 #include <gtest/gtest.h>
 
 using namespace sylva;
@@ -35,13 +37,7 @@ std::uint64_t held(const std::string& owner) {
   return it == usage.end() ? 0 : it->second.total();
 }
 
-void render_once(Scene& scene) {
-  auto fb = render::Framebuffer::create({.width = 64, .height = 36}).value();
-  render::FrameProfiler profiler;
-  const render::Camera camera = scene.make_camera(scene.document().camera, {64, 36});
-  scene.update(camera, 0.0, 0.0f, {64, 36});
-  scene.render(fb, profiler);
-}
+using sylva::scene::testing::render_once;
 
 TEST_F(ModuleMemoryGl, EachModuleHoldsItsOwnBytesAndGivesThemBack) {
   const std::uint64_t before_ground = held("ground"), before_scene = held("scene");

@@ -28,51 +28,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Seed 000 §4.3.1's plain layout (as modules/vegetation/data/seed_example.objt): no radii, no
-// leaf sizes; the species file gives the rules.
-constexpr const char* kSeedObjt = R"(name = "seed example"
-B 0 {
-    l    0
-    d    5
-    z    0 0 0
-    k    0 5 0
-    r    1 0 0
-    s    0 0 -1
-    t    0 1 0
-    p    -1
-    x    0
-}
-B 1 {
-    l    1
-    d    2
-    z    0 3 0
-    k    2 3 0
-    r    0 1 0
-    s    0 0 1
-    t    1 0 0
-    p    0
-    x    0.6
-}
-B 2 {
-    l    1
-    d    1.5
-    z    0 4 0
-    k    -1.06066 5.06066 0
-    r    0.70710678 0.70710678 0
-    s    0 0 1
-    t    -0.70710678 0.70710678 0
-    p    0
-    x    0.8
-}
-L 1 {
-    r    0 1 0
-    s    0 0 1
-    t    1 0 0
-    p    1
-    x    0.9
-}
-)";
-
 constexpr const char* kRedSpecies = R"({"name": "red", "model": {"objt": "../trees/seed.objt"}, "units": 2,
     "objt": {"branch_radius": 0.06, "branch_taper": 0.5}, "bark_color": [0.7, 0.05, 0.05]})";
 constexpr const char* kBlueSpecies = R"({"name": "blue", "model": {"objt": "../trees/seed.objt"}, "units": 1.5,
@@ -87,7 +42,9 @@ class SpeciesFilesGl : public render::GlTest {
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "trees");
     fs::create_directories(dir_ / "species");
-    ASSERT_TRUE(write_file_atomic(dir_ / "trees" / "seed.objt", kSeedObjt).ok());
+    // Seed 000 §4.3.1's plain layout (no radii, no leaf sizes; the species files give the rules),
+    // as shipped with the example scenes.
+    fs::copy_file(fs::path(SYLVA_SCENES_DIR) / "species" / "trees" / "seed_example.objt", dir_ / "trees" / "seed.objt");
     ASSERT_TRUE(write_file_atomic(dir_ / "species" / "red.json", kRedSpecies).ok());
     ASSERT_TRUE(write_file_atomic(dir_ / "species" / "blue.json", kBlueSpecies).ok());
   }

@@ -10,6 +10,8 @@
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include "render_once.hpp"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -37,13 +39,7 @@ std::unique_ptr<Scene> make_scene(const std::string& tessellation, const std::st
   return scene.ok() ? std::move(*scene) : nullptr;
 }
 
-void render_once(Scene& scene) {
-  auto fb = render::Framebuffer::create({.width = 64, .height = 36}).value();
-  render::FrameProfiler profiler;
-  const render::Camera camera = scene.make_camera(scene.document().camera, {64, 36});
-  scene.update(camera, 0.0, 0.0f, {64, 36});
-  scene.render(fb, profiler);
-}
+using sylva::scene::testing::render_once;
 
 struct Drawn {
   std::uint64_t triangles = 0, chunks = 0, mesh_bytes = 0, held_bytes = 0;

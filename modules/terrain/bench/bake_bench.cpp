@@ -3,6 +3,8 @@
 // first, so the process's peak RSS after it is the bake's own (the field moved in and released);
 // the in-memory rows report the peak after them (max RSS only grows; the caller keeps its field).
 // Field size via --benchmark_filter=.../4097 or /16385. Iterations(1): a 4k run takes minutes.
+#include "bench_fields.hpp"
+
 #include <sylva/terrain/bake.hpp>
 #include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/height_source.hpp>
@@ -16,18 +18,6 @@
 namespace sylva::terrain {
 namespace {
 
-// A fresh field per benchmark (not cached): each one's peak RSS holds one field, as a bake of
-// a raster file does.
-HeightField make_field(int size) {
-  GeneratedFieldSettings g;
-  g.size = size;
-  g.spacing = 2.0;
-  g.height_scale = 900.0f;
-  g.feature_size = 2000.0f;
-  g.fbm.octaves = 9;
-  return generate_height_field(g).value();
-}
-
 double peak_rss_mib() {
   rusage u{};
   getrusage(RUSAGE_SELF, &u);
@@ -39,7 +29,8 @@ std::filesystem::path out_file(const char* name) {
 }
 
 void BM_Bake(benchmark::State& state) {
-  HeightField f = make_field(static_cast<int>(state.range(0)));
+  // A fresh field, not cached: the peak RSS holds one field, as a bake of a raster file does.
+  HeightField f = bench_field(static_cast<int>(state.range(0)));
   const auto out = out_file("baked.sylvaterrain");
   BakeReport report;
   for (auto _ : state) {
@@ -61,7 +52,7 @@ void BM_Bake(benchmark::State& state) {
 BENCHMARK(BM_Bake)->Arg(4097)->Arg(16385)->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
 
 void BM_InMemoryBuild(benchmark::State& state) {
-  const HeightField f = make_field(static_cast<int>(state.range(0)));
+  const HeightField f = bench_field(static_cast<int>(state.range(0)));  // fresh, not cached: one field in the peak RSS, as a bake of a raster file
   const auto out = out_file("memory.sylvaterrain");
   const bool save = state.range(1) != 0;
   ChunkTreeSettings settings;

@@ -4,6 +4,8 @@
 // settings (leaf 33), fBm as in bench_terrain_bake. Field side via --benchmark_filter=.../4097.
 // Wall time (UseRealTime): the cache is I/O as much as CPU. The hit reads a file the miss just
 // wrote, so it is in the page cache (as on a second launch of the same scene).
+#include "bench_fields.hpp"
+
 #include <sylva/core/timer.hpp>
 #include <sylva/terrain/height_source.hpp>
 #include <sylva/terrain/tree_cache.hpp>
@@ -22,13 +24,7 @@ const HeightField& field(int size) {
   static std::map<int, HeightField> fields;
   auto it = fields.find(size);
   if (it == fields.end()) {
-    GeneratedFieldSettings g;
-    g.size = size;
-    g.spacing = 2.0;
-    g.height_scale = 900.0f;
-    g.feature_size = 2000.0f;
-    g.fbm.octaves = 9;
-    it = fields.emplace(size, generate_height_field(g).value()).first;
+    it = fields.emplace(size, bench_field(size)).first;
   }
   return it->second;
 }

@@ -5,6 +5,7 @@
 
 #include <sylva/core/atomic_file.hpp>
 
+#include "support/models.hpp"
 #include "support/temp_path.hpp"
 
 #include <gtest/gtest.h>
@@ -17,38 +18,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The seed's plain layout (§4.3.1): no radii, no leaf sizes.
-constexpr const char* kSeedObjt = R"(name = "seed example"
-B 0 {
-    l 0
-    d 5
-    z 0 0 0
-    k 0 5 0
-    r 1 0 0
-    s 0 0 -1
-    t 0 1 0
-    p -1
-    x 0
+// The seed's example tree (no radii, no leaf sizes) with the trunk written as its own parent, a
+// layout the loader repairs with a warning.
+std::string trunk_naming_itself_as_parent() {
+  std::string objt = testing::seed_example_objt();
+  const std::string root = "p    -1";
+  return objt.replace(objt.find(root), root.size(), "p    0");
 }
-B 1 {
-    l 1
-    d 2
-    z 0 3 0
-    k 2 3 0
-    r 0 1 0
-    s 0 0 1
-    t 1 0 0
-    p 0
-    x 0.6
-}
-L 1 {
-    r 0 1 0
-    s 0 0 1
-    t 1 0 0
-    p 1
-    x 0.9
-}
-)";
 
 class SpeciesFileTest : public ::testing::Test {
  protected:
@@ -56,7 +32,7 @@ class SpeciesFileTest : public ::testing::Test {
     dir_ = testing::unique_temp(std::string("species_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "trees");
-    ASSERT_TRUE(write_file_atomic(dir_ / "trees" / "seed.objt", kSeedObjt).ok());
+    ASSERT_TRUE(write_file_atomic(dir_ / "trees" / "seed.objt", testing::seed_example_objt()).ok());
   }
   void TearDown() override { fs::remove_all(dir_); }
 
@@ -174,7 +150,7 @@ TEST_F(SpeciesFileTest, ErrorsNameTheFileAndThePath) {
 
 TEST_F(SpeciesFileTest, UnknownKeysAndRepairsWarn) {
   ASSERT_TRUE(write_file_atomic(dir_ / "trees" / "self.objt",
-                                std::string(kSeedObjt).replace(std::string(kSeedObjt).find("p -1"), 4, "p 0"))
+                                trunk_naming_itself_as_parent())
                   .ok());
   Result<SpeciesFile> s = load(R"({"model": {"objt": "trees/self.objt", "scale": 2}, "colour": [1, 0, 0]})");
   ASSERT_TRUE(s.ok()) << s.error().message;

@@ -13,6 +13,7 @@
 
 #include "support/gl_scene.hpp"
 #include "support/lod_scene.hpp"
+#include "support/models.hpp"
 #include "support/temp_path.hpp"
 
 #include <gtest/gtest.h>
@@ -28,38 +29,6 @@ namespace fs = std::filesystem;
 
 using SpeciesStability = render::GlTest;
 
-constexpr const char* kObjt = R"(name = "extreme"
-B 0 {
- l 0
- d 5
- z 0 0 0
- k 0 5 0
- r 1 0 0
- s 0 0 -1
- t 0 1 0
- p -1
- x 0
-}
-B 1 {
- l 1
- d 2
- z 0 3 0
- k 2 3 0
- r 0 1 0
- s 0 0 1
- t 1 0 0
- p 0
- x 0.6
-}
-L 1 {
- r 0 1 0
- s 0 0 1
- t 1 0 0
- p 1
- x 0.9
-}
-)";
-
 std::size_t non_finite(const Image& img) {
   std::size_t n = 0;
   for (float v : img.data()) n += std::isfinite(v) ? 0u : 1u;
@@ -70,7 +39,7 @@ TEST_F(SpeciesStability, TinyAndHugeUnitsRenderFiniteAtEveryLevel) {
   const fs::path dir = testing::unique_temp("species_extremes");
   fs::remove_all(dir);
   fs::create_directories(dir);
-  ASSERT_TRUE(write_file_atomic(dir / "tree.objt", kObjt).ok());
+  ASSERT_TRUE(write_file_atomic(dir / "tree.objt", testing::seed_example_objt()).ok());
   auto scene = testing::GlScene::create(64, 48);
   render::FramebufferDesc desc;
   desc.width = 64;
