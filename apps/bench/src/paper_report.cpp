@@ -1,5 +1,7 @@
 #include "paper_report.hpp"
 
+#include "paper_html.hpp"
+
 #include <sylva/core/atomic_file.hpp>
 
 #include <fmt/format.h>
@@ -71,6 +73,62 @@ double paper_measure(const SettingResult& result, const PaperValue& value, CostM
   return std::nan("");
 }
 
+PaperGrid paper_grid(const PaperOutcome& o, CostMetric cost) {
+  const PaperTable& t = *o.table;
+  PaperGrid g;
+  // Header: row | per column and value: thesis, x, Sylva, x; then DSSIM per column when the table
+  // has an image-quality dimension.
+  g.header.push_back(t.row_header);
+  for (const PaperColumn& c : t.columns) {
+    for (const PaperValue& v : c.values) {
+      g.header.push_back(fmt::format("{} {} thesis{}", c.name, v.name, v.thesis_fps ? " (1000/FPS)" : ""));
+      g.header.push_back("x");
+      g.header.push_back(fmt::format("{} {} Sylva", c.name, v.name));
+      g.header.push_back("x");
+    }
+  }
+  if (!t.reference.empty()) {
+    for (const PaperColumn& c : t.columns) g.header.push_back(c.name + " DSSIM");
+  }
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    std::vector<std::string> cells{t.rows[r].label};
+    for (std::size_t c = 0; c < t.columns.size(); ++c) {
+      for (const PaperValue& v : t.columns[c].values) {
+        const double th = thesis_value(v, r);
+        const double sy = sylva_value(o, r, c, v, cost);
+        cells.insert(cells.end(), {number(th), ratio(th, thesis_value(v, 0)), number(sy), ratio(sy, first_sylva(o, c, v, cost))});
+      }
+    }
+    if (!t.reference.empty()) {
+      for (std::size_t c = 0; c < t.columns.size(); ++c) {
+        const bool ran = r < o.rows.size() && o.rows[r] && c < o.rows[r]->size();
+        cells.push_back(ran ? number(error_of((*o.rows[r])[c], ErrorMetric::kDssim)) : std::string("–"));
+      }
+    }
+    g.rows.push_back(std::move(cells));
+    g.reports.push_back(r < o.row_reports.size() ? o.row_reports[r] : "");
+    g.not_run.push_back(t.rows[r].missing.empty() ? "not run" : "not run: " + t.rows[r].missing);
+  }
+  return g;
+}
+
+std::vector<PaperShape> paper_shapes(const PaperOutcome& o, CostMetric cost) {
+  const PaperTable& t = *o.table;
+  std::vector<PaperShape> shapes;
+  for (std::size_t c = 0; c < t.columns.size(); ++c) {
+    for (const PaperValue& v : t.columns[c].values) {
+      PaperShape s{t.columns[c].name + " " + v.name, {}, {}};
+      const double th0 = thesis_value(v, 0), sy0 = first_sylva(o, c, v, cost);
+      for (std::size_t r = 0; r < t.rows.size(); ++r) {
+        s.thesis.push_back(thesis_value(v, r) / th0);
+        s.sylva.push_back(sylva_value(o, r, c, v, cost) / sy0);
+      }
+      shapes.push_back(std::move(s));
+    }
+  }
+  return shapes;
+}
+
 std::string paper_markdown(const std::string& thesis, const std::vector<PaperOutcome>& outcomes, CostMetric cost,
                            const MachineInfo& machine, const std::string& gl_renderer) {
   std::string md = heading(thesis, cost, machine, gl_renderer);
@@ -82,40 +140,18 @@ std::string paper_markdown(const std::string& thesis, const std::vector<PaperOut
       continue;
     }
     if (!o.failure.empty()) md += fmt::format("**Failed:** {}\n\n", o.failure);
-    // Header: row | per column and value: thesis, x, Sylva, x.
-    std::string head = "| " + t.row_header, rule = "|---";
-    for (const PaperColumn& c : t.columns) {
-      for (const PaperValue& v : c.values) {
-        head += fmt::format(" | {0} {1} thesis{2} | x | {0} {1} Sylva | x", c.name, v.name, v.thesis_fps ? " (1000/FPS)" : "");
-        rule += "|---:|---:|---:|---:";
-      }
+    const PaperGrid g = paper_grid(o, cost);
+    std::string head = "|", rule = "|";
+    for (std::size_t i = 0; i < g.header.size(); ++i) {
+      head += " " + g.header[i] + " |";
+      rule += i == 0 ? "---|" : "---:|";
     }
-    if (!t.reference.empty()) {
-      for (const PaperColumn& c : t.columns) head += fmt::format(" | {} DSSIM", c.name), rule += "|---:";
-    }
-    head += " | report |\n";
-    rule += "|---|\n";
-    md += head + rule;
-    for (std::size_t r = 0; r < t.rows.size(); ++r) {
-      md += "| " + t.rows[r].label;
-      for (std::size_t c = 0; c < t.columns.size(); ++c) {
-        for (const PaperValue& v : t.columns[c].values) {
-          const double th = thesis_value(v, r);
-          const double th0 = thesis_value(v, 0);
-          const double sy = sylva_value(o, r, c, v, cost);
-          md += fmt::format(" | {} | {} | {} | {}", number(th), ratio(th, th0), number(sy),
-                            ratio(sy, first_sylva(o, c, v, cost)));
-        }
-      }
-      if (!t.reference.empty()) {
-        for (std::size_t c = 0; c < t.columns.size(); ++c) {
-          const bool ran = r < o.rows.size() && o.rows[r] && c < o.rows[r]->size();
-          md += " | " + (ran ? number(error_of((*o.rows[r])[c], ErrorMetric::kDssim)) : std::string("–"));
-        }
-      }
-      const std::string rep = r < o.row_reports.size() ? o.row_reports[r] : "";
-      const std::string why = t.rows[r].missing.empty() ? "not run" : "not run: " + t.rows[r].missing;
-      md += " | " + (rep.empty() ? why : fmt::format("[{0}]({0}/report.html)", rep)) + " |\n";
+    md += head + " report |\n" + rule + "---|\n";
+    for (std::size_t r = 0; r < g.rows.size(); ++r) {
+      std::string line = "|";
+      for (const std::string& cell : g.rows[r]) line += " " + cell + " |";
+      const std::string& rep = g.reports[r];
+      md += line + " " + (rep.empty() ? g.not_run[r] : fmt::format("[{0}]({0}/report.html)", rep)) + " |\n";
     }
     md += fmt::format("\nDifferences from the thesis: {}\n", t.differences);
     for (const PaperColumn& c : t.columns) {
@@ -171,6 +207,7 @@ Status write_paper_report(const std::filesystem::path& folder, const std::string
   std::filesystem::create_directories(folder, ec);
   if (ec) return make_error(ErrorCode::kIo, fmt::format("{}: cannot create ({})", folder.string(), ec.message()));
   SYLVA_TRY(write_file_atomic(folder / "paper.md", paper_markdown(thesis, outcomes, cost, machine, gl_renderer)));
+  SYLVA_TRY(write_file_atomic(folder / "paper.html", paper_html(thesis, outcomes, cost, machine, gl_renderer)));
   return write_file_atomic(folder / "paper.json", paper_json(thesis, outcomes, cost, machine, gl_renderer).dump(2) + "\n");
 }
 

@@ -1,5 +1,6 @@
 // The thesis tables beside Sylva's numbers (GL-free): values, ratios to the first row, rows that
 // did not run, tables Sylva cannot run yet, and the thesis data itself (every row has a value).
+#include "paper_html.hpp"
 #include "paper_report.hpp"
 #include "paper_tables.hpp"
 
@@ -46,6 +47,30 @@ TEST(PaperReport, ThesisAndSylvaSideBySideWithRatiosToTheFirstRow) {
   EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["values"]["LOD0 ms"]["sylva"].get<double>(), 120.0);
   EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["values"]["LOD0 ms"]["thesis"].get<double>(), 5.0);
   EXPECT_DOUBLE_EQ(j["tables"][0]["rows"][1]["lod_instances_per_frame"]["LOD0"]["vegetation.lod0"].get<double>(), 10.0);
+}
+
+// paper.html: the same cells as paper.md, the shape plot once two rows ran (thesis and Sylva
+// points at their ratios), each row's error-against-time plot, and nothing unescaped.
+TEST(PaperReport, HtmlHasTheTableTheShapePlotAndTheRowsPlots) {
+  PaperTable t = two_row_table();
+  t.differences = "<none>";
+  PaperOutcome o;
+  o.table = &t;
+  o.rows = {std::vector<SettingResult>{measured(40.0, 2000, 2)}, std::vector<SettingResult>{measured(120.0, 9000, 3)}};
+  o.row_reports = {"tab-9.9/row-0", "tab-9.9/row-1"};
+  o.row_plots = {"<svg id=\"row0\"></svg>", ""};
+  const std::string html = paper_html("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  EXPECT_NE(html.find("<td class=\"l\">20</td><td>5</td><td>2.50x</td><td>120</td><td>3.00x</td>"), std::string::npos) << html;
+  EXPECT_NE(html.find("<a href=\"tab-9.9/row-1/report.html\">"), std::string::npos);
+  EXPECT_NE(html.find("Shape: each quantity against its first row"), std::string::npos);
+  EXPECT_NE(html.find("thesis LOD0 ms, # things 20: 2.50x"), std::string::npos) << html;
+  EXPECT_NE(html.find("Sylva LOD0 ms, # things 20: 3.00x"), std::string::npos) << html;
+  EXPECT_NE(html.find("Image error against time, # things 10</h3>\n<svg id=\"row0\">"), std::string::npos) << html;
+  EXPECT_EQ(html.find("# things 20</h3>"), std::string::npos);  // row 1 has no plot
+  EXPECT_NE(html.find("&lt;none&gt;"), std::string::npos);
+  // One row run (--quick): no shape to compare.
+  o.rows[1] = std::nullopt;
+  EXPECT_EQ(paper_html("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe").find("Shape:"), std::string::npos);
 }
 
 TEST(PaperReport, ABaselineColumnIsSubtracted) {
@@ -110,7 +135,13 @@ TEST(PaperTables, Seed000IsCompleteAndConsistent) {
   expect_complete(tables, "000");
   EXPECT_EQ(tables[0].rows.back().label, "1000");
   EXPECT_DOUBLE_EQ(tables[0].columns[1].values[0].thesis.back(), 57.16);  // Tab. 5.1 LOD1 at 1000
-  EXPECT_FALSE(tables[4].missing.empty());                                // Tab. 5.5: animation levels
+  // Tab. 5.5: four animation levels by LOD1/LOD2 at 10..100 trees; the thesis's LOD2 x100 "+ leaves".
+  EXPECT_TRUE(tables[4].missing.empty());
+  ASSERT_EQ(tables[4].rows.size(), 4u);
+  ASSERT_EQ(tables[4].columns.size(), 12u);  // 8 measured, 4 stands without trees (baselines)
+  EXPECT_EQ(tables[4].columns[7].name, "LOD2 x100");
+  EXPECT_DOUBLE_EQ(tables[4].columns[7].values[0].thesis.back(), 6.44);
+  EXPECT_DOUBLE_EQ(tables[4].columns[3].values[0].thesis.front(), 11.31);  // LOD1 x100, static
   EXPECT_TRUE(paper_tables("005").empty());
 }
 

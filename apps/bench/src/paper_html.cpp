@@ -1,0 +1,106 @@
+#include "paper_html.hpp"
+
+#include "svg_plot.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace sylva::bench {
+namespace {
+
+std::string table_html(const PaperGrid& g) {
+  std::string h = "<table>\n<tr>";
+  for (std::size_t i = 0; i < g.header.size(); ++i) {
+    h += fmt::format("<th{}>{}</th>", i == 0 ? " class=\"l\"" : "", html_escape(g.header[i]));
+  }
+  h += "<th class=\"l\">report</th></tr>\n";
+  for (std::size_t r = 0; r < g.rows.size(); ++r) {
+    h += "<tr>";
+    for (std::size_t i = 0; i < g.rows[r].size(); ++i) {
+      h += fmt::format("<td{}>{}</td>", i == 0 ? " class=\"l\"" : "", html_escape(g.rows[r][i]));
+    }
+    const std::string& rep = g.reports[r];
+    h += rep.empty() ? fmt::format("<td class=\"l\">{}</td>", html_escape(g.not_run[r]))
+                     : fmt::format("<td class=\"l\"><a href=\"{0}/report.html\">{0}</a></td>", html_escape(rep));
+    h += "</tr>\n";
+  }
+  return h + "</table>\n";
+}
+
+// Thesis (T) and Sylva (S) ratios to the first row, against the row number; empty when fewer than
+// two rows have a value on either side (nothing to compare: a --quick run, a one-row table).
+std::string shape_svg(const PaperTable& t, const std::vector<PaperShape>& shapes) {
+  std::vector<PlotPoint> points;
+  std::vector<bool> sylva_rows(t.rows.size(), false);
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    const PaperShape& s = shapes[i];
+    for (std::size_t r = 0; r < t.rows.size(); ++r) {
+      const double x = static_cast<double>(r + 1);
+      if (std::isfinite(s.thesis[r])) {
+        points.push_back({x, s.thesis[r], fmt::format("T{}", i + 1),
+                          fmt::format("thesis {}, {} {}: {:.2f}x", s.name, t.row_header, t.rows[r].label, s.thesis[r])});
+      }
+      if (std::isfinite(s.sylva[r])) {
+        sylva_rows[r] = true;
+        points.push_back({x, s.sylva[r], fmt::format("S{}", i + 1),
+                          fmt::format("Sylva {}, {} {}: {:.2f}x", s.name, t.row_header, t.rows[r].label, s.sylva[r])});
+      }
+    }
+  }
+  if (std::count(sylva_rows.begin(), sylva_rows.end(), true) < 2) return {};
+  PlotSpec spec{fmt::format("row (1 = {} {})", t.row_header, t.rows.front().label), "ratio to the first row"};
+  spec.height = 320;
+  std::string legend;
+  for (std::size_t i = 0; i < shapes.size(); ++i) legend += fmt::format("{}{} = {}", i ? ", " : "", i + 1, shapes[i].name);
+  return scatter_svg(points, spec) + fmt::format("<p class=\"note\">T = thesis, S = Sylva; {}.</p>\n", html_escape(legend));
+}
+
+}  // namespace
+
+std::string paper_html(const std::string& thesis, const std::vector<PaperOutcome>& outcomes, CostMetric cost,
+                       const MachineInfo& machine, const std::string& gl_renderer) {
+  std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  h += fmt::format("<title>sylva-bench --paper {}</title>\n", html_escape(thesis));
+  h += "<style>\n"
+       "body{font-family:sans-serif;margin:24px;color:#111;max-width:1400px}\n"
+       "table{border-collapse:collapse;margin:8px 0 12px 0;font-size:13px}\n"
+       "th,td{border:1px solid #ccc;padding:3px 7px;text-align:right}\n"
+       "th{background:#f0f0f0} td.l,th.l{text-align:left}\n"
+       ".note{color:#555;font-size:13px} .failed{color:#b01010}\n"
+       "</style>\n</head>\n<body>\n";
+  h += fmt::format("<h1>sylva-bench --paper {}</h1>\n", html_escape(thesis));
+  h += fmt::format(
+      "<p>Sylva: {} ({} logical cores), {}, {} build, {}. Sylva's ms are <code>{}</code> (mean over the frames of a "
+      "static camera). Ratios (x) are to the table's first row: compare the shape of the tables, not absolute times "
+      "across machines.</p>\n",
+      html_escape(machine.cpu_model), machine.cpu_cores, html_escape(gl_renderer), html_escape(machine.build_type),
+      html_escape(machine.date_utc), to_string(cost));
+  for (const PaperOutcome& o : outcomes) {
+    const PaperTable& t = *o.table;
+    h += fmt::format("<h2>Tab. {}: {}</h2>\n<p class=\"note\">Thesis: {}.</p>\n", html_escape(t.id), html_escape(t.title),
+                     html_escape(t.thesis_hardware));
+    if (!t.missing.empty()) {
+      h += fmt::format("<p>Not reproduced: {}.</p>\n", html_escape(t.missing));
+      continue;
+    }
+    if (!o.failure.empty()) h += fmt::format("<p class=\"failed\">Failed: {}</p>\n", html_escape(o.failure));
+    h += table_html(paper_grid(o, cost));
+    h += fmt::format("<p class=\"note\">Differences from the thesis: {}</p>\n", html_escape(t.differences));
+    for (const PaperColumn& c : t.columns) {
+      if (!c.missing.empty()) h += fmt::format("<p class=\"note\">Column \"{}\" not run: {}.</p>\n", html_escape(c.name), html_escape(c.missing));
+    }
+    if (const std::string shape = shape_svg(t, paper_shapes(o, cost)); !shape.empty()) {
+      h += "<h3>Shape: each quantity against its first row</h3>\n" + shape;
+    }
+    for (std::size_t r = 0; r < o.row_plots.size(); ++r) {
+      if (o.row_plots[r].empty()) continue;
+      h += fmt::format("<h3>Image error against time, {} {}</h3>\n", html_escape(t.row_header), html_escape(t.rows[r].label));
+      h += o.row_plots[r];
+    }
+  }
+  return h + "</body>\n</html>\n";
+}
+
+}  // namespace sylva::bench
