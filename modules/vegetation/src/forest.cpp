@@ -362,7 +362,7 @@ Status Forest::draw_depth(const glm::mat4& relative_view_proj, const render::Fru
       // The LOD of the last update (trees beyond max_distance were never selected: LOD2).
       float l = 0.0f;
       if (lod) l = i < s.lod_state.level.size() && !std::isnan(s.lod_state.level[i]) ? s.lod_state.level[i] : 2.0f;
-      const LodDraws draws = lod_draws(l);
+      const LodDraws draws = lod_draws(l, m.settings.lod.transition, m.settings.lod.transition_shift);
       const InstanceGpu g = m.record(s.instances[i], s);
       for (int k = 0; k < draws.count; ++k) {
         InstanceGpu r = g;

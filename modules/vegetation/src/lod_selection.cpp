@@ -76,7 +76,37 @@ double lod_follow(double current, double distance, float hysteresis) {
   return std::clamp(current, distance / (1.0 + h), distance * (1.0 + h));
 }
 
-LodDraws lod_draws(float l) {
+LodWeights lod_transition_weights(LodTransition t, float phase, float shift) {
+  const float f = std::isnan(phase) ? 0.0f : std::clamp(phase, 0.0f, 1.0f);
+  LodWeights w;
+  switch (t) {
+    case LodTransition::kCrossFade:  // eq. 3.41 with A and B in eq. 3.42's roles (errata 9)
+      w = {1.0f - f, f};
+      break;
+    case LodTransition::kSoft:
+    case LodTransition::kShiftedSoft: {  // eq. 3.43 (soft: s = 0)
+      double s = 0.0;
+      if (t == LodTransition::kShiftedSoft && std::isfinite(shift)) s = std::clamp(static_cast<double>(shift), 0.0, 0.95);
+      constexpr double kPi = 3.14159265358979323846;
+      // smooth(x): 1 for x <= 0, cos x on (0, pi), -1 for x >= pi.
+      const auto smooth = [](double x) { return x <= 0.0 ? 1.0 : x >= kPi ? -1.0 : std::cos(x); };
+      const double fd = static_cast<double>(f);
+      const double a = 0.5 * (smooth((fd - s) / (1.0 - s) * kPi) + 1.0);
+      const double b = 1.0 - 0.5 * (smooth(fd / (1.0 - s) * kPi) + 1.0);
+      w = {static_cast<float>(std::clamp(a, 0.0, 1.0)), static_cast<float>(std::clamp(b, 0.0, 1.0))};
+      break;
+    }
+    case LodTransition::kFadeInBackground:
+    default:  // eq. 3.42: one level is opaque at every phase.
+      w = {std::min(1.0f, 2.0f * (1.0f - f)), std::min(1.0f, 2.0f * f)};
+      break;
+  }
+  return w;
+}
+
+LodDraws lod_draws(float l) { return lod_draws(l, LodTransition::kFadeInBackground, 0.5f); }
+
+LodDraws lod_draws(float l, LodTransition transition, float shift) {
   LodDraws out;
   if (!(l > 0.0f)) {
     out.draw[0] = {0, 1.0f};
@@ -95,10 +125,11 @@ LodDraws lod_draws(float l) {
     out.count = 1;
     return out;
   }
-  // Eq. 3.42: one level is opaque at every phase.
-  out.draw[0] = {k, std::min(1.0f, 2.0f * (1.0f - f))};
-  out.draw[1] = {k + 1, std::min(1.0f, 2.0f * f)};
-  out.count = 2;
+  // A level of weight 0 (the far end of a cosine ramp, or of a shifted one) is not drawn; the
+  // weights never are both 0 (a + b >= 1).
+  const LodWeights w = lod_transition_weights(transition, f, shift);
+  if (w.a > 0.0f) out.draw[static_cast<std::size_t>(out.count++)] = {k, w.a};
+  if (w.b > 0.0f) out.draw[static_cast<std::size_t>(out.count++)] = {k + 1, w.b};
   return out;
 }
 
@@ -135,7 +166,7 @@ void select_lods(const LodSettings& s, const LodView& view, std::span<const rend
       state.level[i] = l;
     }
     if (view.frustum != nullptr && !view.frustum->intersects(sp)) continue;
-    const LodDraws draws = lod_draws(l);
+    const LodDraws draws = lod_draws(l, s.transition, s.transition_shift);
     for (int k = 0; k < draws.count; ++k) {
       const auto level = static_cast<std::size_t>(draws.draw[static_cast<std::size_t>(k)].level);
       out.level[level].push_back({static_cast<std::uint32_t>(i), draws.draw[static_cast<std::size_t>(k)].fade});

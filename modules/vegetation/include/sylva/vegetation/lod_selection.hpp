@@ -14,13 +14,22 @@
 // thresholds s1 > s2 to per-instance distances v_k = K h_tree / s_k (K = viewport height /
 // (2 tan(fov_y / 2))), so the same ramps apply.
 //
-// Transition (seed eq. 3.42, "fade in background"): for l = k + f, level k is drawn with fade
-// min(1, 2 (1 - f)) and level k + 1 with min(1, 2 f). At every f one of the two is fully opaque,
-// so the union covers at least the opaque level's pixels: the tree is never see-through. The
-// fades act as dithered coverage (alpha-to-coverage sample masks or a hashed alpha test keyed on
-// rest positions), the same in colour and shadow passes (the seed's dithered shadows, §2.13), and
-// need no back-to-front sorting: each queue is ordered near to far instead (the seed's future
-// work), a linear-time counting sort on quantised distance.
+// Transition (seed eq. 3.42, "fade in background", the default): for l = k + f, level k is drawn
+// with fade min(1, 2 (1 - f)) and level k + 1 with min(1, 2 f). At every f one of the two is fully
+// opaque, so the union covers at least the opaque level's pixels: the tree is never see-through.
+// LodSettings::transition selects the seed's other blends for comparison (cross-fade eq. 3.41,
+// soft and shifted soft eq. 3.43; formulas in lod_settings.hpp); a level whose weight is 0 is not
+// queued, one with weight 1 draws opaque. The fades act as dithered coverage (alpha-to-coverage
+// sample masks or a hashed alpha test keyed on rest positions), the same in colour and shadow
+// passes (the seed's dithered shadows, §2.13), and need no back-to-front sorting: each queue is
+// ordered near to far instead (the seed's future work), a linear-time counting sort on quantised
+// distance. Depth and draw order: every fragment (sample) that survives the dither is opaque and
+// writes depth, so the seed's two draw orders with depth writes off for the fading level (§4.2
+// makeTransition) are not needed and every blend stays correct in any order. Each fragment
+// dithers on its own hash (rest position; slices: slice point and layer), so with two
+// semi-transparent levels (cross-fade, soft) a pixel behind n LOD0 fragments and m slice layers
+// shows the background with probability (1 - a)^n (1 - b)^m: the see-through of the seed's
+// cross-fade, strongest where the tree is thin (lod_transition_gl_test).
 
 #include <sylva/render/frustum.hpp>
 #include <sylva/vegetation/lod_settings.hpp>
@@ -61,7 +70,22 @@ struct LodDraws {
   std::array<LodDraw, 2> draw{};
   int count = 0;
 };
+// Fade-in-background draws (eq. 3.42), bit-identical to lod_draws(coordinate, kFadeInBackground, ..).
 LodDraws lod_draws(float coordinate);
+// Draws of one coordinate with the chosen blend. At an integer coordinate one opaque level; inside
+// a transition the levels with a weight above 0, level k first (count 1 or 2). `shift` is the
+// seed's s for kShiftedSoft, clamped to [0, 0.95] (non-finite: 0); the other blends ignore it.
+LodDraws lod_draws(float coordinate, LodTransition transition, float shift);
+
+// Weights of the two levels at phase f in [0, 1] (clamped; NaN counts as 0): a for level k (the
+// seed's A, the level being left), b for level k + 1 (B, the level entered), each in [0, 1], per
+// the equations in lod_settings.hpp. a = 1, b = 0 at f = 0 and a = 0, b = 1 at f = 1 for every
+// blend; a + b >= 1 always (= 1 for cross_fade and soft).
+struct LodWeights {
+  float a = 1.0f;
+  float b = 0.0f;
+};
+LodWeights lod_transition_weights(LodTransition transition, float phase, float shift);
 
 // One queued draw: instance index and fade; queues are ordered near to far when sorting is on.
 struct LodQueueEntry {

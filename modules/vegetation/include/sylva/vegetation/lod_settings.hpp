@@ -19,6 +19,31 @@ constexpr std::array<EnumName<LodCriterion>, 3> enum_names(LodCriterion) {
            {LodCriterion::kScreenSize, "screen_size"}}};
 }
 
+// How the two levels of an instance in transition are blended (seed 000 §2.9, eq. 3.41-3.43; the
+// thesis's Fig. 3.25 compares all four). For an instance at LOD coordinate l = k + f (f in (0, 1) the
+// transition phase), A = level k (the level being left) and B = level k + 1 (the level entered);
+// each weight is the fade its level is drawn with (dithered coverage, 1 = opaque, 0 = not drawn):
+//   fade_in_background (eq. 3.42, the default):  A = min(1, 2(1 - f)),  B = min(1, 2f)
+//     one level is opaque at every f, so the tree is never see-through;
+//   cross_fade (eq. 3.41):  A = 1 - f,  B = f
+//     the print writes R = f A + (1 - f) B, with A and B swapped against eq. 3.42/3.43 (seed errata
+//     item 9); in this convention it is (1 - f) A + f B. Both levels are semi-transparent inside
+//     the band (0.5 / 0.5 at f = 0.5): the see-through defect the thesis describes;
+//   soft (eq. 3.43 with s = 0):  A = (1 + cos(f pi)) / 2,  B = 1 - A
+//     a cosine cross-fade: still see-through in the middle;
+//   shifted_soft (eq. 3.43, s = transition_shift):
+//     A = (smooth((f - s) / (1 - s) pi) + 1) / 2,  B = 1 - (smooth(f / (1 - s) pi) + 1) / 2,
+//     smooth(x) = 1 for x <= 0, cos(x) on (0, pi), -1 for x >= pi.
+//     A is opaque for f <= s, B for f >= 1 - s; s = 0.5: one layer always opaque (fade in
+//     background with cosine ramps), s > 0.5: the opaque ranges overlap.
+enum class LodTransition { kFadeInBackground = 0, kCrossFade = 1, kSoft = 2, kShiftedSoft = 3 };
+constexpr std::array<EnumName<LodTransition>, 4> enum_names(LodTransition) {
+  return {{{LodTransition::kFadeInBackground, "fade_in_background"},
+           {LodTransition::kCrossFade, "cross_fade"},
+           {LodTransition::kSoft, "soft"},
+           {LodTransition::kShiftedSoft, "shifted_soft"}}};
+}
+
 struct LodSettings {
   bool enabled = true;            // false: every tree is drawn at LOD0 (Trees I behaviour)
   int slice_resolution = 128;     // texels per slice side (baked LOD1 and LOD2 slices)
@@ -29,6 +54,8 @@ struct LodSettings {
   float s1 = 70.0f;               // screen_size: LOD1 below this projected tree height [px]
   float s2 = 28.0f;               // screen_size: LOD2 below this projected height [px]
   float band = 0.15f;             // transition width relative to the threshold distance
+  LodTransition transition = LodTransition::kFadeInBackground;  // blend of the two levels (above)
+  float transition_shift = 0.5f;  // shifted_soft: the seed's s in [0, 0.95] (s < 1; no value in the seed)
   float hysteresis = 0.05f;       // backlash on the distance (relative) against threshold jitter
   float slice_margin = 0.12f;     // quads grow by this share of the tree height for swaying content
   float leaf_displacement = 0.002f;  // scrolling leaf displacement [m per m/s of wind] (seed eq. 3.40)
@@ -58,6 +85,8 @@ struct LodSettings {
     v(s1, "s1", {.min = 0.0, .max = 1.0e5, .unit = "px", .help = "screen_size: projected height below which LOD1 is used"});
     v(s2, "s2", {.min = 0.0, .max = 1.0e5, .unit = "px", .help = "screen_size: projected height below which LOD2 is used"});
     v(band, "band", {.min = 0.0, .max = 4.0, .help = "Transition width relative to the threshold"});
+    v(transition, "transition", {.help = "Blend of the two levels in a transition: fade_in_background (eq. 3.42, never see-through), cross_fade (eq. 3.41), soft (eq. 3.43, s = 0) or shifted_soft (eq. 3.43, s = transition_shift)"});
+    v(transition_shift, "transition_shift", {.min = 0.0, .max = 0.95, .help = "shifted_soft: mutual shift s of the two cosine ramps (0 = soft, 0.5 = one level always opaque)"});
     v(hysteresis, "hysteresis", {.min = 0.0, .max = 1.0, .help = "Relative distance change needed before the LOD follows"});
     v(slice_margin, "slice_margin", {.min = 0.0, .max = 1.0, .help = "Slice quad growth for swaying content (share of height)"});
     v(leaf_displacement, "leaf_displacement", {.min = 0.0, .max = 1.0, .unit = "m/(m/s)", .help = "Scrolling leaf displacement in slices"});
