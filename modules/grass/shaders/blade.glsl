@@ -79,6 +79,20 @@ vec3 grass_bezier_tangent(vec3 p0, vec3 p1, vec3 p2, float t) {
   return mix(p1 - p0, p2 - p1, t);
 }
 
+// Seed 001 eq. 2.4 control-point jitter (blade.hpp drawn_control, the CPU twin): a blade with
+// attr.w >= 1 is drawn with v1 + up ((r4 - 1) dot(v1 - v0, up)) + r3 (side part of v2 - v0),
+// r3 = 0.25 (2 s - 1), r4 = 0.75 + 0.5 fract(4096 s), s = fract(attr.w).
+vec3 grass_drawn_control(Blade b) {
+  if (!(b.attr.w >= 1.0)) return b.v1.xyz;
+  float s = fract(b.attr.w);
+  float r3 = 0.25 * (2.0 * s - 1.0);
+  float r4 = 0.75 + 0.5 * fract(4096.0 * s);
+  vec3 up = b.up.xyz;
+  vec3 d = b.v2.xyz - b.v0.xyz;
+  vec3 side = d - up * dot(d, up);
+  return b.v1.xyz + up * ((r4 - 1.0) * dot(b.v1.xyz - b.v0.xyz, up)) + r3 * side;
+}
+
 vec3 grass_unpack_color(float packed_rgb) {
   uint bits = uint(clamp(packed_rgb, 0.0, 16777215.0));
   return vec3(float(bits & 255u), float((bits >> 8u) & 255u), float((bits >> 16u) & 255u)) / 255.0;
@@ -95,18 +109,29 @@ float grass_distance_keep(float d, vec4 thinning) {
   return mix(1.0, thinning.z, clamp(t, 0.0, 1.0));
 }
 
-// Segments along a blade (culling.hpp tessellation_segments). tess: x max_tess_level, y
-// pixels_per_segment, z law (0 projected size, 1 seed 001 eq. 2.3 distance law); near_distance
-// is eq. 2.3's d_max; ppr pixels per radian.
-float grass_segments(vec3 p0, vec3 p1, vec3 p2, float height, vec3 camera, float ppr, vec3 tess, float near_distance) {
+// Level along a blade for the tessellator (culling.hpp tessellation_level). tess: x
+// max_tess_level, y pixels_per_segment, z law (0 projected size, 1 seed 001 eq. 2.3 distance
+// law), w spacing (0 equal: ceil-ed; 1 fractional_even, 2 fractional_odd: not ceil-ed, the
+// segments morph, seed 001 pitfall "LOD popping"); near_distance is eq. 2.3's d_max; ppr pixels
+// per radian.
+float grass_tess_level(vec3 p0, vec3 p1, vec3 p2, float height, vec3 camera, float ppr, vec4 tess, float near_distance) {
+  bool ceiled = tess.w < 0.5;
   if (tess.z > 0.5) {
-    float n = ceil(tess.x * (1.0 - length(p0 - camera) / max(near_distance, 1e-3)));
-    return clamp(n, 1.0, max(tess.x, 1.0));
+    float raw = tess.x * (1.0 - length(p0 - camera) / max(near_distance, 1e-3));
+    return clamp(ceiled ? ceil(raw) : raw, 1.0, max(tess.x, 1.0));
   }
   vec3 mid = grass_bezier(p0, p1, p2, 0.5);
   float d = max(length(mid - camera), 1e-3);
   float px = height * ppr / d;
-  return clamp(ceil(px / max(tess.y, 1e-3)), 1.0, max(tess.x, 1.0));
+  float raw = px / max(tess.y, 1e-3);
+  return clamp(ceiled ? ceil(raw) : raw, 1.0, max(tess.x, 1.0));
+}
+
+// Segments the tessellator makes of `level` (culling.hpp tessellation_segments/spacing_segments).
+float grass_segments(float level, float spacing) {
+  if (spacing < 0.5) return level;
+  if (spacing < 1.5) return 2.0 * ceil(0.5 * clamp(level, 2.0, 64.0));
+  return 2.0 * ceil(0.5 * (clamp(level, 1.0, 63.0) + 1.0)) - 1.0;
 }
 
 float grass_width_scale(float keep, float compensation) {

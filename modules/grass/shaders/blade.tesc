@@ -1,7 +1,8 @@
 #version 450 core
 // grass/blade.tesc: tessellation level from the blade's projected size (seed 001 eq. 2.3, but
 // in pixels: segments = clamp(ceil(px / pixels_per_segment), 1, max_level); or eq. 2.3's own
-// distance law with cull.distance_tess_law, blade.glsl grass_segments), and the blade's
+// distance law with cull.distance_tess_law; no ceil with a fractional cull.tess_spacing;
+// blade.glsl grass_tess_level), and the blade's
 // Bezier control points for the evaluation shader. The quad domain is 1 column across the
 // blade (u) and `segments` rows along it (v), as seed 001 §3.7 suggests.
 #include "grass/blade.glsl"
@@ -20,14 +21,14 @@ patch out vec4 tc_params;      // x drawn width [m], y shade random, z shape ran
 
 uniform vec3 u_camera;         // blade-set local
 uniform float u_ppr;           // pixels per radian
-uniform vec3 u_tess;           // x max level, y pixels per segment, z distance law (blade.glsl grass_segments)
+uniform vec4 u_tess;           // x max level, y pixels per segment, z distance law, w spacing (blade.glsl grass_tess_level)
 uniform vec4 u_thinning;       // start, near_distance, min_keep, enabled
 uniform vec4 u_cull;           // x density_scale, y width_compensation
 
 void main() {
   Blade b = blades[v_blade[0]];
   tc_p0 = b.v0.xyz;
-  tc_p1 = b.v1.xyz;
+  tc_p1 = grass_drawn_control(b);  // seed 001 eq. 2.4 jitter when the blade has it
   tc_p2 = b.v2.xyz;
   tc_width_dir = grass_width_dir(b.up.xyz, b.v0.w);
   float d = length(b.v0.xyz - u_camera);
@@ -37,7 +38,7 @@ void main() {
   float narrowing = clamp((keep - b.attr.x) / kFadeBand, 0.0, 1.0);
   tc_params = vec4(b.v2.w * grass_width_scale(keep, u_cull.y) * narrowing, b.attr.y, b.attr.w, b.attr.z);
 
-  float n = grass_segments(b.v0.xyz, b.v1.xyz, b.v2.xyz, b.v1.w, u_camera, u_ppr, u_tess, u_thinning.y);
+  float n = grass_tess_level(b.v0.xyz, tc_p1, b.v2.xyz, b.v1.w, u_camera, u_ppr, u_tess, u_thinning.y);
   gl_TessLevelOuter[0] = n;    // left edge (u = 0), along the blade
   gl_TessLevelOuter[1] = 1.0;  // bottom edge
   gl_TessLevelOuter[2] = n;    // right edge

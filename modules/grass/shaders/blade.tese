@@ -5,7 +5,16 @@
 // normal = width_dir x tangent, bent across the blade for a rounded look.
 #include "grass/blade.glsl"
 
+// cull.tess_spacing picks the spacing (GRASS_TESS_SPACING 1 fractional_even, 2 fractional_odd,
+// set by grass_field.cpp; unset = equal, seed 001's code): fractional levels morph new segments
+// in instead of popping them (seed 001 pitfall "LOD popping").
+#if defined(GRASS_TESS_SPACING) && GRASS_TESS_SPACING == 1
+layout(quads, fractional_even_spacing, ccw) in;
+#elif defined(GRASS_TESS_SPACING) && GRASS_TESS_SPACING == 2
+layout(quads, fractional_odd_spacing, ccw) in;
+#else
 layout(quads, equal_spacing, ccw) in;
+#endif
 
 patch in vec3 tc_p0;
 patch in vec3 tc_p1;

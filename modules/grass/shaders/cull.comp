@@ -19,7 +19,7 @@ uniform float u_ppr;          // pixels per radian
 uniform vec4 u_thinning;      // start, near_distance, min_keep, enabled
 uniform vec4 u_cull;          // x density_scale, y width_compensation, z frustum on, w orientation on
 uniform vec2 u_orientation;   // x threshold, y max px
-uniform vec3 u_tess;          // x max level, y pixels per segment, z distance law (blade.glsl grass_segments)
+uniform vec4 u_tess;          // x max level, y pixels per segment, z distance law, w spacing (blade.glsl grass_tess_level)
 
 shared uint s_counts[6];
 
@@ -41,8 +41,9 @@ uint cull(Blade b) {
   if (!(rank < keep)) return 2u;
   float half_width = 0.5 * b.v2.w * grass_width_scale(keep, u_cull.y);
   if (u_cull.z > 0.5) {
-    vec3 lo = min(min(v0, b.v1.xyz), b.v2.xyz);
-    vec3 hi = max(max(v0, b.v1.xyz), b.v2.xyz);
+    vec3 v1 = grass_drawn_control(b);  // the drawn curve's hull (seed 001 eq. 2.4 jitter)
+    vec3 lo = min(min(v0, v1), b.v2.xyz);
+    vec3 hi = max(max(v0, v1), b.v2.xyz);
     vec3 c = 0.5 * (lo + hi);
     float r = 0.5 * length(hi - lo) + half_width;
     if (sphere_outside(c, r)) return 3u;
@@ -59,7 +60,8 @@ uint cull(Blade b) {
 }
 
 uint segments_of(Blade b) {
-  return uint(grass_segments(b.v0.xyz, b.v1.xyz, b.v2.xyz, b.v1.w, u_camera, u_ppr, u_tess, u_thinning.y));
+  float level = grass_tess_level(b.v0.xyz, grass_drawn_control(b), b.v2.xyz, b.v1.w, u_camera, u_ppr, u_tess, u_thinning.y);
+  return uint(grass_segments(level, u_tess.w));
 }
 
 void main() {

@@ -66,6 +66,28 @@ float bezier_length(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p
   return static_cast<float>(std::isfinite(length) ? std::max(length, chord) : chord);
 }
 
+ControlJitter control_jitter_randoms(float shape_random) {
+  const float s = shape_random - std::floor(shape_random);
+  const float low = 4096.0f * s;  // exact: a power-of-two scale
+  ControlJitter j;
+  j.r3 = 0.25f * (2.0f * s - 1.0f);
+  j.r4 = 0.75f + 0.5f * (low - std::floor(low));
+  return j;
+}
+
+glm::vec3 jitter_control_point(const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2, const glm::vec3& up,
+                               const ControlJitter& jitter) {
+  // Seed 001 eq. 2.4 on Sylva's control point (blade.hpp).
+  const glm::vec3 d = v2 - v0;
+  const glm::vec3 side = d - up * glm::dot(d, up);
+  return v1 + up * ((jitter.r4 - 1.0f) * glm::dot(v1 - v0, up)) + jitter.r3 * side;
+}
+
+glm::vec3 drawn_control(const Blade& blade) {
+  if (!has_control_jitter(blade)) return blade.control();
+  return jitter_control_point(blade.root(), blade.control(), blade.tip(), blade.up_dir(), control_jitter_randoms(blade.attr.w));
+}
+
 float pack_color(const glm::vec3& rgb) {
   // 8 bits per channel in a 24-bit integer stored as an exact float value (never NaN or a
   // denormal, so no driver or CPU path can flush or canonicalise it).

@@ -72,8 +72,9 @@ CullResult cull_blade(const Blade& blade, const CullView& view, const CullSettin
   if (!(rank < keep)) return CullResult::kDistance;
   const float half_width = 0.5f * blade.width() * width_scale(keep, s);
   if (s.frustum) {
-    const glm::vec3 lo = glm::min(glm::min(v0, blade.control()), blade.tip());
-    const glm::vec3 hi = glm::max(glm::max(v0, blade.control()), blade.tip());
+    const glm::vec3 v1 = drawn_control(blade);  // the drawn curve's hull (seed 001 eq. 2.4 jitter)
+    const glm::vec3 lo = glm::min(glm::min(v0, v1), blade.tip());
+    const glm::vec3 hi = glm::max(glm::max(v0, v1), blade.tip());
     const glm::vec3 c = 0.5f * (lo + hi);
     const float r = 0.5f * glm::length(hi - lo) + half_width;
     if (sphere_outside(view, c, r)) return CullResult::kFrustum;
@@ -89,24 +90,48 @@ CullResult cull_blade(const Blade& blade, const CullView& view, const CullSettin
   return CullResult::kVisible;
 }
 
-int tessellation_segments(const Blade& blade, const CullView& view, const CullSettings& s) {
+float tessellation_level(const Blade& blade, const CullView& view, const CullSettings& s) {
+  // Seed 001 pitfall "LOD popping": equal spacing needs the ceil, fractional spacing morphs.
+  const bool ceiled = s.tess_spacing == TessSpacing::kEqual;
+  const float max_level = std::max(s.max_tess_level, 1.0f);
   if (s.distance_tess_law) {  // seed 001 eq. 2.3 (culling.hpp)
     const float d = glm::length(blade.root() - view.camera);
-    const float n = std::ceil(s.max_tess_level * (1.0f - d / std::max(s.near_distance, 1e-3f)));
-    return static_cast<int>(std::clamp(std::isfinite(n) ? n : 1.0f, 1.0f, std::max(s.max_tess_level, 1.0f)));
+    const float raw = s.max_tess_level * (1.0f - d / std::max(s.near_distance, 1e-3f));
+    const float n = ceiled ? std::ceil(raw) : raw;
+    return std::clamp(std::isfinite(n) ? n : 1.0f, 1.0f, max_level);
   }
-  const glm::vec3 mid = bezier_point(blade.root(), blade.control(), blade.tip(), 0.5f);
+  const glm::vec3 mid = bezier_point(blade.root(), drawn_control(blade), blade.tip(), 0.5f);
   const float distance = std::max(glm::length(mid - view.camera), 1e-3f);
   const float px = blade.height() * view.pixels_per_radian / distance;
-  const float n = std::ceil(px / std::max(s.pixels_per_segment, 1e-3f));
-  return static_cast<int>(std::clamp(n, 1.0f, std::max(s.max_tess_level, 1.0f)));
+  const float raw = px / std::max(s.pixels_per_segment, 1e-3f);
+  return std::clamp(ceiled ? std::ceil(raw) : raw, 1.0f, max_level);
 }
 
-std::uint32_t blades_per_draw(float max_tess_level) {
+int spacing_segments(float level, TessSpacing spacing) {
+  const float l = std::isfinite(level) ? level : 64.0f;
+  switch (spacing) {
+    case TessSpacing::kFractionalEven: return 2 * static_cast<int>(std::ceil(0.5f * std::clamp(l, 2.0f, 64.0f)));
+    case TessSpacing::kFractionalOdd: return 2 * static_cast<int>(std::ceil(0.5f * (std::clamp(l, 1.0f, 63.0f) + 1.0f))) - 1;
+    case TessSpacing::kEqual: break;
+  }
+  return static_cast<int>(std::ceil(std::clamp(l, 1.0f, 64.0f)));
+}
+
+int tessellation_segments(const Blade& blade, const CullView& view, const CullSettings& s) {
+  const float level = tessellation_level(blade, view, s);
+  if (s.tess_spacing == TessSpacing::kEqual) return static_cast<int>(level);
+  return spacing_segments(level, s.tess_spacing);
+}
+
+std::uint32_t blades_per_draw(float max_tess_level, TessSpacing spacing) {
   // The shaders clamp segments to max_tess_level and the tessellator rounds a fractional level
-  // up (equal_spacing) and caps it at GL_MAX_TESS_GEN_LEVEL (64 everywhere we run).
+  // up (equal_spacing; to the next even or odd integer for the fractional modes) and caps it at
+  // GL_MAX_TESS_GEN_LEVEL (64 everywhere we run).
   const float level = std::isfinite(max_tess_level) ? std::clamp(std::ceil(max_tess_level), 1.0f, 64.0f) : 64.0f;
-  const std::uint32_t vertices = 2u * (static_cast<std::uint32_t>(level) + 1u);
+  const std::uint32_t segments = spacing == TessSpacing::kEqual
+                                     ? static_cast<std::uint32_t>(level)
+                                     : static_cast<std::uint32_t>(spacing_segments(level, spacing));
+  const std::uint32_t vertices = 2u * (segments + 1u);
   return std::max<std::uint32_t>(kTessVerticesPerDraw / vertices, 1u);
 }
 

@@ -96,7 +96,10 @@ Blade make_blade(const BladeSettings& settings, std::uint32_t blade_hash, const 
   b.v2 = glm::vec4(root + height * glm::normalize(up + lean * lean_dir), width);
   b.up = glm::vec4(up, glm::mix(settings.stiffness_min, settings.stiffness_max, r_stiff));
   b.rest = glm::vec4(0.0f);
-  b.attr = glm::vec4(rank, unit(blade_hash, kSaltShade), pack_color(mult * 0.5f), unit(blade_hash, kSaltShape));
+  // attr.w: the shape random s, as 1 + s when the control point is jittered (seed 001 eq. 2.4,
+  // blade.hpp drawn_control: r3 and r4 come from s).
+  const float shape = unit(blade_hash, kSaltShape);
+  b.attr = glm::vec4(rank, unit(blade_hash, kSaltShade), pack_color(mult * 0.5f), settings.control_jitter ? 1.0f + shape : shape);
   // The rest pose is the validated pose, so it is a fixed point of the physics without forces.
   validate_blade(b);
   b.rest = glm::vec4(b.tip() - b.root(), 0.0f);
@@ -107,9 +110,10 @@ void finish_tile_bounds(GrassTile& tile, std::span<const Blade> blades) {
   glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
   for (std::uint32_t i = tile.first; i < tile.first + tile.count; ++i) {
     const Blade& b = blades[i];
-    // Any pose keeps the tip within one blade height of the root (arc length = height).
-    lo = glm::min(lo, b.root() - glm::vec3(b.height()));
-    hi = glm::max(hi, b.root() + glm::vec3(b.height()));
+    // Any pose keeps the tip within one blade height of the root (arc length = height); a
+    // jittered control point (seed 001 eq. 2.4) reaches up to 1.3 heights (blade.hpp).
+    lo = glm::min(lo, b.root() - glm::vec3(b.height() * drawn_reach(b)));
+    hi = glm::max(hi, b.root() + glm::vec3(b.height() * drawn_reach(b)));
   }
   if (tile.count == 0) lo = hi = glm::vec3(0.0f);
   tile.bounds_min = lo;

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <utility>
 
 namespace sylva::render::embedded {
 void register_grass_shaders();
@@ -51,6 +52,19 @@ constexpr GLuint kCommandBinding = 3;
 constexpr GLuint kSpheresBinding = 4;
 constexpr GLuint kBatchesBinding = 6;
 constexpr GLuint kWindUboBinding = 1;
+
+// The blade colour and depth programs for one cull.tess_spacing: the spacing is a layout
+// qualifier of blade.tese, so each spacing is its own program (GRASS_TESS_SPACING; none for
+// equal, so the default program is the one without defines).
+Result<std::pair<render::Program, render::Program>> blade_programs(TessSpacing spacing) {
+  render::ShaderDefines defines;
+  if (spacing != TessSpacing::kEqual) defines.emplace_back("GRASS_TESS_SPACING", spacing == TessSpacing::kFractionalEven ? "1" : "2");
+  auto draw = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade.frag"}, defines);
+  if (!draw) return draw.error();
+  auto depth = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade_depth.frag"}, defines);
+  if (!depth) return depth.error();
+  return std::pair<render::Program, render::Program>(std::move(*draw), std::move(*depth));
+}
 
 }  // namespace
 
@@ -98,16 +112,15 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
   if (!physics) return physics.error();
   auto cull = render::Program::create({"grass/cull.comp"});
   if (!cull) return cull.error();
-  auto draw = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade.frag"});
-  if (!draw) return draw.error();
-  auto depth = render::Program::create({"grass/blade.vert", "grass/blade.tesc", "grass/blade.tese", "grass/blade_depth.frag"});
-  if (!depth) return depth.error();
+  auto blade = blade_programs(settings.cull.tess_spacing);
+  if (!blade) return blade.error();
   auto batch = render::Program::create({"grass/draw_batches.comp"});
   if (!batch) return batch.error();
   f.physics_ = std::move(*physics);
   f.cull_ = std::move(*cull);
-  f.draw_ = std::move(*draw);
-  f.depth_ = std::move(*depth);
+  f.draw_ = std::move(blade->first);
+  f.depth_ = std::move(blade->second);
+  f.blade_spacing_ = settings.cull.tess_spacing;
   f.batch_ = std::move(*batch);
 
   // Chunks: greedy runs of whole tiles in blade order (blades between tiles ride along).
@@ -180,7 +193,8 @@ void GrassField::set_cull_uniforms(const render::Program& p, const CullView& vie
   p.set("u_ppr", view.pixels_per_radian);
   p.set("u_thinning", glm::vec4(c.thinning_start, c.near_distance, c.thinning_min_keep, c.distance_thinning ? 1.0f : 0.0f));
   p.set("u_cull", glm::vec4(c.density_scale, c.width_compensation, c.frustum ? 1.0f : 0.0f, c.orientation ? 1.0f : 0.0f));
-  p.set("u_tess", glm::vec3(c.max_tess_level, c.pixels_per_segment, c.distance_tess_law ? 1.0f : 0.0f));
+  p.set("u_tess", glm::vec4(c.max_tess_level, c.pixels_per_segment, c.distance_tess_law ? 1.0f : 0.0f,
+                            static_cast<float>(c.tess_spacing)));
 }
 
 void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind) {
@@ -194,6 +208,17 @@ void GrassField::update(const render::Camera& camera, glm::ivec2 viewport, doubl
   const float height_px = static_cast<float>(std::max(viewport.y, 1));
   view_ = make_cull_view(vp_local, camera_local_, camera.forward(), height_px, camera.perspective().fov_y);
   ppr_ = view_.pixels_per_radian;
+  if (cs.tess_spacing != blade_spacing_) {
+    // cull.tess_spacing changed since the programs were built (settings are read every frame).
+    auto blade = blade_programs(cs.tess_spacing);
+    if (blade) {
+      draw_ = std::move(blade->first);
+      depth_ = std::move(blade->second);
+    } else {
+      log_warn("grass.render.cull.tess_spacing: {}; keeping the previous spacing", blade.error().message);
+    }
+    blade_spacing_ = cs.tess_spacing;  // one attempt per change
+  }
 
   // Tiles: frustum + near_distance on the CPU.
   for (Chunk& c : chunks_) c.colour.job_list.clear();
@@ -336,7 +361,8 @@ void GrassField::set_blades_per_draw(std::uint32_t blades) {
 }
 
 std::uint32_t GrassField::blades_per_sub_draw() const {
-  return blades_per_draw_override_ > 0 ? blades_per_draw_override_ : blades_per_draw(settings_.cull.max_tess_level);
+  return blades_per_draw_override_ > 0 ? blades_per_draw_override_
+                                       : blades_per_draw(settings_.cull.max_tess_level, settings_.cull.tess_spacing);
 }
 
 void GrassField::allocate_draw_batches() {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <vector>
 
@@ -257,6 +258,80 @@ TEST(GrassCulling, DistanceLawIsSeed001Equation23) {
   }
   s.near_distance = 0.5f;  // smallest setting: finite, 1 segment far out
   EXPECT_EQ(tessellation_segments(b, make_view({0, 0, 1000.0f}, {0, 0, 0}).cull, s), 1);
+}
+
+// Seed 001 pitfall "LOD popping" (cull.tess_spacing): walking the camera away in 1 cm steps,
+// equal spacing's ceil-ed level jumps by a whole segment at every integer, the fractional levels
+// move by at most a few hundredths per step (continuous), and spacing_segments follows the GL
+// rules (even >= 2, odd >= 1).
+TEST(GrassCulling, FractionalSpacingMorphsWhereEqualSpacingPops) {
+  Blade b{};
+  b.v0 = glm::vec4(0, 0, 0, 0);
+  b.v1 = glm::vec4(0, 0.5f, 0, 0.5f);
+  b.v2 = glm::vec4(0, 0.5f, 0, 0.01f);
+  b.up = glm::vec4(0, 1, 0, 1);
+  CullSettings s;
+  s.pixels_per_segment = 5.0f;
+  s.max_tess_level = 8.0f;
+  const TessSpacing spacings[3] = {TessSpacing::kEqual, TessSpacing::kFractionalEven, TessSpacing::kFractionalOdd};
+  float max_step[3] = {0, 0, 0};
+  int jumps[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i) {
+    s.tess_spacing = spacings[i];
+    float prev = -1.0f;
+    for (int cm = 200; cm <= 1000; ++cm) {  // 2 m to 10 m: levels 6.2 down to 1.25
+      const float d = cm * 0.01f;
+      const View v = make_view({0, 0.25f, d}, {0, 0.25f, 0});
+      const float level = tessellation_level(b, v.cull, s);
+      const int segments = tessellation_segments(b, v.cull, s);
+      ASSERT_EQ(segments, i == 0 ? static_cast<int>(level) : spacing_segments(level, spacings[i])) << d;
+      if (i == 1) {
+        ASSERT_EQ(segments % 2, 0);
+      }
+      if (i == 2) {
+        ASSERT_EQ(segments % 2, 1);
+      }
+      if (prev >= 0.0f) {
+        const float step = std::abs(level - prev);
+        max_step[i] = std::max(max_step[i], step);
+        jumps[i] += step > 0.5f;
+      }
+      prev = level;
+    }
+  }
+  std::printf("largest level change per 1 cm, 2..10 m: equal %.4f (%d jumps), fractional_even %.4f, fractional_odd %.4f\n",
+              max_step[0], jumps[0], max_step[1], max_step[2]);
+  EXPECT_EQ(max_step[0], 1.0f);
+  EXPECT_EQ(jumps[0], 5);  // ceil-ed levels 7 ... 2 pass 6, 5, 4, 3, 2
+  for (int i = 1; i < 3; ++i) {
+    EXPECT_LT(max_step[i], 0.04f);
+    EXPECT_EQ(jumps[i], 0);
+  }
+  // Fractional levels are the unrounded law: px / pixels_per_segment.
+  s.tess_spacing = TessSpacing::kFractionalEven;
+  const View v = make_view({0, 0.25f, 4.0f}, {0, 0.25f, 0});
+  const glm::vec3 mid = bezier_point(b.root(), b.control(), b.tip(), 0.5f);
+  EXPECT_NEAR(tessellation_level(b, v.cull, s), 0.5f * v.cull.pixels_per_radian / glm::length(mid - v.cull.camera) / 5.0f, 1e-4f);
+  s.distance_tess_law = true;  // seed 001 eq. 2.3 without its ceil
+  s.near_distance = 40.0f;
+  EXPECT_NEAR(tessellation_level(b, v.cull, s), 8.0f * (1.0f - glm::length(v.cull.camera) / 40.0f), 1e-4f);
+  s.tess_spacing = TessSpacing::kEqual;
+  EXPECT_EQ(tessellation_level(b, v.cull, s), 8.0f);  // ceil(7.2)
+
+  // GL 4.5 §11.2.2 segment counts.
+  EXPECT_EQ(spacing_segments(1.0f, TessSpacing::kFractionalEven), 2);
+  EXPECT_EQ(spacing_segments(2.0f, TessSpacing::kFractionalEven), 2);
+  EXPECT_EQ(spacing_segments(2.01f, TessSpacing::kFractionalEven), 4);
+  EXPECT_EQ(spacing_segments(7.5f, TessSpacing::kFractionalEven), 8);
+  EXPECT_EQ(spacing_segments(1.0f, TessSpacing::kFractionalOdd), 1);
+  EXPECT_EQ(spacing_segments(1.01f, TessSpacing::kFractionalOdd), 3);
+  EXPECT_EQ(spacing_segments(3.0f, TessSpacing::kFractionalOdd), 3);
+  EXPECT_EQ(spacing_segments(100.0f, TessSpacing::kFractionalOdd), 63);
+  EXPECT_EQ(spacing_segments(2.5f, TessSpacing::kEqual), 3);
+  // A sub-draw holds the blades of the largest count the spacing makes of max_tess_level.
+  EXPECT_EQ(blades_per_draw(8.0f, TessSpacing::kFractionalEven), blades_per_draw(8.0f));
+  EXPECT_EQ(blades_per_draw(8.0f, TessSpacing::kFractionalOdd), blades_per_draw(9.0f));
+  EXPECT_EQ(blades_per_draw(7.0f, TessSpacing::kFractionalEven), blades_per_draw(8.0f));
 }
 
 TEST(GrassCulling, SubDrawsStayUnderTheTessellatedVertexBudget) {

@@ -1,5 +1,6 @@
 // Blade placement: density fidelity (count per tile = density-map integral within +-1 %),
-// determinism, world anchoring, per-blade ranges, meshes and bad input.
+// determinism, world anchoring, per-blade ranges, seed 001's control-point jitter, meshes and bad
+// input.
 #include <sylva/grass/generator.hpp>
 #include <sylva/grass/physics.hpp>
 
@@ -8,6 +9,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <numbers>
@@ -168,6 +171,98 @@ TEST(GrassGenerator, PerBladeRangesAndRestPose) {
   }
   mean_orient /= static_cast<double>(set->blades.size());
   EXPECT_NEAR(mean_orient, std::numbers::pi, 0.05);
+}
+
+// Seed 001 eq. 2.4 (grass.blade.control_jitter): the drawn control point of each blade gets its
+// own r3 in [-0.25, 0.25] (share of the tip's sideways offset, x/z) and r4 in [0.75, 1.25]
+// (height factor, y); the record is otherwise the unjittered one, and off draws v1 bit for bit.
+TEST(GrassGenerator, ControlJitterIsSeed001Equation24) {
+  Fixture f;
+  f.field.density = 15.0f;
+  const GrassMaps maps = f.maps();
+  const BladeSet off = generate_blades(f.field, f.blade, maps, f.ground, {0, 0, 0}).value();
+  f.blade.control_jitter = true;
+  const BladeSet on = generate_blades(f.field, f.blade, maps, f.ground, {0, 0, 0}).value();
+  ASSERT_EQ(on.blades.size(), off.blades.size());
+  ASSERT_GT(on.blades.size(), 10000u);
+  double r3_min = 1.0, r3_max = -1.0, r4_min = 2.0, r4_max = 0.0, r3_sum = 0.0, r4_sum = 0.0, r34_sum = 0.0;
+  double ratio_sum = 0.0, ratio_sq = 0.0;
+  int sideways = 0;
+  for (std::size_t i = 0; i < on.blades.size(); ++i) {
+    const Blade& a = off.blades[i];
+    const Blade& b = on.blades[i];
+    // Only attr.w (the shape random s, stored as 1 + s) tells the records apart.
+    ASSERT_EQ(std::memcmp(&a, &b, offsetof(Blade, attr) + 3 * sizeof(float)), 0) << i;
+    ASSERT_EQ(b.attr.w, 1.0f + a.attr.w) << i;
+    ASSERT_FALSE(has_control_jitter(a));
+    ASSERT_TRUE(has_control_jitter(b));
+    const glm::vec3 c0 = drawn_control(a);
+    ASSERT_EQ(std::memcmp(&c0, &a.v1, sizeof(c0)), 0) << "off must draw the physics' control point bit for bit";
+    // Recover r4 (height factor of the control point) and r3 (share of the tip's side offset).
+    const glm::vec3 up = b.up_dir(), c = drawn_control(b);
+    const double r4 = glm::dot(c - b.root(), up) / glm::dot(b.control() - b.root(), up);
+    const glm::vec3 d = b.tip() - b.root(), side = d - up * glm::dot(d, up);
+    const glm::vec3 moved = (c - b.control()) - up * glm::dot(c - b.control(), up);
+    EXPECT_GE(r4, 0.75 - 1e-4);
+    EXPECT_LE(r4, 1.25 + 1e-4);
+    r4_min = std::min(r4_min, r4);
+    r4_max = std::max(r4_max, r4);
+    r4_sum += r4;
+    if (glm::length(side) > 0.02f) {
+      const double r3 = glm::dot(moved, side) / glm::dot(side, side);
+      EXPECT_NEAR(glm::length(moved), std::abs(r3) * glm::length(side), 1e-5);  // along the side offset only
+      EXPECT_GE(r3, -0.25 - 1e-4);
+      EXPECT_LE(r3, 0.25 + 1e-4);
+      r3_min = std::min(r3_min, r3);
+      r3_max = std::max(r3_max, r3);
+      r3_sum += r3;
+      r34_sum += r3 * (r4 - 1.0);
+      ++sideways;
+    }
+    // The drawn blade's mid-point height against the unjittered one.
+    const float h0 = glm::dot(bezier_point(a.root(), a.control(), a.tip(), 0.5f) - a.root(), up);
+    const float h1 = glm::dot(bezier_point(b.root(), c, b.tip(), 0.5f) - b.root(), up);
+    const double ratio = h1 / h0;
+    ratio_sum += ratio;
+    ratio_sq += ratio * ratio;
+  }
+  const double n = static_cast<double>(on.blades.size());
+  const double ratio_mean = ratio_sum / n, ratio_sd = std::sqrt(std::max(ratio_sq / n - ratio_mean * ratio_mean, 0.0));
+  std::printf("r3 [%.4f, %.4f] mean %.4f over %d leaning blades; r4 [%.4f, %.4f] mean %.4f; cov(r3, r4) %.5f; "
+              "mid-point height ratio mean %.4f sd %.4f\n",
+              r3_min, r3_max, r3_sum / sideways, sideways, r4_min, r4_max, r4_sum / n, r34_sum / sideways, ratio_mean, ratio_sd);
+  ASSERT_GT(sideways, static_cast<int>(n / 2));
+  // The whole ranges are used, evenly and independently.
+  EXPECT_LT(r3_min, -0.24);
+  EXPECT_GT(r3_max, 0.24);
+  EXPECT_LT(r4_min, 0.76);
+  EXPECT_GT(r4_max, 1.24);
+  EXPECT_NEAR(r3_sum / sideways, 0.0, 0.01);
+  EXPECT_NEAR(r4_sum / n, 1.0, 0.01);
+  EXPECT_LT(std::abs(r34_sum / sideways), 0.002);  // |cov|; uniform r3, r4 alone: var 0.0208 each
+  // Blade shapes differ blade to blade: the mid-point height spreads by several per cent.
+  EXPECT_NEAR(ratio_mean, 1.0, 0.01);
+  EXPECT_GT(ratio_sd, 0.05);
+
+  // Every drawn curve stays in its root +- drawn_reach * height box (which the tile bounds are
+  // made of), and the wider reach is needed: some leave the unjittered root +- height box.
+  int outside_height_box = 0, outside_reach = 0;
+  for (const GrassTile& t : on.tiles) {
+    for (std::uint32_t i = t.first; i < t.first + t.count; ++i) {
+      const Blade& b = on.blades[i];
+      for (int k = 0; k <= 16; ++k) {
+        const glm::vec3 p = bezier_point(b.root(), drawn_control(b), b.tip(), k / 16.0f);
+        ASSERT_TRUE(glm::all(glm::greaterThanEqual(p, t.bounds_min)) && glm::all(glm::lessThanEqual(p, t.bounds_max))) << i;
+        const glm::vec3 offset = glm::abs(p - b.root());
+        outside_height_box += glm::any(glm::greaterThan(offset, glm::vec3(b.height())));
+        outside_reach += glm::any(glm::greaterThan(offset, glm::vec3(b.height() * drawn_reach(b))));
+      }
+    }
+  }
+  std::printf("drawn curve points outside the root +- height box: %d, outside the drawn reach: %d\n", outside_height_box,
+              outside_reach);
+  EXPECT_GT(outside_height_box, 0);
+  EXPECT_EQ(outside_reach, 0);
 }
 
 TEST(GrassGenerator, GrassOnASphereMesh) {

@@ -20,7 +20,8 @@ struct Blade {
   glm::vec4 up;    // xyz unit up;       w stiffness (recovery rate) [1/s]
   glm::vec4 rest;  // xyz rest tip minus root (|rest| = height); w collision strength eta in [0, 1]
   glm::vec4 attr;  // x rank in its tile [0, 1) (thinning order), y colour variation seed [0, 1),
-                   // z colour, 8-bit RGB packed into an exact float integer, w shape random [0, 1)
+                   // z colour, 8-bit RGB packed into an exact float integer, w shape random [0, 1),
+                   // plus 1 when the drawn control point is jittered (see drawn_control)
 
   glm::vec3 root() const { return glm::vec3(v0); }
   glm::vec3 control() const { return glm::vec3(v1); }
@@ -53,6 +54,34 @@ float bezier_length(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p
 
 // Point and unit tangent of the blade's centre curve at t in [0, 1] (De Casteljau, seed 001 eq. 2.5).
 glm::vec3 bezier_point(const glm::vec3& p0, const glm::vec3& p1, const glm::vec3& p2, float t);
+
+// Seed 001 eq. 2.4 control-point jitter (grass.blade.control_jitter). The seed computes the
+// extra control point per side as h = (t_x r3 + b_x (1 - r3), t_y r4 + b_y (1 - r4),
+// t_z r3 + b_z (1 - r3)) with t the tip and b the root (the thesis's code order, see the seed's
+// geometry warning in §2.6), r3 in [-0.25, 0.25], r4 in [0.75, 1.25] (§3.5 table): r4 scales the
+// control point's height above the root and r3 moves it by a share of the tip's sideways offset.
+// Sylva's control point is the physics' (v1, on the root's up axis, below the tip the more the
+// blade leans), so the jitter is applied to it where the blade is drawn, on every pose:
+//   drawn = v1 + up ((r4 - 1) dot(v1 - v0, up)) + r3 (d - up dot(d, up)),  d = v2 - v0,
+// which is exactly the seed's h for an upright unbent control point (v1 = v0 + up height).
+// The record is unchanged (physics, invariants); only the drawn curve (TCS, cull hull, tile
+// bounds) follows it. A blade is jittered when its attr.w >= 1 (the generator stores the shape
+// random s as 1 + s then); r3 and r4 come from s alone, so they are fixed per blade.
+struct ControlJitter {
+  float r3 = 0.0f;  // [-0.25, 0.25): sideways, share of the tip's offset across up
+  float r4 = 1.0f;  // [0.75, 1.25): height factor
+};
+// r3 = 0.25 (2 s - 1) from the high bits of s, r4 = 0.75 + 0.5 fract(4096 s) from its low bits
+// (exact in float on the CPU and the GPU; shaders/blade.glsl grass_control_jitter).
+ControlJitter control_jitter_randoms(float shape_random);
+inline bool has_control_jitter(const Blade& blade) { return blade.attr.w >= 1.0f; }
+glm::vec3 jitter_control_point(const glm::vec3& v0, const glm::vec3& v1, const glm::vec3& v2, const glm::vec3& up,
+                               const ControlJitter& jitter);
+// The control point the blade is drawn with: control() when not jittered (bit for bit).
+glm::vec3 drawn_control(const Blade& blade);
+// Half the side of a root-centred cube holding every drawn pose, per metre of height: 1 without
+// jitter (arc length = height), sqrt(1.25^2 + 0.25^2) < 1.3 with it.
+inline float drawn_reach(const Blade& blade) { return has_control_jitter(blade) ? 1.3f : 1.0f; }
 
 // 8-bit RGB packed as r | g << 8 | b << 16 in an exactly representable float (Blade::attr.z);
 // shaders/blade.glsl unpacks it the same way.

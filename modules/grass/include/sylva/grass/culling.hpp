@@ -35,6 +35,12 @@
 // (eq. 2.3 with s = max_tess_level, d_max = near_distance; its level 0 beyond d_max is the
 // culling at near_distance). It ignores resolution and field of view, so a blade gets as many
 // segments in a 256 px picture as in a 4K one.
+// cull.tess_spacing (seed 001 pitfall "LOD popping"): with the default `equal` the level above is
+// ceil-ed and the segment count jumps by one where it crosses an integer; with
+// `fractional_even` / `fractional_odd` the level is passed without the ceil (the same clamps)
+// and the tessellator morphs the new pair of segments in from zero length (tessellation_level,
+// spacing_segments). A jittered blade (blade.hpp drawn_control) is culled and tessellated with
+// its drawn control point.
 
 #include <sylva/grass/blade.hpp>
 #include <sylva/grass/generator.hpp>
@@ -69,7 +75,17 @@ float width_scale(float keep, const CullSettings& settings);
 
 CullResult cull_blade(const Blade& blade, const CullView& view, const CullSettings& settings);
 
-// Segments along the blade for the tessellator, >= 1.
+// Level along the blade handed to the tessellator (blade.tesc), in [1, max(max_tess_level, 1)]:
+// an integer (ceil) for TessSpacing::kEqual, continuous in the distance for the fractional modes.
+float tessellation_level(const Blade& blade, const CullView& view, const CullSettings& settings);
+
+// Segments the tessellator makes of an edge of `level` (GL 4.5 §11.2.2, GL_MAX_TESS_GEN_LEVEL
+// 64): equal ceil(clamp(level, 1, 64)); fractional_even the even integer at or above
+// clamp(level, 2, 64); fractional_odd the odd integer at or above clamp(level, 1, 63).
+int spacing_segments(float level, TessSpacing spacing);
+
+// Segments along the blade for the tessellator, >= 1: int(tessellation_level) for kEqual (the
+// level is an integer unless max_tess_level is not), spacing_segments of it otherwise.
 int tessellation_segments(const Blade& blade, const CullView& view, const CullSettings& settings);
 
 // Most blades (patches) one draw call may hold: kTessVerticesPerDraw / (2 (L + 1)) with
@@ -81,7 +97,9 @@ int tessellation_segments(const Blade& blade, const CullView& view, const CullSe
 // chunk's blade draw into indirect sub-draws of this size (grass/draw_batches.comp writes them
 // from the cull count); kTessVerticesPerDraw is half the failing count, as margin. Result >= 1.
 inline constexpr std::uint32_t kTessVerticesPerDraw = 32768;
-std::uint32_t blades_per_draw(float max_tess_level);
+// With a fractional spacing L is spacing_segments(max_tess_level, spacing) (an odd max level
+// gives one more segment under fractional_even).
+std::uint32_t blades_per_draw(float max_tess_level, TessSpacing spacing = TessSpacing::kEqual);
 
 // Tile-level test (CPU, before any blade is looked at): the tile's box intersects the frustum
 // and its nearest point is closer than near_distance.

@@ -149,7 +149,7 @@ class GrassField : public render::Drawable {
   void update(const render::Camera& camera, glm::ivec2 viewport, double time, float dt, const WindField& wind);
   void draw_blades(const render::Camera& camera, render::PassStats* stats = nullptr);
 
-  // Blades per sub-draw: 0 (default) = blades_per_draw(settings().cull.max_tess_level), the
+  // Blades per sub-draw: 0 (default) = blades_per_draw(max_tess_level, tess_spacing of settings().cull), the
   // llvmpipe-safe size (culling.hpp); any other value is used as is (tests compare sizes; a
   // driver without the limit could draw in fewer calls). Reallocates the command buffers.
   void set_blades_per_draw(std::uint32_t blades);
@@ -239,6 +239,7 @@ class GrassField : public render::Drawable {
   render::Program cull_;
   render::Program draw_;
   render::Program depth_;
+  TessSpacing blade_spacing_ = TessSpacing::kEqual;  // the cull.tess_spacing draw_ and depth_ were built for
   render::Program batch_;
   std::uint32_t blades_per_draw_override_ = 0;
   GrassShadowStats shadow_stats_;

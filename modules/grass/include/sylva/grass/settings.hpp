@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 
 namespace sylva::grass {
@@ -62,6 +63,10 @@ struct BladeSettings {
   float patch_size = 14.0f;       // feature size of the patches [m]
   float clump_variation = 0.12f;  // strength of the per-clump hue and brightness offset [0..1]
   float clump_size = 0.7f;        // side of a clump cell [m]
+  // Seed 001 eq. 2.4 (§3.5 randoms r3, r4): each blade's drawn Bezier control point is jittered
+  // per blade, r3 in [-0.25, 0.25) of the tip's sideways offset on x/z and r4 in [0.75, 1.25) of
+  // its height on y (blade.hpp drawn_control). Off: the control point is the physics' one.
+  bool control_jitter = false;
 
   template <class V>
   void visit(V& v) {
@@ -85,6 +90,8 @@ struct BladeSettings {
                                            .rebuild = Rebuild::kOffline});
     v(clump_size, "clump_size", {.min = 0.05f, .max = 20.0f, .unit = "m", .help = "Side of a clump cell",
                                  .rebuild = Rebuild::kOffline});
+    v(control_jitter, "control_jitter",
+      {.help = "Seed 001 eq. 2.4: jitter each blade's Bezier control point (r3 on x/z, r4 on y)", .rebuild = Rebuild::kOffline});
   }
 };
 
@@ -120,6 +127,17 @@ struct PhysicsSettings {
   }
 };
 
+// Spacing of the blade tessellation along the blade (GLSL layout of grass/blade.tese). kEqual:
+// integer levels (ceil), a blade's segment count jumps with distance (seed 001's code; its
+// "LOD popping" pitfall); the fractional modes pass the level unrounded and the tessellator
+// morphs the new segments in (GL 4.5 §11.2.2): even counts >= 2 / odd counts >= 1.
+enum class TessSpacing { kEqual, kFractionalEven, kFractionalOdd };
+constexpr std::array<EnumName<TessSpacing>, 3> enum_names(TessSpacing) {
+  return {{{TessSpacing::kEqual, "equal"},
+           {TessSpacing::kFractionalEven, "fractional_even"},
+           {TessSpacing::kFractionalOdd, "fractional_odd"}}};
+}
+
 // Culling and blade LOD (seed 001 §3.7 eq. 2.3 and 4.3, §3.12; Jahrmann & Wimmer 2017 §5).
 struct CullSettings {
   bool frustum = true;
@@ -135,6 +153,7 @@ struct CullSettings {
   float max_tess_level = 8.0f;         // most segments along a blade (seed's smoothness factor s)
   float pixels_per_segment = 6.0f;     // one segment per this many projected pixels of blade height
   bool distance_tess_law = false;      // seed 001 eq. 2.3: segments from distance alone (culling.hpp)
+  TessSpacing tess_spacing = TessSpacing::kEqual;  // fractional: no popping (seed 001 pitfall "LOD popping")
 
   template <class V>
   void visit(V& v) {
@@ -156,6 +175,8 @@ struct CullSettings {
                                                  .help = "Projected blade height per segment"});
     v(distance_tess_law, "distance_tess_law",
       {.help = "Seed 001 eq. 2.3: segments = ceil(max_tess_level (1 - d / near_distance)) instead of the projected size"});
+    v(tess_spacing, "tess_spacing",
+      {.help = "Tessellation spacing: equal (integer levels, segments pop), fractional_even or fractional_odd (segments morph)"});
   }
 };
 
