@@ -16,7 +16,8 @@ uniform vec3 u_camera;
 uniform vec4 u_fades;
 uniform float u_sway;
 uniform int u_first;
-uniform vec4 u_wide;        // x wide_distance, y wide_fade [m], z level (0 clumps, 1 clumps giving way, 2 wide)
+uniform vec4 u_wide;        // x wide_distance, y wide_fade [m], z level (0 clumps, 1 clumps giving way, 2 wide),
+                            // w 1: small clumps keep strands below fade * size.z (overcrowding guard, dense_keep)
 uniform float u_cell_width; // clump_width [m]: one atlas cell across
 
 out vec3 c_rel_pos;
@@ -40,6 +41,7 @@ void main() {
   float wide = grass_ramp(d, u_wide.x - u_wide.y, u_wide.x);
   if (u_wide.z == 2.0) c_fade *= wide * c.size.z;  // size.z: the group's strand keep
   else if (u_wide.z == 1.0) c_fade *= 1.0 - wide;
+  if (u_wide.z != 2.0 && u_wide.w == 1.0) c_fade *= c.size.z;  // seed 003 §2.4.2 shifted threshold
   c_repeat = 0.0;
   c_phase = c.color.w;
   c_cell = vec2(0.0);

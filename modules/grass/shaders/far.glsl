@@ -2,6 +2,8 @@
 #ifndef SYLVA_GRASS_FAR_GLSL
 #define SYLVA_GRASS_FAR_GLSL
 
+#include "render/lib/noise.glsl"
+
 #define GRASS_CLUMPS_BINDING 5
 #define GRASS_WIND_UBO_BINDING 1
 
@@ -24,6 +26,13 @@ float grass_clump_fade(float d, vec4 fades) {
 // fades: x mid_distance, y mid_fade, z far_distance, w far_fade
 float grass_ground_fade(float d, vec4 fades) {
   return grass_ramp(d, fades.x - fades.y, fades.x) * (1.0 - grass_ramp(d, fades.z - fades.w, fades.z));
+}
+
+// Seed 003 §2.5 noise sub-region of far tile `tile` (far_field.hpp noise_subregion(), bit-exact
+// twin): xy offset in texture repeats, z quarter turns 0..3.
+vec3 grass_noise_subregion(ivec2 tile, uint seed) {
+  uint h = sylva_hash(tile, seed);
+  return vec3(float(h & 0xffffu) / 65536.0, float((h >> 16u) & 0xfffu) / 4096.0, float(h >> 30u));
 }
 
 #endif

@@ -28,6 +28,13 @@ uniform vec4 u_shading;      // x brightness (calibration), y ambient, z under-l
 uniform float u_translucency;  // the blades' shading.translucency
 uniform float u_max_slope_deg; // far_field.hpp slope_keep()
 uniform vec2 u_color_motion;   // seed 003 §3.4.3: the far layer pulses in sync (phase 0)
+// Seed 003 §2.5 noise sub-regions (far_field.hpp): on/off, far tile side [m], the origin's far
+// tile and its offset inside that tile (local x/z), the tiles' hash seed.
+uniform int u_noise_sub;
+uniform float u_noise_tile;
+uniform ivec2 u_noise_base;
+uniform vec2 u_noise_frac;
+uniform uint u_noise_seed;
 
 in vec3 g_local;
 in vec3 g_rel_pos;
@@ -49,7 +56,21 @@ void main() {
   }
   float distance = length(g_rel_pos);
   float fade = grass_ground_fade(distance, u_fades);
-  vec4 t = texture(u_ground, (g_local.xz + u_origin_xz) / u_texture_scale);
+  vec4 t;
+  if (u_noise_sub != 0) {
+    // Each far tile samples its own sub-region (random offset, quarter turn) of the texture; the
+    // gradients are those of the continuous mapping, so tile borders do not pick coarse mips.
+    vec2 p = g_local.xz + u_noise_frac;
+    vec2 cell = floor(p / u_noise_tile);
+    vec3 r = grass_noise_subregion(u_noise_base + ivec2(cell), u_noise_seed);
+    int turns = int(r.z);
+    mat2 rot = mat2(1.0, 0.0, 0.0, 1.0);
+    for (int q = 0; q < turns; ++q) rot = mat2(0.0, 1.0, -1.0, 0.0) * rot;
+    vec2 uv = (p - cell * u_noise_tile) / u_texture_scale;
+    t = textureGrad(u_ground, rot * uv + r.xy, rot * (dFdx(g_local.xz) / u_texture_scale), rot * (dFdy(g_local.xz) / u_texture_scale));
+  } else {
+    t = texture(u_ground, (g_local.xz + u_origin_xz) / u_texture_scale);
+  }
   vec3 n = normalize(g_normal);
   float s = clamp(abs(dot(g_rel_pos / max(distance, 1e-6), n)), 0.05, 1.0);
   float cot_elevation = sqrt(max(1.0 - s * s, 0.0)) / s;

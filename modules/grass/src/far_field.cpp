@@ -26,7 +26,8 @@ namespace {
 constexpr GLuint kClumpsBinding = 5;
 constexpr GLuint kWindUboBinding = 1;
 constexpr float kPi = std::numbers::pi_v<float>;
-constexpr std::size_t kGroundFloats = 9;  // ground layer vertex: position, normal, field colour
+constexpr int kAtlasSize = 256;  // the clump atlas, 2 x 2 cells
+constexpr std::size_t kGroundFloats = kGroundVertexFloats;  // ground layer vertex: position, normal, field colour
 
 float ramp(float d, float a, float b) {
   if (!(b > a)) return d >= b ? 1.0f : 0.0f;
@@ -148,6 +149,9 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
     return make_error(ErrorCode::kLimit, fmt::format("{}: {:.0f} clumps is above the limit {}", what, expected, kMaxBlades));
   }
   const float mean_height = 0.5f * (blade.height_min + blade.height_max);
+  const bool dense = !wide && far.dense_extra_billboards;
+  // The atlas FarField::create draws the clumps with (same size and seed): its coverage curve.
+  const std::vector<float> curve = dense ? clump_coverage_curve(make_clump_atlas(kAtlasSize, field.seed)) : std::vector<float>{};
   for (std::int64_t z = z0; z < z1; ++z) {
     for (std::int64_t x = x0; x < x1; ++x) {
       GrassTile tile;
@@ -156,6 +160,7 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
       const Rect cell{{x * t, z * t}, {(x + 1) * t, (z + 1) * t}};
       double cell_per_m2 = per_m2;
       float cell_width = width, keep = 0.0f;
+      std::size_t extras = 0;
       if (wide) {
         const Rect clipped = cell.intersect(area);
         if (clipped.empty()) continue;
@@ -164,7 +169,24 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
         cell_width = static_cast<float>(std::max(clipped.size().x, clipped.size().y));
         keep = wide_keep(far, a, cell_width);
       }
-      const auto points = sample_tile_points(maps, tile.key, t, cell_per_m2, seed);
+      auto points = sample_tile_points(maps, tile.key, t, cell_per_m2, seed);
+      const double integral = maps.density_integral(cell);
+      if (dense) {
+        // Seed 003 §2.4.2 overcrowding guard (far_field.hpp): above 50 % of the maximum density the
+        // tile gets dense_extra_per_tile clumps more, following the map, and a shifted threshold.
+        const Rect clipped = cell.intersect(area);
+        const double inside = clipped.empty() ? 0.0 : clipped.size().x * clipped.size().y;
+        keep = 1.0f;
+        // "Above 50 %" with a relative tolerance, so a map value of exactly 0.5 is not above it by
+        // the rounding of the integral.
+        if (inside > 0.0 && integral > 0.5 * inside * (1.0 + 1e-5)) {
+          const int extra = far.dense_extra_per_tile;
+          const auto more = sample_tile_points(maps, tile.key, t, extra / integral, seed ^ 0x0de45e7u);
+          points.insert(points.end(), more.begin(), more.end());
+          extras = more.size();
+          keep = dense_keep(integral * cell_per_m2, extra, curve);
+        }
+      }
       glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
       for (const TilePoint& p : points) {
         const double wx = p.position.x, wz = p.position.y;
@@ -177,7 +199,7 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
         Clump c;
         c.root = glm::vec4(root, unit(p.hash, 23u) * kPi);
         const float w = cell_width * (wide ? 1.0f : 0.8f + 0.4f * unit(p.hash, 24u));
-        c.size = glm::vec4(w, h, wide ? keep : p.rank, std::floor(unit(p.hash, 25u) * 4.0f));
+        c.size = glm::vec4(w, h, wide || dense ? keep : p.rank, std::floor(unit(p.hash, 25u) * 4.0f));
         c.color = glm::vec4(tint, unit(p.hash, 26u));
         set.clumps.push_back(c);
         lo = glm::min(lo, root - glm::vec3(w + h));
@@ -187,7 +209,7 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
       if (tile.count == 0) continue;
       tile.bounds_min = lo;
       tile.bounds_max = hi;
-      tile.expected = maps.density_integral(cell) * cell_per_m2;
+      tile.expected = integral * cell_per_m2 + static_cast<double>(extras);
       set.tiles.push_back(tile);
     }
   }
@@ -209,6 +231,48 @@ Result<ClumpSet> generate_wide_billboards(const GrassFieldSettings& field, const
   const double group = static_cast<double>(field.tile_size) * far.wide_group;
   return place_clumps(field, blade, maps, ground, origin, far, group, far.wide_per_group / (group * group),
                       static_cast<float>(group), field.seed ^ 0x3f1de5u, "grass.far.wide_per_group", true);
+}
+
+std::vector<float> clump_coverage_curve(const Image& atlas) {
+  std::vector<float> curve;
+  curve.reserve(atlas.pixel_count());
+  for (int y = 0; y < atlas.height(); ++y)
+    for (int x = 0; x < atlas.width(); ++x) curve.push_back(atlas.at(x, y, atlas.channels() - 1));
+  std::sort(curve.begin(), curve.end());
+  return curve;
+}
+
+double clump_coverage(const std::vector<float>& curve, float threshold) {
+  if (curve.empty()) return 0.0;
+  const auto below = std::lower_bound(curve.begin(), curve.end(), threshold) - curve.begin();
+  return static_cast<double>(below) / static_cast<double>(curve.size());
+}
+
+float dense_keep(double plain_count, int extra, const std::vector<float>& curve) {
+  // Seed 003 §2.4.2 "shifted threshold" (far_field.hpp): (n + extra) c(k) = n c(1).
+  if (extra <= 0 || curve.empty() || !(plain_count > 0.0)) return 1.0f;
+  const double target = plain_count / (plain_count + extra) * clump_coverage(curve, 1.0f) * static_cast<double>(curve.size());
+  float best = 1.0f;
+  double best_error = std::abs(clump_coverage(curve, 1.0f) * static_cast<double>(curve.size()) - target);
+  // Candidates: halfway between consecutive distinct strand thresholds (texels below: i).
+  for (std::size_t i = 1; i < curve.size() && curve[i] < 1.0f; ++i) {
+    if (curve[i] == curve[i - 1]) continue;
+    const double error = std::abs(static_cast<double>(i) - target);
+    if (error < best_error) {
+      best_error = error;
+      best = 0.5f * (curve[i - 1] + curve[i]);
+    }
+  }
+  return best;
+}
+
+NoiseSubregion noise_subregion(std::int32_t tx, std::int32_t tz, std::uint32_t seed) {
+  // shaders/far.glsl grass_noise_subregion() is the twin: same bits, same scales.
+  const std::uint32_t h = hash_i32(tx, tz, seed);
+  NoiseSubregion r;
+  r.offset = glm::vec2(static_cast<float>(h & 0xffffu) / 65536.0f, static_cast<float>((h >> 16u) & 0xfffu) / 4096.0f);
+  r.quarter_turns = static_cast<int>(h >> 30u);
+  return r;
 }
 
 float wide_keep(const FarFieldSettings& s, double group_area, float width) {
@@ -332,6 +396,173 @@ std::vector<Image> coverage_preserving_mips(const Image& level0) {
   return levels;
 }
 
+Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                           const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+  SYLVA_TRY(validate_params(far, "grass.far"));
+  if (ground.samples().empty()) return make_error(ErrorCode::kInvalidArgument, "grass far field: the ground height field is empty");
+  // Ground layer: chunks of 16 x 16 quads over the map rectangle and its margin, with the field's
+  // colour per vertex (its patches are metres wide). Vertices sit on the height field's own samples
+  // (every k-th, k = ground_spacing / spacing rounded, at least 1) and quads are split along the
+  // same diagonal as the scene's ground mesh: with k = 1 the layer is that mesh lifted by
+  // ground_offset exactly. A layer through bilinear heights at other points left the ground mesh
+  // of a 6.25 m hilly height field up to decimetres above it (the layer vanished in patches).
+  GroundLayerMesh mesh;
+  const Rect area{maps.rect().min - static_cast<double>(far.ground_margin), maps.rect().max + static_cast<double>(far.ground_margin)};
+  const double sp = ground.spacing();
+  const int k = std::max(1, static_cast<int>(std::lround(far.ground_spacing / sp)));
+  auto grid = [&](double w, int count, bool up) {
+    const double g = w / sp;
+    return std::clamp(static_cast<int>(up ? std::ceil(g) : std::floor(g)), 0, count - 1);
+  };
+  const int gi0 = grid(area.min.x - ground.origin().x, ground.columns(), false);
+  const int gi1 = grid(area.max.x - ground.origin().x, ground.columns(), true);
+  const int gj0 = grid(area.min.y - ground.origin().y, ground.rows(), false);
+  const int gj1 = grid(area.max.y - ground.origin().y, ground.rows(), true);
+  std::vector<float>& vertices = mesh.vertices;  // xyz local position, xyz normal, rgb field colour
+  std::vector<std::uint32_t>& indices = mesh.indices;
+  constexpr int kQuads = 16;
+  const int cx = (gi1 - gi0 + k * kQuads - 1) / (k * kQuads);
+  const int cz = (gj1 - gj0 + k * kQuads - 1) / (k * kQuads);
+  if (static_cast<double>(cx) * cz * (kQuads + 1) * (kQuads + 1) > 2.0e7) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.far.ground_spacing: {} m gives more than 20 million ground vertices", far.ground_spacing));
+  }
+  // Appends the vertex on height-field sample (global fine-grid index gi, gj) and returns its index.
+  auto vertex = [&](int gi, int gj, glm::vec3& lo, glm::vec3& hi) {
+    const int si = std::min(gi0 + gi * k, gi1);
+    const int sj = std::min(gj0 + gj * k, gj1);
+    const double wx = ground.origin().x + si * sp, wz = ground.origin().y + sj * sp;
+    const glm::vec3 n = ground.sample_normal(si, sj);
+    const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(static_cast<double>(ground.sample(si, sj)) - origin.y),
+                      static_cast<float>(wz - origin.z));
+    const glm::vec3 q = p + n * far.ground_offset;
+    const glm::vec3 col = field_color(wx, wz, blade, field.seed);
+    const auto id = static_cast<std::uint32_t>(vertices.size() / kGroundVertexFloats);
+    vertices.insert(vertices.end(), {q.x, q.y, q.z, n.x, n.y, n.z, col.r, col.g, col.b});
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+    return id;
+  };
+  auto finish = [&](GroundChunk& gc, const glm::vec3& lo, const glm::vec3& hi) {
+    gc.index_count = static_cast<std::uint32_t>(indices.size()) - gc.first_index;
+    gc.bounds_min = lo - glm::vec3(0.1f);
+    gc.bounds_max = hi + glm::vec3(0.1f);
+  };
+  // A grid of (kQuads + 1)^2 vertices every `step` fine quads from fine index (gi, gj); quads
+  // [q0, q1)^2 of it are indexed. Split along the (i + 1, j) - (i, j + 1) diagonal, like the scene's
+  // ground mesh.
+  auto patch = [&](int gi, int gj, int step, int q0, int q1, glm::vec3& lo, glm::vec3& hi) {
+    const auto base = static_cast<std::uint32_t>(vertices.size() / kGroundVertexFloats);
+    for (int b = 0; b <= kQuads; ++b)
+      for (int a = 0; a <= kQuads; ++a) vertex(gi + a * step, gj + b * step, lo, hi);
+    for (int b = q0; b < q1; ++b) {
+      for (int a = q0; a < q1; ++a) {
+        const std::uint32_t v00 = base + static_cast<std::uint32_t>(b * (kQuads + 1) + a);
+        const std::uint32_t v10 = v00 + 1, v01 = v00 + kQuads + 1, v11 = v01 + 1;
+        indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
+      }
+    }
+    return base;
+  };
+  const glm::vec3 kLo(std::numeric_limits<float>::max()), kHi(std::numeric_limits<float>::lowest());
+  for (int j = 0; j < cz; ++j) {
+    for (int i = 0; i < cx; ++i) {
+      GroundChunk gc;
+      gc.first_index = static_cast<std::uint32_t>(indices.size());
+      glm::vec3 lo = kLo, hi = kHi;
+      patch(i * kQuads, j * kQuads, 1, 0, kQuads, lo, hi);
+      finish(gc, lo, hi);
+      mesh.chunks.push_back(gc);
+    }
+  }
+  if (!far.coarse_ground) return mesh;
+
+  // Coarse sub-level (seed 003 §4.3; far_field.hpp): chunk (I, J) covers the ordinary chunks
+  // [I f, I f + f) x [J f, J f + f) with 16 x 16 quads of f fine quads each.
+  const int f = far.coarse_spacing_factor;
+  const int ccx = (cx + f - 1) / f, ccz = (cz + f - 1) / f;
+  for (int J = 0; J < ccz; ++J) {
+    for (int I = 0; I < ccx; ++I) {
+      CoarseGroundChunk cc;
+      glm::vec3 lo = kLo, hi = kHi;
+      const int gi = I * f * kQuads, gj = J * f * kQuads;
+      cc.interior.first_index = static_cast<std::uint32_t>(indices.size());
+      const std::uint32_t base = patch(gi, gj, f, 1, kQuads - 1, lo, hi);
+      cc.interior.index_count = static_cast<std::uint32_t>(indices.size()) - cc.interior.first_index;
+      auto coarse_id = [&](int a, int b) { return base + static_cast<std::uint32_t>(b * (kQuads + 1) + a); };
+      for (int side = 0; side < 4; ++side) {
+        // Outer polyline along the side (coarse units 0..kQuads) and the inner ring's (1..kQuads-1).
+        auto at = [&](double u, double w) {  // (along, across) in coarse units -> (a, b)
+          switch (side) {
+            case 0: return glm::dvec2(w, u);
+            case 1: return glm::dvec2(kQuads - w, u);
+            case 2: return glm::dvec2(u, w);
+            default: return glm::dvec2(u, kQuads - w);
+          }
+        };
+        std::vector<std::uint32_t> inner;
+        std::vector<double> inner_u;
+        for (int u = 1; u <= kQuads - 1; ++u) {
+          const glm::dvec2 ab = at(u, 1);
+          inner.push_back(coarse_id(static_cast<int>(ab.x), static_cast<int>(ab.y)));
+          inner_u.push_back(u);
+        }
+        for (int variant = 0; variant < 2; ++variant) {
+          std::vector<std::uint32_t> outer;
+          std::vector<double> outer_u;
+          const int m = variant == 0 ? kQuads : kQuads * f;
+          for (int e = 0; e <= m; ++e) {
+            const double u = static_cast<double>(e) * kQuads / m;
+            const glm::dvec2 ab = at(u, 0);
+            if (variant == 0) {
+              outer.push_back(coarse_id(static_cast<int>(ab.x), static_cast<int>(ab.y)));
+            } else {
+              // Stitched: the ordinary chunks' own edge vertices (same samples, same floats).
+              outer.push_back(vertex(gi + static_cast<int>(std::lround(ab.x * f)), gj + static_cast<int>(std::lround(ab.y * f)), lo, hi));
+            }
+            outer_u.push_back(u);
+          }
+          GroundChunk& sc = cc.sides[side][variant];
+          sc.first_index = static_cast<std::uint32_t>(indices.size());
+          // Zipper between the two polylines, by position along the side; the winding of every
+          // triangle is made that of the quads' (v00, v01, v10).
+          auto emit = [&](std::uint32_t v0, std::uint32_t v1, std::uint32_t v2) {
+            auto xz = [&](std::uint32_t v) { return glm::vec2(vertices[v * kGroundVertexFloats], vertices[v * kGroundVertexFloats + 2]); };
+            const glm::vec2 e1 = xz(v1) - xz(v0), e2 = xz(v2) - xz(v0);
+            if (e1.x * e2.y - e1.y * e2.x > 0.0f) std::swap(v1, v2);
+            indices.insert(indices.end(), {v0, v1, v2});
+          };
+          std::size_t o = 0, n = 0;
+          while (o + 1 < outer.size() || n + 1 < inner.size()) {
+            if (n + 1 >= inner.size() || (o + 1 < outer.size() && outer_u[o + 1] <= inner_u[n + 1])) {
+              emit(outer[o], outer[o + 1], inner[n]);
+              ++o;
+            } else {
+              emit(outer[o], inner[n + 1], inner[n]);
+              ++n;
+            }
+          }
+          sc.index_count = static_cast<std::uint32_t>(indices.size()) - sc.first_index;
+        }
+      }
+      cc.interior.bounds_min = lo - glm::vec3(0.1f);
+      cc.interior.bounds_max = hi + glm::vec3(0.1f);
+      for (auto& side : cc.sides)
+        for (GroundChunk& v : side) {
+          v.bounds_min = cc.interior.bounds_min;
+          v.bounds_max = cc.interior.bounds_max;
+        }
+      for (int j = J * f; j < std::min((J + 1) * f, cz); ++j)
+        for (int i = I * f; i < std::min((I + 1) * f, cx); ++i) cc.fine.push_back(static_cast<std::uint32_t>(j * cx + i));
+      cc.neighbour[0] = I > 0 ? J * ccx + I - 1 : -1;
+      cc.neighbour[1] = I + 1 < ccx ? J * ccx + I + 1 : -1;
+      cc.neighbour[2] = J > 0 ? (J - 1) * ccx + I : -1;
+      cc.neighbour[3] = J + 1 < ccz ? (J + 1) * ccx + I : -1;
+      mesh.coarse.push_back(std::move(cc));
+    }
+  }
+  return mesh;
+}
+
 namespace {
 
 // RGBA8 texture from an explicit mip chain (rows flipped to GL's bottom-up order).
@@ -397,67 +628,14 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
   f.clump_vao_ = render::VertexArray::create();
 
-  // Ground layer: chunks of 16 x 16 quads over the map rectangle and its margin, with the field's
-  // colour per vertex (its patches are metres wide). Vertices sit on the height field's own samples
-  // (every k-th, k = ground_spacing / spacing rounded, at least 1) and quads are split along the
-  // same diagonal as the scene's ground mesh: with k = 1 the layer is that mesh lifted by
-  // ground_offset exactly. A layer through bilinear heights at other points left the ground mesh
-  // of a 6.25 m hilly height field up to decimetres above it (the layer vanished in patches).
-  const Rect area{maps.rect().min - static_cast<double>(far.ground_margin), maps.rect().max + static_cast<double>(far.ground_margin)};
-  f.layer_rect_ = area;
-  const double sp = ground.spacing();
-  const int k = std::max(1, static_cast<int>(std::lround(far.ground_spacing / sp)));
-  auto grid = [&](double w, int count, bool up) {
-    const double g = w / sp;
-    return std::clamp(static_cast<int>(up ? std::ceil(g) : std::floor(g)), 0, count - 1);
-  };
-  const int gi0 = grid(area.min.x - ground.origin().x, ground.columns(), false);
-  const int gi1 = grid(area.max.x - ground.origin().x, ground.columns(), true);
-  const int gj0 = grid(area.min.y - ground.origin().y, ground.rows(), false);
-  const int gj1 = grid(area.max.y - ground.origin().y, ground.rows(), true);
-  std::vector<float> vertices;     // xyz local position, xyz normal, rgb field colour
-  std::vector<std::uint32_t> indices;
-  constexpr int kQuads = 16;
-  const int cx = (gi1 - gi0 + k * kQuads - 1) / (k * kQuads);
-  const int cz = (gj1 - gj0 + k * kQuads - 1) / (k * kQuads);
-  if (static_cast<double>(cx) * cz * (kQuads + 1) * (kQuads + 1) > 2.0e7) {
-    return make_error(ErrorCode::kLimit, fmt::format("grass.far.ground_spacing: {} m gives more than 20 million ground vertices", far.ground_spacing));
-  }
-  for (int j = 0; j < cz; ++j) {
-    for (int i = 0; i < cx; ++i) {
-      GroundChunk gc;
-      gc.first_index = static_cast<std::uint32_t>(indices.size());
-      const auto base = static_cast<std::uint32_t>(vertices.size() / kGroundFloats);
-      glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
-      for (int b = 0; b <= kQuads; ++b) {
-        for (int a = 0; a <= kQuads; ++a) {
-          const int si = std::min(gi0 + (i * kQuads + a) * k, gi1);
-          const int sj = std::min(gj0 + (j * kQuads + b) * k, gj1);
-          const double wx = ground.origin().x + si * sp, wz = ground.origin().y + sj * sp;
-          const glm::vec3 n = ground.sample_normal(si, sj);
-          const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(static_cast<double>(ground.sample(si, sj)) - origin.y),
-                            static_cast<float>(wz - origin.z));
-          const glm::vec3 q = p + n * far.ground_offset;
-          const glm::vec3 col = field_color(wx, wz, blade, field.seed);
-          vertices.insert(vertices.end(), {q.x, q.y, q.z, n.x, n.y, n.z, col.r, col.g, col.b});
-          lo = glm::min(lo, q);
-          hi = glm::max(hi, q);
-        }
-      }
-      for (int b = 0; b < kQuads; ++b) {
-        for (int a = 0; a < kQuads; ++a) {
-          // Split along the (i + 1, j) - (i, j + 1) diagonal, like the scene's ground mesh.
-          const std::uint32_t v00 = base + static_cast<std::uint32_t>(b * (kQuads + 1) + a);
-          const std::uint32_t v10 = v00 + 1, v01 = v00 + kQuads + 1, v11 = v01 + 1;
-          indices.insert(indices.end(), {v00, v01, v10, v10, v01, v11});
-        }
-      }
-      gc.index_count = static_cast<std::uint32_t>(indices.size()) - gc.first_index;
-      gc.bounds_min = lo - glm::vec3(0.1f);
-      gc.bounds_max = hi + glm::vec3(0.1f);
-      f.chunks_.push_back(gc);
-    }
-  }
+  auto layer = build_ground_layer(field, blade, maps, ground, origin, far);
+  if (!layer) return layer.error();
+  f.layer_rect_ = {maps.rect().min - static_cast<double>(far.ground_margin), maps.rect().max + static_cast<double>(far.ground_margin)};
+  f.chunks_ = std::move(layer->chunks);
+  f.coarse_chunks_ = std::move(layer->coarse);
+  f.noise_seed_ = field.seed ^ 0x7e11eu;
+  std::vector<float>& vertices = layer->vertices;
+  std::vector<std::uint32_t>& indices = layer->indices;
   if (vertices.empty()) vertices.assign(kGroundFloats, 0.0f);
   if (indices.empty()) indices.assign(3, 0u);
   f.ground_vertices_ = render::Buffer::immutable(std::span<const float>(vertices));
@@ -471,7 +649,7 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
 
   // Textures: alpha holds thresholds, so the mip chains are coverage-preserving (see
   // coverage_preserving_mips) and sampled without blending between texels or levels.
-  f.atlas_ = texture_from_mips(coverage_preserving_mips(make_clump_atlas(256, field.seed)), GL_NEAREST_MIPMAP_NEAREST,
+  f.atlas_ = texture_from_mips(coverage_preserving_mips(make_clump_atlas(kAtlasSize, field.seed)), GL_NEAREST_MIPMAP_NEAREST,
                                GL_CLAMP_TO_EDGE, 3);  // cells of 128 -> 16 texels
   f.ground_texture_ = texture_from_mips(coverage_preserving_mips(make_ground_texture(256, field.seed ^ 0x5eedu)),
                                         GL_NEAREST_MIPMAP_NEAREST, GL_REPEAT, 4);  // 256 -> 16 texels
@@ -507,7 +685,7 @@ void FarField::update(const render::Camera& camera, glm::ivec2 viewport) {
   const FarFieldSettings& s = settings_;
   visible_clump_tiles_.clear();
   visible_wide_tiles_.clear();
-  visible_chunks_.clear();
+  ground_draws_.clear();
   float nearest = 0.0f, farthest = 0.0f;
   if (s.clumps) {
     // With wide billboards on, small clumps end at wide_distance and the wide ones start
@@ -530,14 +708,43 @@ void FarField::update(const render::Camera& camera, glm::ivec2 viewport) {
       visible_wide_tiles_.push_back(i);
     }
   }
+  coarse_drawn_ = 0;
+  ground_chunks_ = 0;
   if (s.ground) {
-    for (std::uint32_t i = 0; i < chunks_.size(); ++i) {
-      const GroundChunk& c = chunks_[i];
+    const float starts = s.under_layer ? 0.0f : s.mid_distance - s.mid_fade;
+    auto add = [&](const GroundChunk& c) {
       box_distances(camera_local_, c.bounds_min, c.bounds_max, nearest, farthest);
-      const float starts = s.under_layer ? 0.0f : s.mid_distance - s.mid_fade;
-      if (nearest >= s.far_distance || farthest <= starts) continue;
-      if (!box_visible(view, c.bounds_min, c.bounds_max)) continue;
-      visible_chunks_.push_back(i);
+      if (nearest >= s.far_distance || farthest <= starts) return false;
+      if (!box_visible(view, c.bounds_min, c.bounds_max)) return false;
+      ground_draws_.push_back(c);
+      ++ground_chunks_;
+      return true;
+    };
+    if (s.coarse_ground && !coarse_chunks_.empty()) {
+      // Seed 003 §4.3 coarse sub-level (far_field.hpp): a coarse chunk wholly beyond
+      // coarse_distance replaces its ordinary chunks; each side of its outer ring is stitched to
+      // the ordinary chunks' edge where the neighbour is not drawn coarse.
+      coarse_selected_.assign(coarse_chunks_.size(), 0);
+      for (std::size_t i = 0; i < coarse_chunks_.size(); ++i) {
+        const GroundChunk& c = coarse_chunks_[i].interior;
+        box_distances(camera_local_, c.bounds_min, c.bounds_max, nearest, farthest);
+        coarse_selected_[i] = nearest >= s.coarse_distance ? 1 : 0;
+      }
+      for (std::size_t i = 0; i < coarse_chunks_.size(); ++i) {
+        const CoarseGroundChunk& cc = coarse_chunks_[i];
+        if (!coarse_selected_[i]) {
+          for (const std::uint32_t fi : cc.fine) add(chunks_[fi]);
+          continue;
+        }
+        if (!add(cc.interior)) continue;
+        ++coarse_drawn_;
+        for (int side = 0; side < 4; ++side) {
+          const std::int32_t nb = cc.neighbour[side];
+          ground_draws_.push_back(cc.sides[side][nb >= 0 && !coarse_selected_[static_cast<std::size_t>(nb)] ? 1 : 0]);
+        }
+      }
+    } else {
+      for (const GroundChunk& c : chunks_) add(c);
     }
   }
 }
@@ -579,7 +786,9 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     // u_wide: x wide_distance, y wide_fade, z level (0 small clumps without wide billboards,
     // 1 small clumps giving way to wide ones, 2 wide billboards; their strand keep is in size.z).
     const bool wide_on = s.wide_billboards && !wide_tiles_.empty();
-    p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, wide_on ? 1.0f : 0.0f, 0.0f));
+    // u_wide.w: the small clumps' strand keep of the overcrowding guard is in size.z (dense_keep).
+    const float dense_on = s.dense_extra_billboards ? 1.0f : 0.0f;
+    p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, wide_on ? 1.0f : 0.0f, dense_on));
     p.set("u_cell_width", s.clump_width);
     for (const std::uint32_t ti : visible_clump_tiles_) {
       const GrassTile& t = clump_tiles_[ti];
@@ -587,7 +796,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
       glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(t.count));
       clumps_drawn_ += t.count;
     }
-    if (!visible_wide_tiles_.empty()) p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, 2.0f, 0.0f));
+    if (!visible_wide_tiles_.empty()) p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, 2.0f, dense_on));
     for (const std::uint32_t ti : visible_wide_tiles_) {
       const GrassTile& t = wide_tiles_[ti];
       p.set("u_first", static_cast<int>(t.first));
@@ -600,7 +809,7 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
       stats->triangles += 4 * (clumps_drawn_ + wide_drawn_);
     }
   }
-  if (!visible_chunks_.empty()) {
+  if (!ground_draws_.empty()) {
     const render::Program& p = ground_program_;
     p.set("u_view_proj", camera.view_projection());
     p.set("u_origin_rel", origin_rel);
@@ -621,20 +830,30 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     p.set("u_max_slope_deg", s.max_slope_deg);
     p.set("u_translucency", translucency_);
     p.set("u_color_motion", color_motion);
+    // Seed 003 §2.5 noise sub-regions: the far tile grid is world-anchored; the origin's tile and
+    // its offset inside it are split off in double so far-away fields keep float precision.
+    p.set("u_noise_sub", s.noise_subregions ? 1 : 0);
+    if (s.noise_subregions) {
+      const double tile = s.noise_tile;
+      const glm::dvec2 base(std::floor(origin_.x / tile), std::floor(origin_.z / tile));
+      p.set("u_noise_tile", s.noise_tile);
+      p.set("u_noise_base", glm::ivec2(base));
+      p.set("u_noise_frac", glm::vec2(glm::dvec2(origin_.x, origin_.z) - base * tile));
+      p.set("u_noise_seed", noise_seed_);
+    }
     ground_texture_.bind(0);
     density_.bind(1);
     ground_vao_.bind();
     p.use();
     std::uint64_t tris = 0;
-    for (const std::uint32_t ci : visible_chunks_) {
-      const GroundChunk& c = chunks_[ci];
+    for (const GroundChunk& c : ground_draws_) {
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(c.index_count), GL_UNSIGNED_INT,
                      reinterpret_cast<const void*>(static_cast<std::uintptr_t>(c.first_index) * sizeof(std::uint32_t)));
       tris += c.index_count / 3;
     }
-    ground_drawn_ = visible_chunks_.size();
+    ground_drawn_ = ground_chunks_;
     if (stats) {
-      stats->draw_calls += visible_chunks_.size();
+      stats->draw_calls += ground_draws_.size();
       stats->triangles += tris;
     }
   }

@@ -51,6 +51,35 @@
 // m^2) per group (in Clump::size.z): the thesis's "shifted alpha threshold" (§2.4.2), so the wide
 // level shows about as much grass as the small one. Not worth it on small maps (thesis §4.2).
 //
+// Overcrowding guard (seed 003 §2.4.2, Tab. 4.5's step between density 5 and 6; off by default).
+// With dense_extra_billboards, a tile whose mean density (density integral / its area inside the
+// map) is above 0.5 gets dense_extra_per_tile clumps more than the plain rule's n (placed by the
+// tile sampler, following the map), and every strand of the tile is kept below fade * k with k =
+// dense_keep: the threshold at which (n + extra) clumps cover as much as n clumps at 1, i.e.
+// (n + extra) c(k) = n c(1), c(t) = share of the atlas's texels with alpha < t (one clump's cover).
+// Under independent (Poisson) overlap of clumps the expected covered share of the tile is then the
+// plain rule's. The thesis gives neither the counts nor the shift; this is our rule. Keeping the
+// strand count instead (k = n / (n + extra)) covered 8 % more: fewer strands per clump overlap
+// less inside the atlas. k moves in the atlas's strand steps (56 per cell). The keep is in
+// Clump::size.z (the small clumps' rank is not used by the shaders).
+//
+// Noise sub-regions (seed 003 §2.5, Fig. 3.15; off by default). With noise_subregions the ground
+// layer's texture is no longer one world-space mapping: each far tile of noise_tile x noise_tile
+// metres (world-anchored grid) samples the texture at a random offset and quarter turn
+// (noise_subregion(), hashed from the tile's key: deterministic). The density stays per pixel
+// (continuous across tiles, the thesis's per-vertex fix) and the alpha is equalised in every
+// sub-region, so the covered share does not change; only the pattern no longer repeats with the
+// texture. The thesis's caveat holds: the noise does not join at a tile border (visible where the
+// pattern is coarse against the tile).
+//
+// Coarse far ground (seed 003 §4.3 "another far sub-level with much larger polygons"; off by
+// default). With coarse_ground the ground layer also gets coarse chunks, each covering
+// coarse_spacing_factor^2 ordinary chunks with the same 16 x 16 quads at coarse_spacing_factor
+// times the spacing. A coarse chunk whose nearest point is at least coarse_distance away is drawn
+// instead of its ordinary chunks. Its outer ring of quads is drawn per side either with coarse
+// edges (the neighbour is coarse too, or there is none) or stitched to the ordinary chunks'
+// vertices (the neighbour is drawn ordinary), so the layer stays watertight without skirts.
+//
 // Height fields only (a mesh field has no far field: draw its blades to near_distance).
 
 #include <sylva/core/height_field.hpp>
@@ -111,6 +140,16 @@ struct FarFieldSettings {
   float wide_fade = 20.0f;        // small -> wide cross-fade band before wide_distance [m]
   int wide_group = 5;             // tiles per side of a group (thesis: 5)
   float wide_per_group = 20.0f;   // wide billboards per group at density 1 (thesis: 20)
+  // Overcrowding guard (header comment; seed 003 §2.4.2, Tab. 4.5). Off: the shipped look.
+  bool dense_extra_billboards = false;
+  int dense_extra_per_tile = 4;   // extra clumps per tile above 50 % of the maximum density
+  // Random noise sub-regions per far tile (header comment; seed 003 §2.5). Off: the shipped look.
+  bool noise_subregions = false;
+  float noise_tile = 8.0f;        // side of a far tile that gets its own sub-region [m]
+  // Coarse far ground sub-level (header comment; seed 003 §4.3). Off: the shipped look.
+  bool coarse_ground = false;
+  float coarse_distance = 400.0f; // coarse chunks are drawn from this distance on [m]
+  int coarse_spacing_factor = 4;  // coarse mesh spacing / ground layer spacing
 
   template <class V>
   void visit(V& v) {
@@ -154,6 +193,19 @@ struct FarFieldSettings {
                                  .rebuild = Rebuild::kOffline});
     v(wide_per_group, "wide_per_group", {.min = 1.0f, .max = 1000.0f, .help = "Wide billboards per group at density 1",
                                          .rebuild = Rebuild::kOffline});
+    v(dense_extra_billboards, "dense_extra_billboards",
+      {.help = "Seed 003 overcrowding guard: more clumps with a shifted strand threshold above 50 % density",
+       .rebuild = Rebuild::kOffline});
+    v(dense_extra_per_tile, "dense_extra_per_tile", {.min = 1, .max = 256, .help = "Extra clumps per tile above 50 % density",
+                                                     .rebuild = Rebuild::kOffline});
+    v(noise_subregions, "noise_subregions", {.help = "Seed 003: each far tile samples a random sub-region of the ground texture"});
+    v(noise_tile, "noise_tile", {.min = 0.5f, .max = 10000.0f, .unit = "m", .help = "Side of a far tile with its own noise sub-region"});
+    v(coarse_ground, "coarse_ground", {.help = "Seed 003 future work: a coarse ground layer sub-level beyond coarse_distance",
+                                       .rebuild = Rebuild::kOffline});
+    v(coarse_distance, "coarse_distance", {.min = 0.0f, .max = 100000.0f, .unit = "m",
+                                           .help = "Coarse ground chunks are drawn from this distance on"});
+    v(coarse_spacing_factor, "coarse_spacing_factor", {.min = 2, .max = 16, .help = "Coarse ground mesh spacing over the layer's spacing",
+                                                       .rebuild = Rebuild::kOffline});
   }
 };
 
@@ -176,6 +228,23 @@ float ground_fade(float distance, const FarFieldSettings& s);
 // Ground coverage model (above); sin_elevation = |dot(view direction, surface normal)|.
 float ground_coverage(float sin_elevation, float tau_side, float tau_top, float gain);
 
+// Coverage curve of a clump atlas (make_clump_atlas): its texels' alphas, sorted;
+// clump_coverage(curve, t) = share of atlas texels with alpha < t, c(t) of the header comment.
+std::vector<float> clump_coverage_curve(const Image& atlas);
+double clump_coverage(const std::vector<float>& curve, float threshold);
+// dense_keep of the header comment for a tile whose plain rule places `plain_count` clumps when
+// `extra` more are added: the threshold whose c is nearest n / (n + extra) c(1), halfway between
+// two strand thresholds (robust to 8-bit alpha); 1 without extras.
+float dense_keep(double plain_count, int extra, const std::vector<float>& curve);
+
+// The noise sub-region of far tile (tx, tz) (header comment): offset in texture repeats, [0, 1)^2,
+// and quarter turns 0..3. shaders/far.glsl grass_noise_subregion() is its bit-exact twin.
+struct NoiseSubregion {
+  glm::vec2 offset{0.0f};
+  int quarter_turns = 0;
+};
+NoiseSubregion noise_subregion(std::int32_t tx, std::int32_t tz, std::uint32_t seed);
+
 // One clump (std430, 3 x vec4 = 48 bytes; shaders/far.glsl mirrors it).
 struct Clump {
   glm::vec4 root;   // xyz root (blade-set local), w rotation [rad]
@@ -197,6 +266,31 @@ Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSet
 // Wide billboards over groups of far.wide_group^2 tiles (header comment); tiles are the groups.
 Result<ClumpSet> generate_wide_billboards(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                                           const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
+
+// The ground layer's mesh (GL-free; FarField::create uploads it). Vertices: xyz blade-set local
+// position, xyz normal, rgb field colour. `chunks`: 16 x 16 quads each; `coarse` (coarse_ground
+// only): chunks over coarse_spacing_factor^2 of them (header comment), their interior and, per
+// side (0 -x, 1 +x, 2 -z, 3 +z), the outer ring with coarse edges [0] or stitched [1].
+struct GroundChunk {
+  std::uint32_t first_index = 0;
+  std::uint32_t index_count = 0;
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+};
+struct CoarseGroundChunk {
+  GroundChunk interior;  // bounds: the whole coarse chunk
+  GroundChunk sides[4][2];
+  std::vector<std::uint32_t> fine;      // the ordinary chunks it covers
+  std::int32_t neighbour[4] = {-1, -1, -1, -1};  // coarse chunk across each side, -1 none
+};
+struct GroundLayerMesh {
+  std::vector<float> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<GroundChunk> chunks;
+  std::vector<CoarseGroundChunk> coarse;
+};
+inline constexpr std::size_t kGroundVertexFloats = 9;
+Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                           const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
 
 // Procedural textures (deterministic for a seed). Billboard atlas: 2 x 2 cells of `size`/2,
 // RGBA: rgb strand colour (root dark, tip light), a = strand threshold (graded, uniform in
@@ -238,15 +332,12 @@ class FarField : public render::Drawable {
   std::size_t clump_count() const { return clump_count_; }
   std::uint64_t last_clumps_drawn() const { return clumps_drawn_; }
   std::uint64_t last_ground_chunks_drawn() const { return ground_drawn_; }
+  // Coarse ground chunks among them (coarse_ground).
+  std::uint64_t last_coarse_chunks_drawn() const { return coarse_drawn_; }
   std::size_t wide_billboard_count() const { return wide_count_; }
   std::uint64_t last_wide_billboards_drawn() const { return wide_drawn_; }
 
  private:
-  struct GroundChunk {
-    std::uint32_t first_index = 0;
-    std::uint32_t index_count = 0;
-    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
-  };
   FarFieldSettings settings_;
   glm::dvec3 origin_{0.0};
   float near_distance_ = 50.0f;
@@ -263,7 +354,12 @@ class FarField : public render::Drawable {
   std::vector<GrassTile> clump_tiles_;
   std::vector<GroundChunk> chunks_;
   std::vector<std::uint32_t> visible_clump_tiles_;
-  std::vector<std::uint32_t> visible_chunks_;
+  std::vector<CoarseGroundChunk> coarse_chunks_;
+  std::vector<std::uint8_t> coarse_selected_;  // per coarse chunk: drawn coarse this frame
+  std::vector<GroundChunk> ground_draws_;       // index ranges to draw this frame
+  std::uint64_t coarse_drawn_ = 0;
+  std::uint64_t ground_chunks_ = 0;  // chunks (ordinary or coarse) in ground_draws_
+  std::uint32_t noise_seed_ = 0;
   std::vector<GrassTile> wide_tiles_;  // groups; `first` indexes the clump buffer after the small clumps
   std::vector<std::uint32_t> visible_wide_tiles_;
   std::size_t wide_count_ = 0;
