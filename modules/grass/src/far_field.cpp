@@ -603,6 +603,7 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   f.map_rect_ = maps.rect();
   f.clump_tiles_ = std::move(clumps->tiles);
   f.clump_count_ = clumps->clumps.size();
+  f.dense_keeps_ = far.dense_extra_billboards;
   if (far.wide_billboards) {
     auto wide = generate_wide_billboards(field, blade, *clump_maps, ground, origin, far);
     if (!wide) return wide.error();
@@ -787,7 +788,8 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     // 1 small clumps giving way to wide ones, 2 wide billboards; their strand keep is in size.z).
     const bool wide_on = s.wide_billboards && !wide_tiles_.empty();
     // u_wide.w: the small clumps' strand keep of the overcrowding guard is in size.z (dense_keep).
-    const float dense_on = s.dense_extra_billboards ? 1.0f : 0.0f;
+    // (As built: a keep in size.z exists only when the clumps were generated with the option.)
+    const float dense_on = dense_keeps_ ? 1.0f : 0.0f;
     p.set("u_wide", glm::vec4(s.wide_distance, s.wide_fade, wide_on ? 1.0f : 0.0f, dense_on));
     p.set("u_cell_width", s.clump_width);
     for (const std::uint32_t ti : visible_clump_tiles_) {

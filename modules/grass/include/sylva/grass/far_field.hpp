@@ -360,6 +360,7 @@ class FarField : public render::Drawable {
   std::uint64_t coarse_drawn_ = 0;
   std::uint64_t ground_chunks_ = 0;  // chunks (ordinary or coarse) in ground_draws_
   std::uint32_t noise_seed_ = 0;
+  bool dense_keeps_ = false;  // the clumps hold dense_keep in size.z (built with dense_extra_billboards)
   std::vector<GrassTile> wide_tiles_;  // groups; `first` indexes the clump buffer after the small clumps
   std::vector<std::uint32_t> visible_wide_tiles_;
   std::size_t wide_count_ = 0;
