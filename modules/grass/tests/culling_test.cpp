@@ -31,11 +31,13 @@ View make_view(const glm::vec3& eye, const glm::vec3& target, float fov_deg = 60
   return v;
 }
 
-BladeSet make_field(float density = 40.0f) {
+BladeSet make_field(float density = 40.0f, bool control_jitter = false) {
   GrassFieldSettings field;
   field.density = density;
+  BladeSettings blade;
+  blade.control_jitter = control_jitter;
   const HeightField ground = testing::make_ground(-40.0, 100.0);
-  return generate_blades(field, BladeSettings{}, GrassMaps::uniform({{0, 0}, {60, 60}}), ground, {0, 0, 0}).value();
+  return generate_blades(field, blade, GrassMaps::uniform({{0, 0}, {60, 60}}), ground, {0, 0, 0}).value();
 }
 
 TEST(GrassCulling, Seed001ThinningLaw) {
@@ -87,28 +89,30 @@ TEST(GrassCulling, MeasuredThinningMatchesTheLaw) {
 }
 
 TEST(GrassCulling, FrustumCullingIsConservative) {
-  const BladeSet set = make_field(30.0f);
-  CullSettings s;
-  s.orientation = false;
-  s.distance_thinning = false;
-  s.near_distance = 1000.0f;
-  const View v = make_view({30.0f, 1.7f, 30.0f}, {38.0f, 0.5f, 22.0f});
-  int culled = 0;
-  for (const Blade& b : set.blades) {
-    if (cull_blade(b, v.cull, s) != CullResult::kFrustum) continue;
-    ++culled;
-    // Every point of the blade (centre curve +- half width) is outside the view volume.
-    const glm::vec3 wd = blade_width_dir(b.up_dir(), b.orientation()) * (0.5f * b.width());
-    for (int i = 0; i <= 8; ++i) {
-      const glm::vec3 c = bezier_point(b.root(), b.control(), b.tip(), i / 8.0f);
-      for (const glm::vec3& p : {c - wd, c + wd}) {
-        const glm::vec4 clip = v.vp * glm::vec4(p, 1.0f);
-        const bool inside = clip.w > 0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
-        ASSERT_FALSE(inside) << "a frustum-culled blade has a visible point";
+  for (const bool jitter : {false, true}) {  // with seed 001's control-point jitter: the drawn curve
+    const BladeSet set = make_field(30.0f, jitter);
+    CullSettings s;
+    s.orientation = false;
+    s.distance_thinning = false;
+    s.near_distance = 1000.0f;
+    const View v = make_view({30.0f, 1.7f, 30.0f}, {38.0f, 0.5f, 22.0f});
+    int culled = 0;
+    for (const Blade& b : set.blades) {
+      if (cull_blade(b, v.cull, s) != CullResult::kFrustum) continue;
+      ++culled;
+      // Every point of the drawn blade (centre curve +- half width) is outside the view volume.
+      const glm::vec3 wd = blade_width_dir(b.up_dir(), b.orientation()) * (0.5f * b.width());
+      for (int i = 0; i <= 8; ++i) {
+        const glm::vec3 c = bezier_point(b.root(), drawn_control(b), b.tip(), i / 8.0f);
+        for (const glm::vec3& p : {c - wd, c + wd}) {
+          const glm::vec4 clip = v.vp * glm::vec4(p, 1.0f);
+          const bool inside = clip.w > 0 && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
+          ASSERT_FALSE(inside) << "a frustum-culled blade has a visible point (jitter " << jitter << ")";
+        }
       }
     }
+    EXPECT_GT(culled, static_cast<int>(set.blades.size() / 2)) << "a typical view culls most of the field";
   }
-  EXPECT_GT(culled, static_cast<int>(set.blades.size() / 2)) << "a typical view culls most of the field";
 }
 
 TEST(GrassCulling, OrientationCullsOnlyThinEdgeOnBlades) {
