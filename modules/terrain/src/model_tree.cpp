@@ -150,11 +150,23 @@ Result<ModelTree> ModelTree::build(const TriangleMesh& mesh, const ModelTreeSett
       thread_local std::vector<std::uint8_t> flags;
       flags.assign(tree.positions_.size(), 0);
       for (std::uint32_t v : lk) flags[v] = 1;
-      const double keep = std::pow(static_cast<double>(settings.keep_per_level), depth);
-      const std::size_t target = static_cast<std::size_t>(std::ceil(keep * static_cast<double>(members[si].size())));
-      seg.indices = settings.reducer == Reducer::kQem
-                        ? simplify_qem_passes(tree.positions_, original, flags, target)
-                        : simplify_shortest_edge(tree.positions_, original, flags, target);
+      const auto reduce = [&](const std::vector<std::uint32_t>& in, std::size_t target) {
+        return settings.reducer == Reducer::kQem ? simplify_qem_passes(tree.positions_, in, flags, target)
+                                                 : simplify_shortest_edge(tree.positions_, in, flags, target);
+      };
+      if (settings.reduce_per_pass > 0.0f) {
+        // The seed's -reduce: `depth` passes, each removing that share of what is left.
+        seg.indices = original;
+        const double keep = 1.0 - static_cast<double>(settings.reduce_per_pass);
+        for (int pass = 0; pass < depth; ++pass) {
+          const std::size_t before = seg.indices.size() / 3;
+          seg.indices = reduce(seg.indices, static_cast<std::size_t>(std::ceil(keep * static_cast<double>(before))));
+          if (seg.indices.size() / 3 == before) break;  // nothing removable is left
+        }
+      } else {
+        const double keep = std::pow(static_cast<double>(settings.keep_per_level), depth);
+        seg.indices = reduce(original, static_cast<std::size_t>(std::ceil(keep * static_cast<double>(members[si].size()))));
+      }
     }
     const double reduce_ms = watch.lap_ms();
     if (depth > 0) seg.error = static_cast<float>(hausdorff_distance(tree.positions_, original, seg.indices).max());

@@ -19,7 +19,7 @@ GlTarget GlTarget::create(int width, int height) {
   return t;
 }
 
-Image GlTarget::render(TerrainRenderer& terrain, const render::Camera& camera, const glm::vec4& clear) {
+Image GlTarget::render(render::Drawable& terrain, const render::Camera& camera, const glm::vec4& clear) {
   target.bind();
   render::apply_reversed_z_state();
   target.clear(clear, 0.0f);

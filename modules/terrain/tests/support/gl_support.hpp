@@ -31,8 +31,9 @@ struct GlTarget {
 
   static GlTarget create(int width = 256, int height = 144);
   glm::ivec2 size() const { return target.size(); }
-  // Binds the target and lighting, clears to `clear`, runs update + the opaque pass.
-  Image render(TerrainRenderer& terrain, const render::Camera& camera, const glm::vec4& clear);
+  // Binds the target and lighting, clears to `clear`, runs update + the opaque pass (of the
+  // height-field terrain, the general model or any drawable).
+  Image render(render::Drawable& terrain, const render::Camera& camera, const glm::vec4& clear);
   Result<Image> depth() const { return render::read_depth(target); }
 };
 

@@ -35,6 +35,10 @@ struct ModelTreeSettings {
   // Share of a segment's original triangles kept per level above the leaves: 0.25 keeps about
   // the same triangle count in every segment (each level covers 4x the area).
   float keep_per_level = 0.25f;
+  // The seed's -reduce (§4.3, Tab. 4.6-4.11): the share of a segment's triangles one reduction
+  // pass removes, with one pass per level above the leaves (a segment d levels above them gets d
+  // passes, each reducing the previous pass's result). 0 = off: keep_per_level decides.
+  float reduce_per_pass = 0.0f;
   Reducer reducer = Reducer::kQem;
   bool lock_mesh_boundary = true;  // also lock the open outline of the whole model
   int threads = 0;
@@ -45,6 +49,9 @@ struct ModelTreeSettings {
     v(levels, "levels", {.min = 1, .max = 12, .help = "Quadtree height (seed -level)", .rebuild = Rebuild::kOffline});
     v(keep_per_level, "keep_per_level", {.min = 0.01, .max = 1.0,
       .help = "Triangle share kept per coarser level", .rebuild = Rebuild::kOffline});
+    v(reduce_per_pass, "reduce_per_pass", {.min = 0.0, .max = 0.99,
+      .help = "Seed -reduce: share removed per pass, one pass per level (0 = use keep_per_level)",
+      .rebuild = Rebuild::kOffline});
     v(reducer, "reducer", {.help = "qem (default) or shortest_edge (the seed's)", .rebuild = Rebuild::kOffline});
     v(lock_mesh_boundary, "lock_mesh_boundary", {.help = "Keep the model's open outline", .rebuild = Rebuild::kOffline});
     v(threads, "threads", {.min = 0, .max = 256, .help = "Build threads (0 = all cores)"});
