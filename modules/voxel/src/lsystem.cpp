@@ -1,5 +1,7 @@
 #include <sylva/voxel/lsystem.hpp>
 
+#include "embedded_data.hpp"
+
 #include <sylva/core/rng.hpp>
 
 #include <fmt/format.h>
@@ -288,22 +290,20 @@ Result<std::string> derive(const LSystem& system, int derivations, std::uint64_t
 
 }  // namespace sylva::voxel
 
-namespace sylva::voxel::detail {
-extern const std::pair<std::string_view, std::string_view> kEmbeddedData[];
-extern const int kEmbeddedDataCount;
-}  // namespace sylva::voxel::detail
-
 namespace sylva::voxel {
 
 std::vector<std::string> builtin_lsystem_files() {
   std::vector<std::string> out;
-  for (int i = 0; i < detail::kEmbeddedDataCount; ++i) out.emplace_back(detail::kEmbeddedData[i].first);
+  for (int i = 0; i < detail::kEmbeddedDataCount; ++i) {
+    const std::string_view name = detail::kEmbeddedData[i].first;
+    if (name.ends_with(".lsys")) out.emplace_back(name);
+  }
   return out;
 }
 
 Result<std::vector<LSystem>> load_builtin_lsystems(std::string_view file_name) {
-  for (int i = 0; i < detail::kEmbeddedDataCount; ++i) {
-    if (detail::kEmbeddedData[i].first == file_name) return parse_lsystems(detail::kEmbeddedData[i].second, file_name);
+  if (file_name.ends_with(".lsys")) {
+    if (const auto text = detail::embedded_file(file_name)) return parse_lsystems(*text, file_name);
   }
   std::string names;
   for (const auto& n : builtin_lsystem_files()) names += (names.empty() ? "" : ", ") + n;

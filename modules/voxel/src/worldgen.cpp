@@ -12,66 +12,13 @@
 namespace sylva::voxel {
 
 std::string_view to_string(Biome b) {
-  switch (b) {
-    case Biome::kJungle: return "jungle";
-    case Biome::kSavanna: return "savanna";
-    case Biome::kPlains: return "plains";
-    case Biome::kShrubland: return "shrubland";
-    case Biome::kBirchForest: return "birch_forest";
-    case Biome::kOakForest: return "oak_forest";
-  }
-  return "?";
-}
-
-std::string_view to_string(Species s) {
-  switch (s) {
-    case Species::kAcacia: return "acacia";
-    case Species::kBirch: return "birch";
-    case Species::kOak: return "oak";
-    case Species::kJungle: return "jungle";
-    case Species::kForkedBush: return "forked_bush";
-    case Species::kBerryBush: return "berry_bush";
+  for (const auto& n : enum_names(Biome{})) {
+    if (n.value == b) return n.name;
   }
   return "?";
 }
 
 namespace {
-
-struct SpeciesDef {
-  Species species;
-  const char* file;
-  std::size_t index;
-  const char* wood;
-  const char* leaves;
-  int min_derivations, max_derivations;
-  float size_at_min, size_at_max;
-};
-
-// Growth ranges: trees 4-6 derivations; bushes the seed's three phases, 2-4 (§4.6.1).
-constexpr SpeciesDef kSpecies[kSpeciesCount] = {
-    {Species::kAcacia, "acacia.lsys", 0, "acacia_log", "acacia_leaves", 5, 7, 1.0f, 1.2f},
-    {Species::kBirch, "broadleaf.lsys", 0, "birch_log", "birch_leaves", 4, 5, 0.7f, 0.9f},
-    {Species::kOak, "broadleaf.lsys", 0, "oak_log", "oak_leaves", 4, 5, 0.9f, 1.1f},
-    {Species::kJungle, "jungle.lsys", 0, "jungle_log", "jungle_leaves", 4, 5, 1.2f, 1.5f},
-    {Species::kForkedBush, "bushes.lsys", 0, "oak_log", "bush_leaves", 2, 4, 0.45f, 0.75f},
-    {Species::kBerryBush, "bushes.lsys", 1, "birch_log", "berry_leaves", 2, 4, 0.4f, 0.7f},
-};
-
-// Where each species grows: jittered grid spacing (blocks) and the chance a grid cell holds one.
-struct FloraRule {
-  Biome biome;
-  Species species;
-  int spacing;
-  float chance;
-};
-constexpr FloraRule kFlora[] = {
-    {Biome::kJungle, Species::kJungle, 9, 0.6f},       {Biome::kJungle, Species::kForkedBush, 4, 0.35f},
-    {Biome::kSavanna, Species::kAcacia, 14, 0.4f},     {Biome::kSavanna, Species::kForkedBush, 11, 0.15f},
-    {Biome::kPlains, Species::kOak, 24, 0.15f},         {Biome::kShrubland, Species::kForkedBush, 5, 0.45f},
-    {Biome::kShrubland, Species::kBerryBush, 6, 0.35f}, {Biome::kBirchForest, Species::kBirch, 7, 0.6f},
-    {Biome::kBirchForest, Species::kBerryBush, 13, 0.2f}, {Biome::kOakForest, Species::kOak, 8, 0.55f},
-    {Biome::kOakForest, Species::kForkedBush, 12, 0.25f},
-};
 
 // Grass tufts and flowers per column.
 struct GroundCover {
@@ -110,7 +57,8 @@ Status check(bool ok, const char* field, const std::string& what) {
 }  // namespace
 
 Result<std::shared_ptr<const WorldGenerator>> WorldGenerator::create(const WorldGenSettings& settings,
-                                                                     const BlockPalette& palette) {
+                                                                     const BlockPalette& palette,
+                                                                     std::shared_ptr<const SpeciesTable> species) {
   SYLVA_TRY(check(std::isfinite(settings.base_height), "base_height", "must be finite"));
   SYLVA_TRY(check(settings.height_amplitude >= 0.0 && settings.height_amplitude <= 512.0, "height_amplitude",
                   fmt::format("{} outside [0, 512]", settings.height_amplitude)));
@@ -140,29 +88,49 @@ Result<std::shared_ptr<const WorldGenerator>> WorldGenerator::create(const World
   g->humidity_.seed = hash_u32(seed32, 3u);
 
   auto block = [&palette](const char* name) -> Result<BlockId> { return palette.find(name); };
-  for (const SpeciesDef& def : kSpecies) {
-    auto systems = load_builtin_lsystems(def.file);
-    if (!systems.ok()) return systems.error();
-    if (def.index >= systems->size()) {
-      return make_error(ErrorCode::kNotFound, fmt::format("{}: no L-system #{} for {}", def.file, def.index,
-                                                          to_string(def.species)));
+  if (!species) {
+    auto shipped = builtin_species_table(palette);
+    if (!shipped.ok()) return shipped.error();
+    species = std::make_shared<const SpeciesTable>(std::move(*shipped));
+  }
+  if (species->palette != &palette) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: species table read for another block palette", species->source));
+  }
+  if (species->species.size() > kMaxSpecies) {
+    return make_error(ErrorCode::kLimit, fmt::format("{}: {} species, above the limit of {}", species->source,
+                                                     species->species.size(), kMaxSpecies));
+  }
+  // Every species caches variants_per_species models (seed §4.7): bound their blocks before
+  // building them from the species' worst case (species.hpp).
+  double cached_parts = 0.0;
+  for (const SpeciesDef& def : species->species) cached_parts += def.worst_parts * settings.variants_per_species;
+  if (cached_parts > static_cast<double>(kMaxCachedPlantParts)) {
+    return make_error(ErrorCode::kLimit,
+                      fmt::format("{}: the plant cache may hold {:.3g} blocks ({} variants per species), above the limit of {}; "
+                                  "lower voxel.worldgen.variants_per_species or the species' derivations",
+                                  species->source, cached_parts, settings.variants_per_species, kMaxCachedPlantParts));
+  }
+  g->species_ = species;
+  g->variants_.reserve(species->species.size());
+  for (std::size_t i = 0; i < species->species.size(); ++i) {
+    const SpeciesDef& def = species->species[i];
+    // The salt is the species' index in the table (the shipped table keeps the order it had as
+    // a compiled enum, so the default world is unchanged).
+    auto variants = PlantVariants::build(def.lsystem, def.growth, settings.seed, static_cast<std::uint32_t>(i) + 101u,
+                                         settings.variants_per_species);
+    if (!variants.ok()) {
+      return make_error(variants.error().code, fmt::format("{}: species[{}] ({}): {}", species->source, i, def.name,
+                                                           variants.error().message));
     }
-    LSystemExecutorSettings exec;
-    exec.min_derivations = def.min_derivations;
-    exec.max_derivations = def.max_derivations;
-    exec.size_at_min = def.size_at_min;
-    exec.size_at_max = def.size_at_max;
-    auto variants = PlantVariants::build((*systems)[def.index], exec, settings.seed,
-                                         static_cast<std::uint32_t>(def.species) + 101u, settings.variants_per_species);
-    if (!variants.ok()) return variants.error();
-    const auto s = static_cast<std::size_t>(def.species);
-    g->variants_[s] = std::move(*variants);
-    auto wood = block(def.wood);
-    auto leaves = block(def.leaves);
-    if (!wood.ok()) return wood.error();
-    if (!leaves.ok()) return leaves.error();
-    g->part_blocks_[s].fill(*wood);
-    g->part_blocks_[s][1] = *leaves;
+    g->variants_.push_back(std::move(*variants));
+  }
+  // Placement rules, biome by biome in biome order, species in table order within a biome.
+  for (int b = 0; b < kBiomeCount; ++b) {
+    for (std::size_t i = 0; i < species->species.size(); ++i) {
+      for (const SpeciesHabitat& h : species->species[i].habitats) {
+        if (static_cast<int>(h.biome) == b) g->flora_.push_back({h.biome, static_cast<SpeciesIndex>(i), h.spacing, h.chance});
+      }
+    }
   }
   const char* names[] = {"stone", "dirt", "grass", "dry_grass", "sand", "snow", "tall_grass", "flowers"};
   BlockId* slots[] = {&g->b_.stone, &g->b_.dirt,  &g->b_.grass,      &g->b_.dry_grass,
@@ -205,9 +173,9 @@ std::int64_t WorldGenerator::ground_height(std::int64_t x, std::int64_t z) const
   return static_cast<std::int64_t>(std::floor(settings_.base_height + settings_.height_amplitude * shaped));
 }
 
-BlockId WorldGenerator::part_block(Species s, int output) const {
-  if (output < 0 || output >= kPlantOutputs) return kAir;
-  return part_blocks_[static_cast<std::size_t>(s)][static_cast<std::size_t>(output)];
+BlockId WorldGenerator::part_block(SpeciesIndex s, int output) const {
+  if (output < 0 || output >= kPlantOutputs || s >= species_->species.size()) return kAir;
+  return species_->species[s].blocks[static_cast<std::size_t>(output)];
 }
 
 GeneratedChunk WorldGenerator::generate(const ChunkCoord& c) const {
@@ -275,7 +243,7 @@ GeneratedChunk WorldGenerator::generate(const ChunkCoord& c) const {
 void WorldGenerator::place_plants(const ChunkCoord& c, GeneratedChunk& out) const {
   const BlockPos o = chunk_origin(c);
   const auto seed32 = static_cast<std::uint32_t>(settings_.seed ^ (settings_.seed >> 32));
-  for (const FloraRule& rule : kFlora) {
+  for (const FloraRule& rule : flora_) {
     const std::int64_t s = rule.spacing;
     const auto tag = static_cast<std::uint32_t>(rule.species) * 977u + static_cast<std::uint32_t>(rule.biome) * 31u + 5u;
     for (std::int64_t cz = floor_div(o.z, s); cz <= floor_div(o.z + kChunkSize - 1, s); ++cz) {

@@ -365,7 +365,8 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
     if (!plants || plants->empty()) continue;
     const PlantInstance* tree = nullptr;
     for (const auto& p : *plants) {
-      if (p.species != Species::kForkedBush && p.species != Species::kBerryBush) tree = &p;
+      const std::string& name = (*gen)->species().species.at(p.species).name;
+      if (name != "forked_bush" && name != "berry_bush") tree = &p;
     }
     if (!tree) continue;
     const glm::dvec3 base(static_cast<double>(tree->ground.x), static_cast<double>(tree->ground.y),
@@ -375,7 +376,7 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
     scene.camera.look_at(base + glm::dvec3(0.0, 7.0, 0.0));
     scene.render(**renderer);
     const Image unshadowed = scene.color();
-    testing::save_png(unshadowed, std::string("voxel_tree_") + std::string(to_string(tree->species)));
+    testing::save_png(unshadowed, std::string("voxel_tree_") + (*gen)->species().species.at(tree->species).name);
     // The same view in the render core's cascaded shadows: the tree shades the ground and itself.
     scene.lighting.sun_direction = glm::normalize(glm::vec3(0.6f, 0.5f, 0.3f));
     scene.render(**renderer);
@@ -393,7 +394,7 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
     maps->bind();
     scene.render(**renderer);
     const Image shadowed = scene.color();
-    testing::save_png(shadowed, std::string("voxel_tree_shadowed_") + std::string(to_string(tree->species)));
+    testing::save_png(shadowed, std::string("voxel_tree_shadowed_") + (*gen)->species().species.at(tree->species).name);
     double a = 0.0, b = 0.0;
     for (int y = 0; y < shadowed.height(); ++y)
       for (int x = 0; x < shadowed.width(); ++x) {

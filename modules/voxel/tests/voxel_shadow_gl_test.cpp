@@ -245,7 +245,7 @@ TEST_F(VoxelShadowGl, AlphaCutLeavesCastCutOutShadowsAndPlantsCast) {
   ss.pcf_radius = 1;
   ss.resolution = 512;
   const std::vector<float> bare = read_depth_array(cast(**with_plants, scene, ss));
-  planted.set_plants({0, 0, 0}, {PlantInstance{Species::kAcacia, 0, 0, BlockPos{8, 0, 8}}});
+  planted.set_plants({0, 0, 0}, {PlantInstance{*(*gen)->species().find("acacia"), 0, 0, BlockPos{8, 0, 8}}});
   const std::vector<float> tree = read_depth_array(cast(**with_plants, scene, ss));
   ASSERT_EQ(bare.size(), tree.size());
   std::size_t raised = 0, lowered = 0;  // texels nearer to / farther from the sun with the tree

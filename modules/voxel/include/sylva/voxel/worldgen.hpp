@@ -22,6 +22,7 @@
 #include <sylva/voxel/coords.hpp>
 #include <sylva/voxel/flora.hpp>
 #include <sylva/voxel/plant.hpp>
+#include <sylva/voxel/species.hpp>
 
 #include <array>
 #include <cstdint>
@@ -63,12 +64,19 @@ struct GeneratedChunk {
   std::vector<PlantInstance> plants;
 };
 
+// Most blocks the plant variant caches of one world may hold in the species' worst case
+// (species.hpp), 32 bytes each: 512 MiB.
+inline constexpr std::size_t kMaxCachedPlantParts = std::size_t{16} << 20;
+
 class WorldGenerator {
  public:
-  // Builds the plant variant caches from the seed (seed §4.7). Errors: a settings value out of
-  // range (naming voxel.worldgen.<field>), or a shipped grammar that fails to parse or expand.
+  // Builds the plant variant caches from the seed (seed §4.7). `species` is a table read for
+  // `palette` (species.hpp); null: the shipped table. Errors: a settings value out of range
+  // (naming voxel.worldgen.<field>), a plant cache above kMaxCachedPlantParts blocks in the
+  // species' worst case, or a grammar that fails to expand (naming the table and species).
   static Result<std::shared_ptr<const WorldGenerator>> create(const WorldGenSettings& settings,
-                                                              const BlockPalette& palette = BlockPalette::standard());
+                                                              const BlockPalette& palette = BlockPalette::standard(),
+                                                              std::shared_ptr<const SpeciesTable> species = nullptr);
 
   const WorldGenSettings& settings() const { return settings_; }
   const BlockPalette& palette() const { return *palette_; }
@@ -83,9 +91,10 @@ class WorldGenerator {
   // Thread-safe and deterministic.
   GeneratedChunk generate(const ChunkCoord& c) const;
 
-  const PlantVariants& variants(Species s) const { return variants_[static_cast<std::size_t>(s)]; }
+  const SpeciesTable& species() const { return *species_; }
+  const PlantVariants& variants(SpeciesIndex s) const { return variants_[s]; }
   // Block laid by output array `output` of a species' model (air for unused outputs).
-  BlockId part_block(Species s, int output) const;
+  BlockId part_block(SpeciesIndex s, int output) const;
 
  private:
   WorldGenerator() = default;
@@ -94,8 +103,16 @@ class WorldGenerator {
   WorldGenSettings settings_;
   const BlockPalette* palette_ = nullptr;
   FbmSettings terrain_, temperature_, humidity_;
-  std::array<PlantVariants, kSpeciesCount> variants_;
-  std::array<std::array<BlockId, kPlantOutputs>, kSpeciesCount> part_blocks_{};
+  std::shared_ptr<const SpeciesTable> species_;
+  std::vector<PlantVariants> variants_;  // by species index
+  // Where each species grows: jittered grid spacing (blocks) and the chance a grid cell holds one.
+  struct FloraRule {
+    Biome biome;
+    SpeciesIndex species;
+    int spacing;
+    float chance;
+  };
+  std::vector<FloraRule> flora_;
   struct Blocks {
     BlockId stone, dirt, grass, dry_grass, sand, snow, tall_grass, flowers;
   } b_{};
