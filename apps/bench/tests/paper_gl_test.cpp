@@ -114,6 +114,8 @@ void check_seed_001_figures_only(const BenchPaperAllRun& run) {
   const nlohmann::json& cell = j["tables"][0]["rows"][0]["values"]["blades blade polygons"];
   EXPECT_TRUE(cell["thesis"].is_null());
   EXPECT_GT(cell["sylva"].get<double>(), 0.0);
+  // Fractional spacing (grass.render.cull.tess_spacing) runs beside the thesis's equal spacing.
+  EXPECT_GT(j["tables"][0]["rows"][0]["values"]["fractional spacing blade polygons"]["sylva"].get<double>(), 0.0);
 }
 
 void check_seed_002_heightmap(const BenchPaperAllRun& run) {

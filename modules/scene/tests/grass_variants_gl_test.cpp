@@ -32,6 +32,11 @@
 // has its own fixed direction, so turning the scene's wind by 180 deg leaves the blades' pose (the
 // picture) as it was, while the shared wind field bends them the other way.
 //
+// Seed 003's overcrowding guard (§2.4, grass.far.dense_extra_billboards): tiles above 50 % of the
+// maximum density get dense_extra_per_tile more billboards. Through a scene whose new density map
+// is filled with a uniform value (grass.map_density_fill, the axis of bench --paper 003 Tab. 4.5):
+// at 0.5 the clump count is the plain one, at 0.6 exactly 4 more per tile; off, none more.
+//
 // Parameters are set with Scene::set_param, the path of `--set` and the editor's panel.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
@@ -41,6 +46,7 @@
 #include <sylva/scene/scene.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -60,6 +66,7 @@ using GrassColorMotionGl = render::GlTest;
 using GrassTessellationLawGl = render::GlTest;
 using GrassHeightThresholdGl = render::GlTest;
 using GrassSeed001WindGl = render::GlTest;
+using GrassDenseBillboardsGl = render::GlTest;
 
 // 40 x 40 m of grass at density 1 in front of the camera, 4 m tiles: 2 x 2 groups of 20 m.
 constexpr const char* kStage = R"json({
@@ -356,4 +363,34 @@ TEST_F(GrassSeed001WindGl, TheThesisWindIgnoresTheSceneWindDirection) {
   EXPECT_GT(field_turned, 0.05) << "the shared wind field bends the blades its way";
   EXPECT_LT(seed_turned, 0.005) << "the thesis's wind has its own direction";
   EXPECT_GT(k1_changed, 0.02) << "k1 shapes the short waves";
+}
+
+TEST_F(GrassDenseBillboardsGl, TilesAboveHalfDensityGetMoreBillboards) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  // Total clumps and field tiles of the stage with its density map filled with `fill`.
+  auto counts = [](double fill, bool extra) {
+    nlohmann::json doc = nlohmann::json::parse(kStage);
+    doc["grass"]["map_density_fill"] = fill;
+    doc["grass"]["far"]["dense_extra_billboards"] = extra;
+    const std::string text = doc.dump();
+    std::unique_ptr<Scene> scene = make_scene(text.c_str());
+    if (!scene) return std::pair<std::uint64_t, std::uint64_t>{0, 0};
+    const nlohmann::json g = scene->module_stats()["grass"];
+    return std::pair{g["clumps"].get<std::uint64_t>(), g["tiles"].get<std::uint64_t>()};
+  };
+  const auto [half_off, tiles] = counts(0.5, false);
+  const auto [half_on, tiles_on] = counts(0.5, true);
+  const auto [dense_off, tiles_dense] = counts(0.6, false);
+  const auto [dense_on, tiles_dense_on] = counts(0.6, true);
+  std::printf("clumps at 0.5: %llu / %llu, at 0.6: %llu / %llu (off / on), %llu tiles\n",
+              static_cast<unsigned long long>(half_off), static_cast<unsigned long long>(half_on),
+              static_cast<unsigned long long>(dense_off), static_cast<unsigned long long>(dense_on),
+              static_cast<unsigned long long>(tiles));
+  ASSERT_EQ(tiles, 100u) << "40 x 40 m in 4 m tiles";
+  EXPECT_EQ(tiles_on, tiles);
+  EXPECT_EQ(tiles_dense, tiles);
+  EXPECT_EQ(tiles_dense_on, tiles);
+  EXPECT_GT(half_off, 0u);
+  EXPECT_EQ(half_on, half_off) << "at 50 % no tile is above half density";
+  EXPECT_EQ(dense_on, dense_off + 4u * tiles) << "dense_extra_per_tile (4) more in every tile";
 }

@@ -29,6 +29,7 @@ struct GrassSectionSettings {
   glm::dvec2 area_min{-10.0, -10.0};  // world x/z rectangle of the field [m]
   glm::dvec2 area_max{10.0, 10.0};
   int map_resolution = 128;           // texels along the longer side of a new density/height map
+  float map_density_fill = 1.0f;      // value of a new density map (the scene names no density file)
   grass::GrassFieldSettings field;
   grass::BladeSettings blade;
   grass::GrassRenderSettings render;
@@ -40,6 +41,9 @@ struct GrassSectionSettings {
     v(area_min, "area_min", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
     v(area_max, "area_max", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Opposite corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
     v(map_resolution, "map_resolution", {.min = 1, .max = 8192, .help = "Texels of a new density/height map along the longer side", .rebuild = Rebuild::kOffline});
+    v(map_density_fill, "map_density_fill", {.min = 0.0f, .max = 1.0f,
+      .help = "Value of a new density map, where the scene names no density map file (painting edits it afterwards)",
+      .rebuild = Rebuild::kOffline});
     v(field, "field");
     v(blade, "blade");
     v(render, "render");
@@ -165,6 +169,8 @@ class GrassInstance final : public ModuleInstance {
       // Seed 003's wide billboards over tile groups (grass.far.wide_billboards, Tab. 4.2).
       j["wide_billboards"] = far_->wide_billboard_count();
       j["wide_billboards_drawn"] = far_->last_wide_billboards_drawn();
+      // Seed 003 §4.3's coarser far-ground sub-level (grass.far.coarse_ground).
+      j["coarse_ground_chunks_drawn"] = far_->last_coarse_chunks_drawn();
       // The three levels of seed 003: blades near (counted as triangles, see CountedBlades),
       // billboard clumps in the middle, ground-layer chunks far.
       j["instances_per_lod"] = {{"clumps", far_->last_clumps_drawn()}, {"ground_chunks", far_->last_ground_chunks_drawn()}};
@@ -199,7 +205,7 @@ class GrassInstance final : public ModuleInstance {
 
   Status build() {
     const GrassSectionSettings& s = settings();
-    auto density = ensure_area_map(ctx_, kDensitySlot, s.area_min, s.area_max, s.map_resolution, 1.0f);
+    auto density = ensure_area_map(ctx_, kDensitySlot, s.area_min, s.area_max, s.map_resolution, s.map_density_fill);
     if (!density.ok()) return density.error();
     auto height = ensure_area_map(ctx_, kHeightSlot, s.area_min, s.area_max, s.map_resolution, 1.0f);
     if (!height.ok()) return height.error();
