@@ -4,6 +4,7 @@
 // model's height (its units applied), a forest of two species from files shows both, its slices
 // are baked for LOD1, and a species file that fails is left out with a warning.
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/image.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/queries.hpp>
@@ -19,6 +20,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 #include <unistd.h>
 
@@ -55,10 +57,11 @@ class SpeciesFilesGl : public render::GlTest {
 
   // Writes scene.json (camera, flat ground, no wind, no shadows, plus `vegetation` when given)
   // and opens it from the file as the player does.
-  std::unique_ptr<Scene> open(const std::string& camera, const std::string& vegetation) {
+  // `extra`: more top-level sections (",\"environment\": {...}").
+  std::unique_ptr<Scene> open(const std::string& camera, const std::string& vegetation, const std::string& extra = "") {
     std::string text = R"({"camera": )" + camera + R"(, "wind": {"strength": 0, "gust_amplitude": 0},
         "render": {"msaa_samples": 1, "shadows": {"enabled": false}},
-        "ground": {"resolution": 33, "size": 512, "generator": "flat"})";
+        "ground": {"resolution": 33, "size": 512, "generator": "flat"})" + extra;
     if (!vegetation.empty()) text += R"(, "vegetation": )" + vegetation;
     text += "}";
     EXPECT_TRUE(write_file_atomic(dir_ / "scene.json", text).ok());
@@ -90,6 +93,38 @@ class SpeciesFilesGl : public render::GlTest {
         for (int c = 0; c < 3; ++c)
           if (std::abs(with.at(x, y, c) - without.at(x, y, c)) > 0.02f) mask[static_cast<std::size_t>(y * with.width() + x)] = 1;
     return mask;
+  }
+
+  // An 8-bit image file in species/ (w x h, `channels` channels, texel (x, y) = fn(x, y)).
+  void write_png(const std::string& name, int w, int h, int channels, const std::function<glm::vec4(int, int)>& fn) {
+    Image img(w, h, channels, PixelFormat::kU8);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < channels; ++c) img.at(x, y, c) = fn(x, y)[c];
+    ASSERT_TRUE(write_image(dir_ / "species" / name, img).ok()) << name;
+  }
+  // A leaf image: the inscribed ellipse in `color`, transparent around it.
+  void write_leaf_png(const std::string& name, glm::vec3 color) {
+    write_png(name, 32, 32, 4, [&](int x, int y) {
+      const float u = (x + 0.5f) / 32.0f - 0.5f, v = (y + 0.5f) / 32.0f - 0.5f;
+      return u * u + v * v < 0.2f ? glm::vec4(color, 1.0f) : glm::vec4(0.0f);
+    });
+  }
+  // Tree pixels (mask) whose channel `c` is at least twice each of the other two.
+  static int dominant(const Image& img, const std::vector<std::uint8_t>& mask, int c) {
+    int n = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) {
+        if (!mask[static_cast<std::size_t>(y * img.width() + x)]) continue;
+        const float v = img.at(x, y, c), a = img.at(x, y, (c + 1) % 3), b = img.at(x, y, (c + 2) % 3);
+        if (v > 0.02f && v > 2.0f * a && v > 2.0f * b) ++n;
+      }
+    return n;
+  }
+  static int count(const std::vector<std::uint8_t>& mask) {
+    int n = 0;
+    for (std::uint8_t m : mask) n += m;
+    return n;
   }
 
   fs::path dir_;
@@ -311,6 +346,142 @@ TEST_F(SpeciesFilesGl, ASpeciesFilesLodAndAnimationApplyToItsTrees) {
   std::printf("wind_scale 0: %d pixels change in 1.5 s of a 30 m/s wind; the forest's scale: %d\n", still, moving);
   EXPECT_EQ(still, 0);
   EXPECT_GT(moving, 10);
+}
+
+// A generated broadleaf from a species file, 80 m away (kSideCamera), alone.
+constexpr const char* kLeafyTree = R"({"area_min": [-1, -1], "area_max": [1, 1], "layout": "grid", "trees_per_hectare": 1,
+    "scale_min": 1, "scale_max": 1, "leaf_texture_size": 32, "forest": {"lod": {"enabled": false}},
+    "species_files": {"0": {"file": "species/leafy.json"}}})";
+std::string sliced(std::string stand) {
+  return stand.replace(stand.find(R"("enabled": false)"), 16, R"("v1": 30, "v2": 200, "cache_directory": "")");
+}
+
+// Leaf images (issue #16): pure blue leaves from a species file's "leaf.color" are blue on the
+// screen at LOD0 and in the baked slices (LOD1 forced by v1 = 30 m); the procedural leaves of the
+// same tree are not.
+TEST_F(SpeciesFilesGl, ALeafImageColoursTheLeavesAtLod0AndInSlices) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  write_leaf_png("blue_leaf.png", {0.0f, 0.0f, 1.0f});
+  const std::string model = R"("model": {"preset": "broadleaf", "seed": 2, "parameters": {"trunk_length": 5}})";
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "leafy.json", R"({"name": "leafy", )" + model + "}").ok());
+  auto plain = open(kSideCamera, kLeafyTree);
+  ASSERT_TRUE(plain);
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "leafy.json", R"({"name": "leafy", "leaf": {"color": "blue_leaf.png"}, )" + model + "}").ok());
+  auto near = open(kSideCamera, kLeafyTree);
+  ASSERT_TRUE(near);
+  auto far = open(kSideCamera, sliced(kLeafyTree));
+  ASSERT_TRUE(far);
+  auto bare = open(kSideCamera, "");
+  ASSERT_TRUE(bare);
+  const glm::ivec2 size(128, 128);
+  const Image without = frame(*bare, size);
+  const Image p = frame(*plain, size), n = frame(*near, size), f = frame(*far, size);
+  EXPECT_EQ(far->module_stats()["vegetation"]["instances_per_lod"]["lod1"].get<int>(), 1) << far->module_stats()["vegetation"].dump();
+  EXPECT_EQ(near->module_stats()["vegetation"]["instances_per_lod"]["lod0"].get<int>(), 1) << near->module_stats()["vegetation"].dump();
+  const std::vector<std::uint8_t> mp = tree_mask(p, without), mn = tree_mask(n, without), mf = tree_mask(f, without);
+  const int plain_blue = dominant(p, mp, 2), near_blue = dominant(n, mn, 2), far_blue = dominant(f, mf, 2);
+  std::printf("blue leaf pixels: procedural %d of %d, leaf image LOD0 %d of %d, LOD1 %d of %d\n", plain_blue, count(mp), near_blue,
+              count(mn), far_blue, count(mf));
+  ASSERT_GT(count(mn), 200) << "the crown is drawn";
+  EXPECT_LT(plain_blue, count(mp) / 50) << "procedural leaves are green";
+  EXPECT_GT(near_blue, count(mn) / 2) << "LOD0 leaves show the image's blue";
+  EXPECT_GT(far_blue, count(mf) / 2) << "the slices show it too";
+}
+
+// The slices bake the leaf image's colour deviation (c_v, eq. 3.34), not only its mean: leaves
+// half red, half blue (mean purple) seen from 25 m show red and blue pixels at LOD0 and LOD1.
+TEST_F(SpeciesFilesGl, TwoColouredLeavesStayTwoColouredInSlices) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  write_png("two_leaf.png", 32, 32, 4, [&](int x, int y) {
+    const float u = (x + 0.5f) / 32.0f - 0.5f, v = (y + 0.5f) / 32.0f - 0.5f;
+    if (u * u + v * v >= 0.2f) return glm::vec4(0.0f);
+    return x < 16 ? glm::vec4(1.0f, 0.0f, 0.0f, 1.0f) : glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+  });
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "leafy.json", R"({"name": "leafy", "leaf": {"color": "two_leaf.png"},
+      "model": {"preset": "broadleaf", "seed": 2, "parameters": {"trunk_length": 5}}})").ok());
+  const std::string camera = R"({"position": [0, 6, 22], "yaw_deg": 0, "pitch_deg": 0, "fov_deg": 50})";
+  std::string stand = kLeafyTree;
+  stand.replace(stand.find(R"("leaf_texture_size": 32)"), 23, R"("leaf_texture_size": 64)");
+  std::string far_stand = stand;
+  far_stand.replace(far_stand.find(R"("enabled": false)"), 16, R"("v1": 5, "v2": 200, "slice_resolution": 512, "cache_directory": "")");
+  auto near = open(camera, stand);
+  ASSERT_TRUE(near);
+  auto far = open(camera, far_stand);
+  ASSERT_TRUE(far);
+  auto bare = open(camera, "");
+  ASSERT_TRUE(bare);
+  const glm::ivec2 size(256, 256);
+  const Image without = frame(*bare, size);
+  const Image n = frame(*near, size), f = frame(*far, size);
+  EXPECT_EQ(far->module_stats()["vegetation"]["instances_per_lod"]["lod1"].get<int>(), 1) << far->module_stats()["vegetation"].dump();
+  const std::vector<std::uint8_t> mn = tree_mask(n, without), mf = tree_mask(f, without);
+  std::printf("two-coloured leaves: LOD0 %d red %d blue of %d, LOD1 %d red %d blue of %d\n", dominant(n, mn, 0), dominant(n, mn, 2),
+              count(mn), dominant(f, mf, 0), dominant(f, mf, 2), count(mf));
+  // A bake of the mean colour alone (purple) would give neither; procedural leaves neither.
+  ASSERT_GT(count(mn), 1000);
+  EXPECT_GT(dominant(n, mn, 0), count(mn) / 5);
+  EXPECT_GT(dominant(n, mn, 2), count(mn) / 5);
+  EXPECT_GT(dominant(f, mf, 0), count(mf) / 10) << "red leaf halves in the slices";
+  EXPECT_GT(dominant(f, mf, 2), count(mf) / 10) << "blue leaf halves in the slices";
+}
+
+// A bark image colours the trunk, over the file's bark_color (which then warns).
+TEST_F(SpeciesFilesGl, ABarkImageColoursTheTrunk) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  write_png("green_bark.png", 8, 8, 3, [](int, int) { return glm::vec4(0.05f, 0.8f, 0.05f, 1.0f); });
+  std::string red = kRedSpecies;
+  red.insert(red.rfind('}'), R"(, "bark": {"color": "green_bark.png"})");
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "red.json", red).ok());
+  std::vector<std::string> logged;
+  set_log_sink([&](LogLevel level, std::string_view message) {
+    if (level == LogLevel::kWarn) logged.emplace_back(message);
+  });
+  auto scene = open(kSideCamera, kOneTree);
+  set_log_sink(nullptr);
+  ASSERT_TRUE(scene);
+  auto bare = open(kSideCamera, "");
+  ASSERT_TRUE(bare);
+  std::string all;
+  for (const std::string& m : logged) all += m + "\n";
+  EXPECT_NE(all.find("vegetation.species_files.0.file: red.json: bark_color: ignored, bark.color gives the bark"), std::string::npos) << all;
+  const glm::ivec2 size(128, 128);
+  const Image with = frame(*scene, size);
+  const std::vector<std::uint8_t> mask = tree_mask(with, frame(*bare, size));
+  const int green = dominant(with, mask, 1), reds = dominant(with, mask, 0);
+  std::printf("bark image: %d green, %d red of %d tree pixels\n", green, reds, count(mask));
+  ASSERT_GT(count(mask), 40);
+  EXPECT_GT(green, count(mask) / 2) << "the image's green bark";
+  EXPECT_EQ(reds, 0) << "not bark_color's red";
+}
+
+// A season image (seed §4.6, one column, top = season 1) sets the leaves' colour by the scene's
+// season: the lower half blue, the upper half red. The tree's season coordinate is
+// environment.season + 79/365 + 0.2 leafSpecificNumber - 0.04 (per tree), so season 0.42 reads
+// only red rows and 0.9 (wrapping) only blue ones.
+TEST_F(SpeciesFilesGl, ASeasonImageChangesTheLeafColourWithTheSeason) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  write_leaf_png("grey_leaf.png", glm::vec3(0.5f));
+  write_png("season.png", 1, 8, 3, [](int, int y) { return y < 4 ? glm::vec4(0.9f, 0.0f, 0.0f, 1.0f) : glm::vec4(0.0f, 0.0f, 0.9f, 1.0f); });
+  ASSERT_TRUE(write_file_atomic(dir_ / "species" / "leafy.json", R"({"name": "leafy", "leaf": {"color": "grey_leaf.png"},
+      "season": "season.png", "model": {"preset": "broadleaf", "seed": 2, "parameters": {"trunk_length": 5}}})").ok());
+  auto autumn = open(kSideCamera, kLeafyTree, R"(, "environment": {"season": 0.42})");
+  ASSERT_TRUE(autumn);
+  auto spring = open(kSideCamera, kLeafyTree, R"(, "environment": {"season": 0.9})");
+  ASSERT_TRUE(spring);
+  auto bare = open(kSideCamera, "");
+  ASSERT_TRUE(bare);
+  const glm::ivec2 size(128, 128);
+  const Image without = frame(*bare, size);
+  const Image a = frame(*autumn, size), b = frame(*spring, size);
+  const std::vector<std::uint8_t> ma = tree_mask(a, without), mb = tree_mask(b, without);
+  const int a_red = dominant(a, ma, 0), a_blue = dominant(a, ma, 2), b_red = dominant(b, mb, 0), b_blue = dominant(b, mb, 2);
+  std::printf("season image: season 0.42 %d red %d blue of %d; season 0.9 %d red %d blue of %d\n", a_red, a_blue, count(ma), b_red,
+              b_blue, count(mb));
+  ASSERT_GT(count(ma), 200);
+  EXPECT_GT(a_red, count(ma) / 2);
+  EXPECT_EQ(a_blue, 0);
+  EXPECT_GT(b_blue, count(mb) / 2);
+  EXPECT_EQ(b_red, 0) << "the trunk is brown, not red enough to count";
 }
 
 // The shipped example (scenes/species/grove.json, not a golden scene): every species file loads,

@@ -11,6 +11,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <system_error>
 
@@ -37,6 +38,31 @@ struct ObjtRules {
   }
 };
 
+// "leaf" and "bark": image paths relative to the species file (species_file.hpp).
+struct LeafImageKeys {
+  std::string color;
+  std::string normal;
+  std::string translucency;
+
+  template <class V>
+  void visit(V& v) {
+    v(color, "color", {.max = 4096, .help = "Leaf colour with the outline in alpha (RGBA image)"});
+    v(normal, "normal", {.max = 4096, .help = "Leaf normal map (RGB, A thickness)"});
+    v(translucency, "translucency", {.max = 4096, .help = "Leaf transmittance intensity image"});
+  }
+};
+
+struct BarkImageKeys {
+  std::string color;
+  std::string normal;
+
+  template <class V>
+  void visit(V& v) {
+    v(color, "color", {.max = 4096, .help = "Bark colour image (RGB)"});
+    v(normal, "normal", {.max = 4096, .help = "Bark normal map (RGB, A height)"});
+  }
+};
+
 // Everything but "model".
 struct SpeciesTop {
   std::string name;
@@ -46,6 +72,9 @@ struct SpeciesTop {
   std::uint32_t texture_seed = 1;
   glm::vec3 leaf_tint{1.0f};
   glm::vec3 bark_color{0.32f, 0.24f, 0.17f};
+  LeafImageKeys leaf;
+  BarkImageKeys bark;
+  std::string season;
 
   template <class V>
   void visit(V& v) {
@@ -56,6 +85,9 @@ struct SpeciesTop {
     v(texture_seed, "texture_seed", {.min = 0.0, .max = 4294967295.0, .help = "Seed of the procedural textures"});
     v(leaf_tint, "leaf_tint", {.min = 0.0, .max = 4.0, .help = "Multiplies the seasonal leaf colour"});
     v(bark_color, "bark_color", {.min = 0.0, .max = 1.0, .help = "Linear albedo of the bark plates"});
+    v(leaf, "leaf");
+    v(bark, "bark");
+    v(season, "season", {.max = 4096, .help = "Season colour image: one column, top = season 1 (seed §4.6)"});
   }
 };
 
@@ -186,6 +218,115 @@ Result<TreeModel> generate_preset_model(const nlohmann::json& model, std::string
   return generated;
 }
 
+// Images (species_file.hpp): what each key accepts.
+enum class ImageRole { kLeafColor, kLeafNormal, kLeafTranslucency, kBarkColor, kBarkNormal, kSeason };
+
+bool is_colour(ImageRole role) {
+  return role == ImageRole::kLeafColor || role == ImageRole::kBarkColor || role == ImageRole::kSeason;
+}
+
+// IEC 61966-2-1 decoding.
+float srgb_to_linear(float c) {
+  c = std::clamp(c, 0.0f, 1.0f);
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+Result<Image> read_species_image(const std::string& rel, ImageRole role, std::string_view key, const fs::path& directory,
+                                 std::string_view source, std::vector<fs::path>& files) {
+  if (rel.empty()) return fail(ErrorCode::kInvalidArgument, source, fmt::format("{}: empty path", key));
+  const fs::path path = fs::path(rel).is_absolute() ? fs::path(rel) : directory / rel;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return fail(ErrorCode::kNotFound, source, fmt::format("{}: no such file {}", key, rel));
+  if (!fs::is_regular_file(path, ec)) return fail(ErrorCode::kIo, source, fmt::format("{}: {} is not a file", key, rel));
+  ImageReadOptions options;
+  options.max_side = kMaxSpeciesImageSide;
+  options.max_bytes = static_cast<std::uint64_t>(kMaxSpeciesImageSide) * kMaxSpeciesImageSide * 4u * sizeof(float);
+  options.allow_non_finite = false;
+  Result<Image> read = read_image(path, options);
+  if (!read.ok()) return fail(read.error().code, source, fmt::format("{}: {}", key, read.error().message));
+  Image img = std::move(read).value();
+  const int w = img.width(), h = img.height(), channels = img.channels();
+  const std::string has = fmt::format("{} has {} channel{}", rel, channels, channels == 1 ? "" : "s");
+  if (role == ImageRole::kSeason) {
+    if (w != 1 && h != 1)
+      return fail(ErrorCode::kInvalidArgument, source,
+                  fmt::format("{}: {} is {}x{}; a season image is one column (1 x rows, top = season 1) or one row", key, rel, w, h));
+  } else if (w < kMinSpeciesImageSide || h < kMinSpeciesImageSide) {
+    return fail(ErrorCode::kLimit, source,
+                fmt::format("{}: {} is {}x{}, below the {}x{} minimum", key, rel, w, h, kMinSpeciesImageSide, kMinSpeciesImageSide));
+  }
+  switch (role) {
+    case ImageRole::kLeafColor:
+      if (channels != 4)
+        return fail(ErrorCode::kInvalidArgument, source,
+                    fmt::format("{}: {}; a leaf colour image needs an alpha channel for the outline (RGBA)", key, has));
+      break;
+    case ImageRole::kLeafNormal:
+    case ImageRole::kBarkNormal:
+      if (channels < 3)
+        return fail(ErrorCode::kInvalidArgument, source,
+                    fmt::format("{}: {}; a normal map needs RGB (or RGBA)", key, has));
+      break;
+    case ImageRole::kBarkColor:
+    case ImageRole::kSeason:
+      if (channels < 3)
+        return fail(ErrorCode::kInvalidArgument, source, fmt::format("{}: {}; a colour image needs RGB (or RGBA)", key, has));
+      break;
+    case ImageRole::kLeafTranslucency:
+      break;
+  }
+  if (is_colour(role) && (img.format() == PixelFormat::kU8 || img.format() == PixelFormat::kU16)) {
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) img.at(x, y, c) = srgb_to_linear(img.at(x, y, c));
+  }
+  if (role == ImageRole::kLeafColor) {
+    bool covered = false;
+    for (int y = 0; y < h && !covered; ++y)
+      for (int x = 0; x < w && !covered; ++x) covered = img.at(x, y, 3) > 0.5f;
+    if (!covered)
+      return fail(ErrorCode::kInvalidArgument, source,
+                  fmt::format("{}: {} has no texel with alpha above 0.5 (the leaf outline is empty)", key, rel));
+  }
+  if (role == ImageRole::kSeason) {
+    // One column, RGBA (presence 1 where the file has no alpha).
+    const int rows = std::max(w, h);
+    Image column(1, rows, 4, PixelFormat::kU8);
+    for (int i = 0; i < rows; ++i)
+      for (int c = 0; c < 4; ++c)
+        column.at(0, i, c) = c < channels ? std::clamp(img.at(w == 1 ? 0 : i, w == 1 ? i : 0, c), 0.0f, 1.0f) : 1.0f;
+    img = std::move(column);
+  }
+  files.push_back(path);
+  return img;
+}
+
+Status read_species_images(const SpeciesTop& top, const nlohmann::json& rest, const fs::path& directory, std::string_view source,
+                           std::vector<std::string>& warnings, SpeciesImages& out) {
+  const auto read = [&](const std::string& rel, ImageRole role, std::string_view key, Image& into) -> Status {
+    Result<Image> img = read_species_image(rel, role, key, directory, source, out.files);
+    if (!img.ok()) return img.error();
+    into = std::move(img).value();
+    return ok_status();
+  };
+  if (rest.contains("leaf")) {
+    if (top.leaf.color.empty())
+      return fail(ErrorCode::kInvalidArgument, source, "leaf.color: missing (the leaf block needs a colour image with the outline in alpha)");
+    SYLVA_TRY(read(top.leaf.color, ImageRole::kLeafColor, "leaf.color", out.leaf_color));
+    if (!top.leaf.normal.empty()) SYLVA_TRY(read(top.leaf.normal, ImageRole::kLeafNormal, "leaf.normal", out.leaf_normal));
+    if (!top.leaf.translucency.empty())
+      SYLVA_TRY(read(top.leaf.translucency, ImageRole::kLeafTranslucency, "leaf.translucency", out.leaf_translucency));
+  }
+  if (rest.contains("bark")) {
+    if (top.bark.color.empty()) return fail(ErrorCode::kInvalidArgument, source, "bark.color: missing (the bark block needs a colour image)");
+    SYLVA_TRY(read(top.bark.color, ImageRole::kBarkColor, "bark.color", out.bark_color));
+    if (!top.bark.normal.empty()) SYLVA_TRY(read(top.bark.normal, ImageRole::kBarkNormal, "bark.normal", out.bark_normal));
+    if (rest.contains("bark_color")) warnings.push_back(fmt::format("{}: bark_color: ignored, bark.color gives the bark", source));
+  }
+  if (rest.contains("season")) SYLVA_TRY(read(top.season, ImageRole::kSeason, "season", out.season));
+  return ok_status();
+}
+
 }  // namespace
 
 Result<SpeciesFile> parse_species(std::string_view text, const fs::path& directory, std::string_view source,
@@ -234,6 +375,7 @@ Result<SpeciesFile> parse_species(std::string_view text, const fs::path& directo
   out.texture_seed = top.texture_seed;
   out.leaf_tint = top.leaf_tint;
   if (rest.contains("bark_color")) out.bark_color = top.bark_color;
+  SYLVA_TRY(read_species_images(top, rest, directory, source, warnings, out.images));
   if (objt) out.objt_file = directory / model->at("objt").get<std::string>();  // a string: loaded above
   return out;
 }
@@ -252,17 +394,45 @@ Result<SpeciesFile> load_species_file(const fs::path& file, std::vector<std::str
 }
 
 Result<TreeTextureSet> make_species_textures(const SpeciesFile& species, int texture_size) {
-  Result<TreeTextureSet> set = make_texture_set(species.look, species.texture_seed, texture_size, texture_size);
-  if (!set.ok()) return set.error();
-  if (species.bark_color) {
+  const SpeciesImages& images = species.images;
+  TreeTextureSet set;
+  LeafTextureSettings leaf = leaf_texture_settings_for(species_preset(species.look).leaf_shape, species.texture_seed);
+  leaf.size = texture_size;
+  std::optional<glm::vec3> photo_color;  // the leaf image's mean colour
+  if (!images.leaf_color.empty()) {
+    Result<LeafImageTextures> t = leaf_textures_from_images({images.leaf_color, images.leaf_normal, images.leaf_translucency}, leaf);
+    if (!t.ok()) return t.error();
+    set.leaves = std::move(t->textures);
+    photo_color = t->base_color;
+  } else {
+    Result<LeafTextures> t = generate_leaf_textures(leaf);
+    if (!t.ok()) return t.error();
+    set.leaves = std::move(t).value();
+  }
+  if (!images.bark_color.empty()) {
+    Result<BarkTextures> t = bark_textures_from_images(images.bark_color, images.bark_normal, texture_size);
+    if (!t.ok()) return t.error();
+    set.bark = std::move(t).value();
+  } else {
     BarkTextureSettings bark = bark_texture_settings_for(species.look, species.texture_seed);
     bark.size = texture_size;
-    bark.color = *species.bark_color;
-    Result<BarkTextures> textures = generate_bark_textures(bark);
-    if (!textures.ok()) return textures.error();
-    set->bark = std::move(textures).value();
+    if (species.bark_color) bark.color = *species.bark_color;
+    Result<BarkTextures> t = generate_bark_textures(bark);
+    if (!t.ok()) return t.error();
+    set.bark = std::move(t).value();
   }
-  Image& season = set->season;
+  if (!images.season.empty()) {
+    set.season = images.season;
+  } else {
+    set.season = generate_season_texture(season_palette_for(species.look));
+    // A leaf image holds one season's colour (seed §3.2): it stays the leaves' colour all year,
+    // with the look's budding and leaf fall (the palette's alpha).
+    if (photo_color) {
+      for (int y = 0; y < set.season.height(); ++y)
+        for (int c = 0; c < 3; ++c) set.season.at(0, y, c) = (*photo_color)[c];
+    }
+  }
+  Image& season = set.season;
   for (int y = 0; y < season.height(); ++y)
     for (int x = 0; x < season.width(); ++x)
       for (int c = 0; c < 3; ++c) season.at(x, y, c) *= species.leaf_tint[c];

@@ -555,6 +555,143 @@ Result<BarkTextures> generate_bark_textures(const BarkTextureSettings& st) {
   return out;
 }
 
+Image resample_image(const Image& src, int width, int height, bool alpha_weighted) {
+  SYLVA_ASSERT(!src.empty() && width > 0 && height > 0, "{}x{} -> {}x{}", src.width(), src.height(), width, height);
+  const int channels = src.channels();
+  const bool weighted = alpha_weighted && channels == 4;
+  Image out(width, height, channels, src.format());
+  const float sx = static_cast<float>(src.width()) / static_cast<float>(width);
+  const float sy = static_cast<float>(src.height()) / static_cast<float>(height);
+  // Taps per axis: one bilinear tap per source texel of the footprint when shrinking.
+  const int kx = std::max(1, static_cast<int>(std::ceil(sx)));
+  const int ky = std::max(1, static_cast<int>(std::ceil(sy)));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      float plain[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+      float by_alpha[3] = {0.0f, 0.0f, 0.0f};
+      float alpha_sum = 0.0f;
+      for (int j = 0; j < ky; ++j)
+        for (int i = 0; i < kx; ++i) {
+          const float fx = (static_cast<float>(x) + (static_cast<float>(i) + 0.5f) / static_cast<float>(kx)) * sx - 0.5f;
+          const float fy = (static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / static_cast<float>(ky)) * sy - 0.5f;
+          const int x0 = static_cast<int>(std::floor(fx));
+          const int y0 = static_cast<int>(std::floor(fy));
+          const float tx = fx - static_cast<float>(x0);
+          const float ty = fy - static_cast<float>(y0);
+          const float wt[4] = {(1.0f - tx) * (1.0f - ty), tx * (1.0f - ty), (1.0f - tx) * ty, tx * ty};
+          const int px[4] = {x0, x0 + 1, x0, x0 + 1};
+          const int py[4] = {y0, y0, y0 + 1, y0 + 1};
+          for (int k = 0; k < 4; ++k) {
+            const float alpha = weighted ? src.at_clamped(px[k], py[k], 3) : 0.0f;
+            for (int c = 0; c < channels; ++c) {
+              const float v = src.at_clamped(px[k], py[k], c);
+              plain[c] += wt[k] * v;
+              if (weighted && c < 3) by_alpha[c] += wt[k] * alpha * v;
+            }
+            alpha_sum += wt[k] * alpha;
+          }
+        }
+      const float taps = static_cast<float>(kx * ky);
+      for (int c = 0; c < channels; ++c)
+        out.at(x, y, c) = weighted && c < 3 && alpha_sum > 0.0f ? by_alpha[c] / alpha_sum : plain[c] / taps;
+    }
+  return out;
+}
+
+Result<LeafImageTextures> leaf_textures_from_images(const LeafImages& in, const LeafTextureSettings& st) {
+  SYLVA_TRY(validate_params(st, "leaf_texture"));
+  SYLVA_TRY(check(power_of_two(st.size), "leaf_texture.size", fmt::format("{} is not a power of two", st.size)));
+  if (in.color.empty() || in.color.channels() != 4)
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("leaf images: the colour image must be RGBA (alpha = the outline), found {} channels", in.color.channels()));
+  const int n = st.size;
+  const Image color = resample_image(in.color, n, n, true);
+  // The leaf's base colour: the mean over the covered texels (seed §3.2, Fig. 3.15 c).
+  glm::dvec3 sum(0.0);
+  double covered = 0.0;
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      if (color.at(x, y, 3) <= 0.5f) continue;
+      sum += glm::dvec3(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
+      covered += 1.0;
+    }
+  if (covered == 0.0)
+    return make_error(ErrorCode::kInvalidArgument, "leaf images: no texel of the colour image has alpha above 0.5 (the leaf outline is empty)");
+  LeafImageTextures result;
+  result.base_color = glm::vec3(sum / covered);
+  LeafTextures& out = result.textures;
+  for (LeafSide* side : {&out.front, &out.back}) {
+    side->color = Image(n, n, 4, PixelFormat::kU8);
+    side->normal = Image(n, n, 4, PixelFormat::kU8);
+    side->translucency = Image(n, n, 4, PixelFormat::kU8);
+  }
+  const Image normal = in.normal.empty() ? Image() : resample_image(in.normal, n, n);
+  const Image trans = in.translucency.empty() ? Image() : resample_image(in.translucency, n, n);
+  Image coverage(n, n, 1);
+  Image thickness(n, n, 1);
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const float a = color.at(x, y, 3);
+      coverage.at(x, y) = a;
+      glm::vec3 nf(0.0f, 0.0f, 1.0f);
+      float d = 0.25f;
+      if (!normal.empty()) {
+        const glm::vec3 raw = glm::vec3(normal.at(x, y, 0), normal.at(x, y, 1), normal.at(x, y, 2)) * 2.0f - 1.0f;
+        if (glm::length(raw) > 1e-4f) nf = glm::normalize(raw);
+        if (normal.channels() == 4) d = std::clamp(normal.at(x, y, 3), 0.0f, 1.0f);
+      }
+      thickness.at(x, y) = a > 0.0f ? d : 0.0f;
+      // The lower side's tangent space is (-u, v, -n): the same surface seen from below.
+      const glm::vec3 nb(nf.x, -nf.y, nf.z);
+      float rho = st.translucency;
+      if (!trans.empty()) {
+        rho = trans.channels() >= 3 ? (trans.at(x, y, 0) + trans.at(x, y, 1) + trans.at(x, y, 2)) / 3.0f : trans.at(x, y, 0);
+      }
+      rho = a > 0.0f ? std::clamp(rho, 0.0f, 1.0f) : 0.0f;
+      for (LeafSide* side : {&out.front, &out.back}) {
+        const glm::vec3& ns = side == &out.front ? nf : nb;
+        for (int c = 0; c < 3; ++c) {
+          side->color.at(x, y, c) = std::clamp(0.5f + color.at(x, y, c) - result.base_color[c], 0.0f, 1.0f);
+          side->normal.at(x, y, c) = 0.5f + 0.5f * ns[c];
+        }
+        side->color.at(x, y, 3) = a;
+        side->normal.at(x, y, 3) = thickness.at(x, y);
+        side->translucency.at(x, y, 3) = rho;
+      }
+    }
+  translucency_coefficients(st, out.back.normal, thickness, coverage, out.front.translucency);
+  translucency_coefficients(st, out.front.normal, thickness, coverage, out.back.translucency);
+  return result;
+}
+
+Result<BarkTextures> bark_textures_from_images(const Image& color, const Image& normal, int size) {
+  SYLVA_TRY(check(power_of_two(size), "bark_texture.size", fmt::format("{} is not a power of two", size)));
+  if (color.empty() || color.channels() < 3)
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("bark images: the colour image must be RGB or RGBA, found {} channels", color.channels()));
+  const int n = size;
+  const Image albedo = resample_image(color, n, n);
+  const Image nr = normal.empty() ? Image() : resample_image(normal, n, n);
+  BarkTextures out{Image(n, n, 4, PixelFormat::kU8), Image(n, n, 4, PixelFormat::kU8)};
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      glm::vec3 nv(0.0f, 0.0f, 1.0f);
+      float h = 0.5f;
+      if (!nr.empty()) {
+        const glm::vec3 raw = glm::vec3(nr.at(x, y, 0), nr.at(x, y, 1), nr.at(x, y, 2)) * 2.0f - 1.0f;
+        if (glm::length(raw) > 1e-4f) nv = glm::normalize(raw);
+        if (nr.channels() == 4) h = std::clamp(nr.at(x, y, 3), 0.0f, 1.0f);
+      }
+      for (int c = 0; c < 3; ++c) {
+        out.albedo.at(x, y, c) = std::clamp(albedo.at(x, y, c), 0.0f, 1.0f);
+        out.normal.at(x, y, c) = 0.5f + 0.5f * nv[c];
+      }
+      out.albedo.at(x, y, 3) = 1.0f;
+      out.normal.at(x, y, 3) = h;
+    }
+  return out;
+}
+
 std::vector<SeasonKey> season_keys(SeasonPalette palette) {
   switch (palette) {
     case SeasonPalette::kDeciduous:

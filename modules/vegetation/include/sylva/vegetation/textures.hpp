@@ -178,6 +178,34 @@ std::vector<Image> box_mips(const Image& rgba);
 // Share of texels with alpha (channel 3) > threshold.
 double alpha_coverage(const Image& rgba, float threshold = 0.5f);
 
+// Images of any size resampled to width x height (bilinear, supersampled over the source
+// footprint when shrinking). With `alpha_weighted` (4 channels), rgb is averaged weighted by
+// alpha, so the background of a leaf photo does not bleed into the outline's texels.
+Image resample_image(const Image& src, int width, int height, bool alpha_weighted = false);
+
+// Leaf maps from painted or photographed images (species files; seed 000 §3.2, Fig. 3.15 a, b):
+// the colour-deviation map is the original colour map minus the leaf's base colour (the mean
+// over the covered texels), which comes back as the seasonal colour c_s (eq. 3.34); the original
+// translucency map is an intensity map, rho_t, and the HL2 coefficients are precomputed from the
+// normal map as for the generated leaves (eqs. 3.28-3.31). The lower side shows the same colour;
+// its normal is the upper side's seen from below, (x, -y, z) in its mirrored tangent space.
+struct LeafImages {
+  Image color;         // RGBA, linear colour, alpha = outline coverage (required)
+  Image normal;        // optional: RGB(A) upper-side tangent-space normal * 0.5 + 0.5 (x = u,
+                       // y = v), alpha thickness in [0, 1] (default 0.25); empty: flat
+  Image translucency;  // optional: rho_t (mean of rgb, or the one channel); empty: settings.translucency
+};
+struct LeafImageTextures {
+  LeafTextures textures;
+  glm::vec3 base_color{0.0f};  // linear mean colour of the covered texels
+};
+// Everything is resampled to settings.size (a power of two). Errors: invalid settings, an empty
+// or non-RGBA colour image, an outline with no texel of alpha above 0.5 (kInvalidArgument).
+Result<LeafImageTextures> leaf_textures_from_images(const LeafImages& images, const LeafTextureSettings& settings);
+// Bark maps from images (tiling in u and v): albedo from `color` (RGB(A), linear), the normal
+// from `normal` (RGB tangent-space * 0.5 + 0.5, x around, y along; A height) or flat when empty.
+Result<BarkTextures> bark_textures_from_images(const Image& color, const Image& normal, int size);
+
 // Saves the six leaf images as PNG (8-bit) files "<prefix>_{front,back}_{color,normal,translucency}.png"
 // in `folder` (atomically, through core write_image), and loads them back. Load errors name the
 // file; sizes of the six images must agree (kInvalidArgument naming the file).
