@@ -484,7 +484,8 @@ TEST_F(SpeciesFilesGl, ASeasonImageChangesTheLeafColourWithTheSeason) {
   EXPECT_EQ(b_red, 0) << "the trunk is brown, not red enough to count";
 }
 
-// The shipped example (scenes/species/grove.json, not a golden scene): every species file loads,
+// The shipped example (scenes/species/grove.json, not a golden scene): every species file loads
+// (painted_birch.json with its image set),
 // without a warning beyond the seed example's own left-handed frames, and the trees are drawn.
 TEST_F(SpeciesFilesGl, TheShippedExampleOpens) {
   if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
@@ -501,8 +502,9 @@ TEST_F(SpeciesFilesGl, TheShippedExampleOpens) {
   ASSERT_TRUE(scene.ok()) << scene.error().message;
   for (const std::string& m : logged) EXPECT_NE(m.find("left-handed"), std::string::npos) << m;
   const nlohmann::json per = (*scene)->module_stats()["vegetation"]["trees_per_species"];
-  ASSERT_EQ(per.size(), 3u) << per.dump();
+  ASSERT_EQ(per.size(), 4u) << per.dump();
   EXPECT_GT(per["sapling"].get<int>(), 0) << per.dump();
+  EXPECT_GT(per["painted birch"].get<int>(), 0) << "leaf, bark and season images (scenes/species/images)" << per.dump();
   EXPECT_GT(per["slender conifer"].get<int>(), 0) << per.dump();
   EXPECT_EQ(per["seed example"].get<int>(), 1) << "the single tree" << per.dump();
   const glm::ivec2 size(96, 54);
