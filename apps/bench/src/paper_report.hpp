@@ -24,7 +24,6 @@ struct PaperOutcome {
   const PaperTable* table = nullptr;
   std::vector<std::optional<std::vector<SettingResult>>> rows;
   std::vector<std::string> row_reports;  // per row: folder of its sweep report, relative ("" = none)
-  std::vector<std::string> row_plots;    // per row: its error-against-time plot (inline SVG; "" = none)
   std::string failure;                   // non-empty: the table failed to run, and why
 };
 

@@ -192,14 +192,16 @@ std::string scatter_svg(const std::vector<PlotPoint>& points, const PlotSpec& sp
   }
   // Legend.
   const double lx = left + pw - 170, ly = top + 10;
-  s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"162\" height=\"54\" fill=\"#ffffff\" fill-opacity=\"0.85\" "
-                   "stroke=\"#ccc\"/>\n", lx, ly);
-  s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\" fill=\"#d62728\"/><text x=\"{:.1f}\" y=\"{:.1f}\">Pareto front</text>\n",
-                   lx + 12, ly + 13, lx + 24, ly + 17);
-  s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"#fff\" stroke=\"#1f77b4\" stroke-width=\"1.5\"/>"
-                   "<text x=\"{:.1f}\" y=\"{:.1f}\">dominated setting</text>\n", lx + 12, ly + 29, lx + 24, ly + 33);
-  s += fmt::format("<path d=\"M{:.1f},{:.1f} l5,5 l-5,5 l-5,-5 z\" fill=\"#2ca02c\"/><text x=\"{:.1f}\" y=\"{:.1f}\">reference</text>\n",
-                   lx + 12, ly + 40, lx + 24, ly + 49);
+  if (spec.legend) {
+    s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"162\" height=\"54\" fill=\"#ffffff\" fill-opacity=\"0.85\" "
+                     "stroke=\"#ccc\"/>\n", lx, ly);
+    s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\" fill=\"#d62728\"/><text x=\"{:.1f}\" y=\"{:.1f}\">Pareto front</text>\n",
+                     lx + 12, ly + 13, lx + 24, ly + 17);
+    s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4.5\" fill=\"#fff\" stroke=\"#1f77b4\" stroke-width=\"1.5\"/>"
+                     "<text x=\"{:.1f}\" y=\"{:.1f}\">dominated setting</text>\n", lx + 12, ly + 29, lx + 24, ly + 33);
+    s += fmt::format("<path d=\"M{:.1f},{:.1f} l5,5 l-5,5 l-5,-5 z\" fill=\"#2ca02c\"/><text x=\"{:.1f}\" y=\"{:.1f}\">reference</text>\n",
+                     lx + 12, ly + 40, lx + 24, ly + 49);
+  }
   if (hidden > 0) {
     s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#a00\">{} point(s) without finite values not shown</text>\n",
                      left, spec.height - 2.0, hidden);

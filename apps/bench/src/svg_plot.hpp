@@ -26,6 +26,7 @@ struct PlotSpec {
   int width = 760;   // pixels
   int height = 440;
   bool log_x = false;  // logarithmic x axis (points with x <= 0 are then not drawn)
+  bool legend = true;  // the Pareto / dominated / reference legend (plots without a front omit it)
 };
 
 // Whether costs spread over more than a factor of 10 (a log axis then keeps the cheap settings

@@ -29,6 +29,7 @@ SettingResult measured(double frame_ms, std::uint64_t fragments_total, int frame
   r.frames = frames;
   r.frame_ms.mean = frame_ms;
   r.totals.fragments = fragments_total;
+  r.ssim_mean = 0.95;
   r.totals.lod_instances["vegetation.lod0"] = 10u * static_cast<std::uint64_t>(frames);
   return r;
 }
@@ -50,24 +51,29 @@ TEST(PaperReport, ThesisAndSylvaSideBySideWithRatiosToTheFirstRow) {
 }
 
 // paper.html: the same cells as paper.md, the shape plot once two rows ran (thesis and Sylva
-// points at their ratios), each row's error-against-time plot, and nothing unescaped.
-TEST(PaperReport, HtmlHasTheTableTheShapePlotAndTheRowsPlots) {
+// points at their ratios), the table's error-against-time plot when it has a reference (a point
+// per measured cell), and nothing unescaped.
+TEST(PaperReport, HtmlHasTheTableTheShapePlotAndTheErrorPlot) {
   PaperTable t = two_row_table();
   t.differences = "<none>";
   PaperOutcome o;
   o.table = &t;
   o.rows = {std::vector<SettingResult>{measured(40.0, 2000, 2)}, std::vector<SettingResult>{measured(120.0, 9000, 3)}};
   o.row_reports = {"tab-9.9/row-0", "tab-9.9/row-1"};
-  o.row_plots = {"<svg id=\"row0\"></svg>", ""};
   const std::string html = paper_html("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
   EXPECT_NE(html.find("<td class=\"l\">20</td><td>5</td><td>2.50x</td><td>120</td><td>3.00x</td>"), std::string::npos) << html;
   EXPECT_NE(html.find("<a href=\"tab-9.9/row-1/report.html\">"), std::string::npos);
   EXPECT_NE(html.find("Shape: each quantity against its first row"), std::string::npos);
   EXPECT_NE(html.find("thesis LOD0 ms, # things 20: 2.50x"), std::string::npos) << html;
   EXPECT_NE(html.find("Sylva LOD0 ms, # things 20: 3.00x"), std::string::npos) << html;
-  EXPECT_NE(html.find("Image error against time, # things 10</h3>\n<svg id=\"row0\">"), std::string::npos) << html;
-  EXPECT_EQ(html.find("# things 20</h3>"), std::string::npos);  // row 1 has no plot
+  EXPECT_EQ(html.find("Pareto front"), std::string::npos) << "a shape plot has no front";
+  EXPECT_EQ(html.find("Image error against time"), std::string::npos) << "no reference: no image-quality axis";
   EXPECT_NE(html.find("&lt;none&gt;"), std::string::npos);
+
+  t.reference = {{"x", "1"}};
+  const std::string with_error = paper_html("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe");
+  EXPECT_NE(with_error.find("Image error against time"), std::string::npos);
+  EXPECT_NE(with_error.find("# things 20, LOD0: 120 ms"), std::string::npos) << with_error;
   // One row run (--quick): no shape to compare.
   o.rows[1] = std::nullopt;
   EXPECT_EQ(paper_html("000", {o}, CostMetric::kFrameMs, MachineInfo{}, "llvmpipe").find("Shape:"), std::string::npos);

@@ -2,7 +2,6 @@
 
 #include "paper_report.hpp"
 #include "paper_tables.hpp"
-#include "report_html.hpp"
 #include "with_scene/scene_target.hpp"
 
 #include <fmt/format.h>
@@ -64,7 +63,6 @@ PaperOutcome run_table(const PaperTable& t, const PaperRunOptions& o, const std:
   outcome.table = &t;
   outcome.rows.resize(t.rows.size());
   outcome.row_reports.resize(t.rows.size());
-  outcome.row_plots.resize(t.rows.size());
   if (!t.missing.empty()) return outcome;
   bool ran_one = false;
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
@@ -100,7 +98,6 @@ PaperOutcome run_table(const PaperTable& t, const PaperRunOptions& o, const std:
     }
     outcome.rows[r] = std::move(per_column);
     outcome.row_reports[r] = rel;
-    if (!t.reference.empty()) outcome.row_plots[r] = report_plot_svg(*report);
   }
   return outcome;
 }
