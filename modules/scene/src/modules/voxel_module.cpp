@@ -2,12 +2,21 @@
 // around a centre, meshed on a worker pool and drawn by voxel::VoxelRenderer. A voxel world is
 // its own ground (it does not stand on the scene's height field); it reads the scene's wind-free
 // sun, sky and fog through the shared lighting block.
+//
+// Its plants are data (issue #16): `flora.species_file` names a species table (JSON with .lsys
+// grammars, voxel/species.hpp; relative to the scene file, "" = the shipped species). Like the
+// forest's species files, a bad file does not fail the scene: a species with a bad entry is left
+// out, and a file that fails as a whole (missing, not JSON, no species list) gives the shipped
+// species, each with a warning naming the file and the JSON path or the grammar's
+// file:line:column. A world is still a world without a user's plants, and the editor keeps the
+// scene open while its user fixes the file (the scene's warnings are its messages).
 
 #include "modules/module_factories.hpp"
 
 #include <sylva/core/log.hpp>
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/scene/module_instance.hpp>
+#include <sylva/voxel/species.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
 #include <sylva/voxel/worker_pool.hpp>
 #include <sylva/voxel/world.hpp>
@@ -16,10 +25,22 @@
 
 #include <fmt/format.h>
 
+#include <map>
 #include <optional>
 
 namespace sylva::scene::detail {
 namespace {
+
+struct FloraSettings {
+  std::string species_file;  // "" = the shipped data/species.json
+
+  template <class V>
+  void visit(V& v) {
+    v(species_file, "species_file",
+      {.max = 4096.0, .help = "Species table (JSON naming .lsys grammars, see the voxel README), relative to the scene file; empty = the shipped species",
+       .rebuild = Rebuild::kOffline});
+  }
+};
 
 struct VoxelSectionSettings {
   glm::dvec2 center{0.0, 0.0};   // world x/z the generated area is centred on [blocks = m]
@@ -27,6 +48,7 @@ struct VoxelSectionSettings {
   voxel::MesherKind mesher = voxel::MesherKind::kBitmask;
   int threads = 0;               // generation and meshing workers (0 = all cores)
   voxel::WorldGenSettings worldgen;
+  FloraSettings flora;
   // A scene's world fades into the sky at the edge of its generated area (view_distance caps the
   // inscribed radius around the camera; the library's default 0 means no fade).
   voxel::VoxelRenderSettings render = [] {
@@ -42,6 +64,7 @@ struct VoxelSectionSettings {
     v(mesher, "mesher", {.help = "culled, greedy or bitmask", .rebuild = Rebuild::kOffline});
     v(threads, "threads", {.min = 0, .max = 256, .help = "Worker threads (0 = all cores)", .rebuild = Rebuild::kOffline});
     v(worldgen, "worldgen");
+    v(flora, "flora");
     v(render, "render");
   }
 };
@@ -103,7 +126,10 @@ class VoxelInstance final : public ModuleInstance {
             {"plant_parts_drawn", s.plant_parts_drawn}, {"tufts_drawn", s.tufts_drawn},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
             {"shadow_chunks_cast", s.shadow_chunks_cast},
-            {"generation_ms", generation_ms_}};
+            {"generation_ms", generation_ms_},
+            {"species_table", generator_->species().source},
+            {"plants_per_species", plants_per_species_},
+            {"plant_blocks", plant_blocks_}};
   }
 
   std::vector<render::Aabb> debug_bounds() const override {
@@ -121,9 +147,54 @@ class VoxelInstance final : public ModuleInstance {
 
   const VoxelSectionSettings& settings() const { return static_cast<const Settings&>(*ctx_.section->settings).value; }
 
+  // The scene's species table (see the top of the file for the policy).
+  std::shared_ptr<const voxel::SpeciesTable> species_table() const {
+    const std::string& file = settings().flora.species_file;
+    if (file.empty()) return nullptr;
+    std::vector<std::string> warnings;
+    auto table = voxel::load_species_table(ctx_.document->resolve(file), voxel::BlockPalette::standard(), warnings);
+    for (const std::string& w : warnings) log_warn("voxel.flora.species_file: {}", w);
+    if (!table.ok()) {
+      log_warn("voxel.flora.species_file: {}; the shipped species are used", table.error().message);
+      return nullptr;
+    }
+    for (const Error& e : table->rejected) log_warn("voxel.flora.species_file: {}; the species is left out", e.message);
+    return std::make_shared<const voxel::SpeciesTable>(std::move(*table));
+  }
+
+  // Plants per species and their blocks per block name, counted from the generated world.
+  void count_plants() {
+    plants_per_species_ = nlohmann::json::object();
+    plant_blocks_ = nlohmann::json::object();
+    std::map<std::string, std::size_t> plants, blocks;
+    const voxel::BlockPalette& palette = generator_->palette();
+    for (const voxel::ChunkCoord& c : world_->chunk_coords()) {
+      const auto* list = world_->plants(c);
+      if (!list) continue;
+      for (const voxel::PlantInstance& p : *list) {
+        ++plants[generator_->species().species.at(p.species).name];
+        const voxel::PlantVariants& variants = generator_->variants(p.species);
+        const voxel::PlantModel& model = variants.at(p.variant % variants.size());
+        for (int o = 0; o < voxel::kPlantOutputs; ++o) {
+          const voxel::BlockId b = generator_->part_block(p.species, o);
+          if (b != voxel::kAir) blocks[palette[b].name] += model.outputs[static_cast<std::size_t>(o)].size();
+        }
+      }
+    }
+    for (const auto& [name, n] : plants) plants_per_species_[name] = n;
+    for (const auto& [name, n] : blocks) plant_blocks_[name] = n;
+  }
+
   Status build() {
     const VoxelSectionSettings& s = settings();
-    auto generator = voxel::WorldGenerator::create(s.worldgen);
+    const std::shared_ptr<const voxel::SpeciesTable> table = species_table();
+    auto generator = voxel::WorldGenerator::create(s.worldgen, voxel::BlockPalette::standard(), table);
+    if (!generator.ok() && table) {
+      // A user's grammar that fails while its variants are built (e.g. brackets nested past
+      // max_depth, which the worst-case check before deriving does not bound).
+      log_warn("voxel.flora.species_file: {}; the shipped species are used", generator.error().message);
+      generator = voxel::WorldGenerator::create(s.worldgen);
+    }
     if (!generator.ok()) return make_error(generator.error().code, "voxel: " + generator.error().message);
     auto world = std::make_unique<voxel::World>();
     voxel::WorkerPool pool(s.threads);
@@ -144,6 +215,7 @@ class VoxelInstance final : public ModuleInstance {
     world_ = std::move(world);
     generator_ = *generator;
     generation_ms_ = report.milliseconds;
+    count_plants();
     return {};
   }
 
@@ -154,6 +226,8 @@ class VoxelInstance final : public ModuleInstance {
   voxel::VoxelRenderer* renderer_ptr_ = nullptr;
   VoxelShadowCaster caster_{renderer_ptr_};
   double generation_ms_ = 0.0;
+  nlohmann::json plants_per_species_ = nlohmann::json::object();
+  nlohmann::json plant_blocks_ = nlohmann::json::object();
 };
 
 }  // namespace

@@ -1,0 +1,217 @@
+// A voxel world's plants from the user's files (issue #16, seed 004 §4.5-§4.7): a scene file names
+// a species table (`voxel.flora.species_file`, relative to the scene) whose species name .lsys
+// grammars; written while the program runs, they change the plants of the generated world
+// (counted per species and per block from the world's plants, and seen on pixels). Bad files
+// leave the scene open with a warning naming the file and the JSON path or the grammar's
+// file:line:column; a grammar that would explode is refused before it is derived.
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/log.hpp>
+#include <sylva/render/framebuffer.hpp>
+#include <sylva/render/queries.hpp>
+#include <sylva/render/readback.hpp>
+#include <sylva/render/testing.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/scene.hpp>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include <unistd.h>
+
+using namespace sylva;
+using namespace sylva::scene;
+namespace fs = std::filesystem;
+
+namespace {
+
+// One species growing everywhere: a column of glowstone doubled per derivation (3 -> 8 blocks).
+constexpr const char* kPillar = "# a pillar: U doubles every derivation\n0 0 1\nU\nU > UU\n";
+std::string pillar_species(int derivations, const std::string& blocks = R"({"0": "glowstone"})") {
+  return fmt::format(R"({{"species": [{{"name": "pillar", "grammar": "pillar.lsys", "derivations": [{0}, {0}], "size": [1, 1],
+      "blocks": {1}, "biomes": {{"jungle": {{"spacing": 5, "chance": 1}}, "savanna": {{"spacing": 5, "chance": 1}},
+      "plains": {{"spacing": 5, "chance": 1}}, "shrubland": {{"spacing": 5, "chance": 1}},
+      "birch_forest": {{"spacing": 5, "chance": 1}}, "oak_forest": {{"spacing": 5, "chance": 1}}}}}}]}})",
+                     derivations, blocks);
+}
+
+class VoxelSpeciesGl : public render::GlTest {
+ protected:
+  void SetUp() override {
+    render::GlTest::SetUp();
+    if (!find_module("voxel")) GTEST_SKIP() << "voxel is built out";
+    dir_ = fs::temp_directory_path() /
+           fmt::format("sylva_voxel_species_gl_{}_{}", ::getpid(), ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "species");
+    write("species/pillar.lsys", kPillar);
+    set_log_sink([this](LogLevel level, std::string_view message) {
+      if (level == LogLevel::kWarn) logged_ += std::string(message) + "\n";
+    });
+  }
+  void TearDown() override {
+    set_log_sink(nullptr);
+    fs::remove_all(dir_);
+    render::GlTest::TearDown();
+  }
+
+  void write(const std::string& name, const std::string& text) { ASSERT_TRUE(write_file_atomic(dir_ / name, text).ok()); }
+
+  // scene.json with a 3 x 3 column voxel world (seed 3) and `flora`, opened from the file.
+  std::unique_ptr<Scene> open(const std::string& flora, int variants = 2) {
+    const std::string text = fmt::format(R"({{"camera": {{"position": [16, 95, 16], "yaw_deg": 0, "pitch_deg": -89.9, "fov_deg": 60}},
+        "render": {{"msaa_samples": 1, "shadows": {{"enabled": false}}}},
+        "voxel": {{"radius_chunks": 1, "threads": 2, "worldgen": {{"seed": 3, "variants_per_species": {}}}, "flora": {}}}}})",
+                                         variants, flora);
+    EXPECT_TRUE(write_file_atomic(dir_ / "scene.json", text).ok());
+    std::vector<std::string> warnings;
+    auto doc = SceneDocument::load(dir_ / "scene.json", warnings);
+    EXPECT_TRUE(doc.ok()) << doc.error().message;
+    if (!doc.ok()) return nullptr;
+    auto scene = Scene::create(std::move(*doc));
+    EXPECT_TRUE(scene.ok()) << scene.error().message;
+    return scene.ok() ? std::move(*scene) : nullptr;
+  }
+
+  static nlohmann::json stats(Scene& scene) { return scene.module_stats()["voxel"]; }
+
+  // Glowstone pixels looking straight down on the world: emissive, it is drawn near white
+  // (0.86, 0.92, 0.95 measured) where grass, leaves, logs and dry grass have a channel below
+  // 0.8; counted in the middle 100 x 100 pixels, inside the fade into the sky at the edge.
+  static int glow_pixels(Scene& scene) {
+    const glm::ivec2 size(160, 160);
+    auto fb = render::Framebuffer::create({.width = size.x, .height = size.y}).value();
+    render::FrameProfiler profiler;
+    const render::Camera camera = scene.make_camera(scene.document().camera, size);
+    scene.update(camera, 1.0, 0.0f, size);
+    scene.render(fb, profiler);
+    const Image img = render::read_color(fb).value();
+    int n = 0;
+    for (int y = 30; y < 130; ++y)
+      for (int x = 30; x < 130; ++x) {
+        const float lo = std::min({img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)});
+        n += lo > 0.8f;
+      }
+    return n;
+  }
+
+  fs::path dir_;
+  std::string logged_;
+};
+
+TEST_F(VoxelSpeciesGl, AUserGrammarChangesThePlants) {
+  auto shipped = open(R"({"species_file": ""})");
+  ASSERT_TRUE(shipped);
+  const nlohmann::json before = stats(*shipped);
+  EXPECT_EQ(before["species_table"], "species.json");
+  EXPECT_FALSE(before["plants_per_species"].empty()) << before.dump();
+  EXPECT_FALSE(before["plants_per_species"].contains("pillar"));
+  EXPECT_FALSE(before["plant_blocks"].contains("glowstone")) << before.dump();
+  const int glow_before = glow_pixels(*shipped);
+  shipped.reset();
+
+  write("species/pillars.json", pillar_species(3));
+  auto scene = open(R"({"species_file": "species/pillars.json"})");
+  ASSERT_TRUE(scene);
+  const nlohmann::json s = stats(*scene);
+  EXPECT_EQ(s["species_table"], (dir_ / "species/pillars.json").string());
+  ASSERT_EQ(s["plants_per_species"].size(), 1u) << s.dump();
+  const int plants = s["plants_per_species"]["pillar"].get<int>();
+  EXPECT_GT(plants, 50) << "one pillar per 5 x 5 blocks of a 96 x 96 area (snow and sand aside)";
+  EXPECT_EQ(s["plant_blocks"], nlohmann::json({{"glowstone", 8 * plants}})) << "3 derivations of U > UU: 8 blocks a plant";
+  const int glow = glow_pixels(*scene);
+  EXPECT_GT(glow, 20 * glow_before + 200) << "before " << glow_before;
+
+  // Another grammar depth, picked up by the running program through the scene's parameter.
+  write("species/taller.json", pillar_species(4));
+  ASSERT_TRUE(scene->set_param("voxel.flora.species_file", "species/taller.json").ok());
+  const nlohmann::json taller = stats(*scene);
+  EXPECT_EQ(taller["plants_per_species"]["pillar"].get<int>(), plants) << "same places: same species index, biomes and grid";
+  EXPECT_EQ(taller["plant_blocks"], nlohmann::json({{"glowstone", 16 * plants}}));
+  EXPECT_TRUE(logged_.empty()) << logged_;
+  std::printf("plants %d, glow pixels shipped %d, pillars %d\n", plants, glow_before, glow);
+}
+
+TEST_F(VoxelSpeciesGl, AGrammarErrorNamesTheFileLineAndColumn) {
+  write("species/pillar.lsys", "0 0 1\nU\nU UU\n");
+  write("species/pillars.json", pillar_species(3));
+  auto scene = open(R"({"species_file": "species/pillars.json"})");
+  ASSERT_TRUE(scene) << "a bad species does not fail the scene";
+  EXPECT_NE(logged_.find(fmt::format("voxel.flora.species_file: {}: species[0].grammar: pillar.lsys:3:1: expected a rule "
+                                     "'letter > production' or a new header 'yaw_angle pitch_angle shrink_ratio'; the species is left out",
+                                     (dir_ / "species/pillars.json").string())),
+            std::string::npos)
+      << logged_;
+  EXPECT_TRUE(stats(*scene)["plants_per_species"].empty()) << stats(*scene).dump();
+}
+
+TEST_F(VoxelSpeciesGl, ABadBlockNameNamesTheJsonPathAndLeavesOnlyThatSpeciesOut) {
+  // Two species: the first lays "glass" on output 1 (no such block), the second is fine.
+  nlohmann::json table = nlohmann::json::parse(pillar_species(3, R"({"0": "glowstone", "1": "glass"})"));
+  nlohmann::json good = table["species"][0];
+  good["name"] = "lamp";
+  good["blocks"] = {{"0", "lantern"}};
+  table["species"].push_back(good);
+  write("species/pillars.json", table.dump());
+  auto scene = open(R"({"species_file": "species/pillars.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find(fmt::format("voxel.flora.species_file: {}: species[0].blocks.1: no block 'glass' in the palette; "
+                                     "the species is left out",
+                                     (dir_ / "species/pillars.json").string())),
+            std::string::npos)
+      << logged_;
+  const nlohmann::json s = stats(*scene);
+  ASSERT_EQ(s["plants_per_species"].size(), 1u) << s.dump();
+  const int lamps = s["plants_per_species"]["lamp"].get<int>();
+  EXPECT_GT(lamps, 50);
+  EXPECT_EQ(s["plant_blocks"], nlohmann::json({{"lantern", 8 * lamps}}));
+}
+
+TEST_F(VoxelSpeciesGl, AnExplodingGrammarIsRefusedBeforeItIsDerived) {
+  write("species/boom.lsys", "0 0 1\nUU\nU > UUUU\n");
+  nlohmann::json table = nlohmann::json::parse(pillar_species(20));
+  table["species"][0]["grammar"] = "boom.lsys";
+  write("species/boom.json", table.dump());
+  auto scene = open(R"({"species_file": "species/boom.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find("species[0].derivations: boom.lsys:1 may grow to 2.2e+12 symbols in 20 derivations, above the limit of "
+                         "2097152; lower the most derivations; the species is left out"),
+            std::string::npos)
+      << logged_;
+  EXPECT_TRUE(stats(*scene)["plants_per_species"].empty());
+
+  // 131 072 blocks a plant pass alone, but not 256 cached variants of it: the shipped species.
+  logged_.clear();
+  table["species"][0]["derivations"] = {8, 8};
+  write("species/boom.json", table.dump());
+  scene = open(R"({"species_file": "species/boom.json"})", 256);
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find("the plant cache may hold 3.36e+07 blocks (256 variants per species), above the limit of 16777216"),
+            std::string::npos)
+      << logged_;
+  EXPECT_NE(logged_.find("; the shipped species are used"), std::string::npos) << logged_;
+  EXPECT_EQ(stats(*scene)["species_table"], "species.json");
+}
+
+TEST_F(VoxelSpeciesGl, AMissingOrBrokenFileGivesTheShippedSpecies) {
+  auto scene = open(R"({"species_file": "species/none.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find(fmt::format("voxel.flora.species_file: {}: no such file; the shipped species are used",
+                                     (dir_ / "species/none.json").string())),
+            std::string::npos)
+      << logged_;
+  EXPECT_EQ(stats(*scene)["species_table"], "species.json");
+  EXPECT_FALSE(stats(*scene)["plants_per_species"].empty());
+  logged_.clear();
+  write("species/cut.json", R"({"species": [{"name": "pillar", "grammar": )");
+  scene = open(R"({"species_file": "species/cut.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find(fmt::format("voxel.flora.species_file: {}:1:", (dir_ / "species/cut.json").string())), std::string::npos)
+      << logged_;
+  EXPECT_EQ(stats(*scene)["species_table"], "species.json");
+}
+
+}  // namespace
