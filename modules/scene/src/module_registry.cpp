@@ -14,7 +14,7 @@
 namespace sylva::scene {
 namespace {
 
-constexpr std::array<std::string_view, 5> kKnown = {"ground", "terrain", "grass", "vegetation", "voxel"};
+constexpr std::array<std::string_view, 6> kKnown = {"ground", "terrain", "model_terrain", "grass", "vegetation", "voxel"};
 
 const std::vector<ModuleDescriptor>& table() {
   static const std::vector<ModuleDescriptor> modules = [] {
@@ -22,6 +22,7 @@ const std::vector<ModuleDescriptor>& table() {
     m.push_back(detail::ground_module());
 #ifdef SYLVA_HAS_TERRAIN
     m.push_back(detail::terrain_module());
+    m.push_back(detail::model_terrain_module());
 #endif
 #ifdef SYLVA_HAS_GRASS
     m.push_back(detail::grass_module());
@@ -85,7 +86,8 @@ Status require_module(std::string_view name, std::string_view json_path) {
     for (std::string_view k : kKnown) known += (known.empty() ? "" : ", ") + std::string(k);
     return make_error(ErrorCode::kNotFound, fmt::format("{}: unknown module \"{}\" (known: {})", json_path, name, known));
   }
-  std::string upper(name);
+  // The general model's renderer is part of the terrain module (SYLVA_WITH_TERRAIN).
+  std::string upper(name == "model_terrain" ? "terrain" : name);
   std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   return make_error(ErrorCode::kNotFound,
                     fmt::format("{}: this program was built without the {} module (configure with -DSYLVA_WITH_{}=ON)",

@@ -176,7 +176,6 @@ void ModelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
       depth_.use();
       depth_.set("u_view_projection", cascade->relative_view_projection);
       depth_.set("u_model", cascade->camera->relative_model(origin_));
-      depth_.set("u_origin", glm::vec3(origin_));
       draw_segments(depth_, shadow_selection_, false, stats, &cascade->light_frustum);
     }
   } else {

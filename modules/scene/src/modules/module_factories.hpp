@@ -8,6 +8,7 @@ namespace sylva::scene::detail {
 
 ModuleDescriptor ground_module();
 ModuleDescriptor terrain_module();
+ModuleDescriptor model_terrain_module();  // with the terrain module (SYLVA_HAS_TERRAIN)
 ModuleDescriptor grass_module();
 ModuleDescriptor vegetation_module();
 ModuleDescriptor voxel_module();
