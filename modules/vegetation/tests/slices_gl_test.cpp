@@ -404,6 +404,51 @@ TEST_F(SlicesGl, ColourNoiseTurnsLeavesInTheWindWithoutChangingCoverage) {
   EXPECT_EQ(changed_share(render(0.0f, calm), render(0.05f, calm)), 0.0) << "no wind, no colour noise";
 }
 
+// Colour noise as the viewer sees it (seed §3.3.1, "colour noise" beside "motion noise"): between
+// two frames of a windy slice-drawn tree, the crown's pixels change shade more with it than
+// without it (its leaves turn and catch the light differently per leaf instead of the picture
+// only sliding), while at each time the silhouette is exactly the one without it.
+TEST_F(SlicesGl, ColourNoiseMakesMovingSlicesShimmerBetweenFrames) {
+  Forest forest = testing::make_lod_forest(64);
+  testing::force_level(forest, 1, forest.settings().lod);
+  testing::GlScene scene = side_view_at_40m(forest);
+  const WindField windy(WindSettings{.strength = 8.0f, .gust_amplitude = 0.0f, .turbulence_amplitude = 0.0f});
+  const auto render = [&](float noise, double time) {
+    forest.settings().lod.color_noise = noise;
+    return testing::render_forest(forest, scene, windy, time);
+  };
+  // Pixels in the crown in both frames whose colour changed by more than 0.01.
+  const auto changed = [&](const Image& a, const Image& b) {
+    const Image fa = testing::foreground(a, scene.clear_color), fb = testing::foreground(b, scene.clear_color);
+    int n = 0;
+    for (int y = 0; y < a.height(); ++y)
+      for (int x = 0; x < a.width(); ++x) {
+        if (fa.at(x, y) < 0.5f || fb.at(x, y) < 0.5f) continue;
+        float d = 0.0f;
+        for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(a.at(x, y, k) - b.at(x, y, k)));
+        n += d > 0.01f ? 1 : 0;
+      }
+    return n;
+  };
+  const auto same_silhouette = [&](const Image& a, const Image& b) {
+    const Image fa = testing::foreground(a, scene.clear_color), fb = testing::foreground(b, scene.clear_color);
+    for (std::size_t i = 0; i < fa.data().size(); ++i)
+      if ((fa.data()[i] < 0.5f) != (fb.data()[i] < 0.5f)) return false;
+    return true;
+  };
+  const double t1 = 3.7, t2 = 4.2;
+  const Image off1 = render(0.0f, t1), off2 = render(0.0f, t2);
+  const float on = forest.settings().lod.color_noise = LodSettings{}.color_noise;  // the default
+  const Image on1 = render(on, t1), on2 = render(on, t2);
+  EXPECT_TRUE(same_silhouette(off1, on1)) << "shading only";
+  EXPECT_TRUE(same_silhouette(off2, on2)) << "shading only";
+  const int without = changed(off1, off2), with = changed(on1, on2);
+  const double crown = testing::share(testing::foreground(on1, scene.clear_color)) * 96.0 * 96.0;
+  std::printf("colour noise %.2f rad/(m/s): %d crown pixels change between frames 0.5 s apart, %d without (crown %.0f px)\n", on,
+              with, without, crown);
+  EXPECT_GT(with, without + static_cast<int>(0.1 * crown)) << "the leaves shimmer";
+}
+
 // Per-level draw switches at fixed thresholds (seed 000 Tab 5.4, LodSettings::draw_lod*): a level
 // switched off is still selected and counted but draws nothing; the other levels are unaffected.
 TEST_F(SlicesGl, ALevelSwitchedOffIsSelectedButNotDrawn) {
