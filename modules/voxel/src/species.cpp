@@ -159,8 +159,9 @@ Result<SpeciesDef> parse_species(const nlohmann::json& entry, const std::string&
     }
     for (const auto& [key, value] : biomes->items()) {
       const std::string here = fmt::format("{}.biomes.{}", path, key);
-      const auto& names = enum_names(Biome{});
-      const auto it = std::find_if(names.begin(), names.end(), [&](const auto& n) { return key == n.name; });
+      const auto names = enum_names(Biome{});
+      const std::string& biome = key;  // clang 15 cannot capture a structured binding
+      const auto it = std::find_if(names.begin(), names.end(), [&biome](const auto& n) { return biome == n.name; });
       if (it == names.end()) {
         return fail(ErrorCode::kInvalidArgument, source, fmt::format("{}: no such biome (one of {})", here, biome_names()));
       }
@@ -218,7 +219,7 @@ std::pair<double, double> worst_case_growth(const LSystem& system, int derivatio
     }
     counts = next;
     symbols = std::max(symbols, total(counts));  // derive() caps every step, not only the last
-    parts = laid(counts);
+    parts = std::max(parts, laid(counts));  // a plant may take fewer derivations
   }
   return {symbols, parts};
 }

@@ -83,6 +83,10 @@ TEST(SpeciesTableShipped, WorstCaseBoundsEveryDerivation) {
   auto doubling = parse_lsystems("0 0 1\nU\nU > UU\n", "d");
   ASSERT_TRUE(doubling.ok());
   EXPECT_EQ(worst_case_growth(doubling->front(), 10), std::make_pair(1024.0, 1024.0));
+  // Blocks a plant lays at fewer derivations count too (rules may remove blocks): U > a.
+  auto shrinking = parse_lsystems("0 0 1\nUUU\nU > a\n", "s");
+  ASSERT_TRUE(shrinking.ok());
+  EXPECT_EQ(worst_case_growth(shrinking->front(), 2), std::make_pair(3.0, 3.0));
 }
 
 TEST_F(SpeciesFile, UserGrammarLoadsAndGrows) {
