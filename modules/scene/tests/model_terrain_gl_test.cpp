@@ -9,6 +9,7 @@
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
 #include <sylva/render/testing.hpp>
+#include <sylva/scene/frame_stats.hpp>
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
@@ -103,6 +104,50 @@ TEST_F(ModelTerrainGl, ShippedSceneDrawsTheModelWhereItMustBeSeen) {
   std::printf("model_terrain: from above %s segments, %s triangles, %s GPU bytes; the file's view at tau 1: %llu "
               "triangles, at tau 8: %s\n", s["segments_drawn"].dump().c_str(), s["triangles"].dump().c_str(),
               s["gpu_bytes"].dump().c_str(), static_cast<unsigned long long>(fine), coarse["triangles"].dump().c_str());
+}
+
+// Shadows: the model casts into the scene's cascades (the shadow pass draws its segments) and
+// what it casts darkens the picture (onto itself and the ground) against cast_shadows = false.
+TEST_F(ModelTerrainGl, CastsShadowsIntoTheScene) {
+  if (!find_module("model_terrain")) GTEST_SKIP() << "terrain is built out";
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(kScene, warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  ASSERT_TRUE(doc->render.shadows.enabled);
+  auto scene = Scene::create(std::move(*doc));
+  ASSERT_TRUE(scene.ok()) << scene.error().message;
+  const glm::ivec2 size(160, 90);
+  // A sun behind the cliff (azimuth 90, 30 degrees up) lays its shadow toward the file's camera.
+  ASSERT_TRUE((*scene)->set_param("sun.azimuth_deg", "90").ok());
+  ASSERT_TRUE((*scene)->set_param("sun.elevation_deg", "30").ok());
+  const render::Camera down = (*scene)->make_camera((*scene)->document().camera, size);
+  const auto shot = [&](std::uint64_t& shadow_triangles) {
+    auto fb = render::Framebuffer::create({.width = size.x, .height = size.y}).value();
+    render::FrameProfiler profiler;
+    for (int i = 0; i < 2; ++i) {
+      (*scene)->update(down, 0.0, 0.0f, size);
+      (*scene)->render(fb, profiler);
+    }
+    auto stats = profiler.flush();
+    shadow_triangles = stats ? split_frame_stats(*stats).modules["model_terrain"]["shadow"].triangles : 0;
+    return render::read_color(fb).value();
+  };
+  std::uint64_t cast = 0, none = 0;
+  const Image lit = shot(cast);
+  ASSERT_TRUE((*scene)->set_param("model_terrain.render.cast_shadows", "false").ok());
+  const Image unshadowed = shot(none);
+  EXPECT_GT(cast, 0u) << "the shadow pass draws the model";
+  EXPECT_EQ(none, 0u);
+  std::size_t darker = 0;
+  for (int y = 0; y < lit.height(); ++y)
+    for (int x = 0; x < lit.width(); ++x) {
+      const float a = lit.at(x, y, 0) + lit.at(x, y, 1) + lit.at(x, y, 2);
+      const float b = unshadowed.at(x, y, 0) + unshadowed.at(x, y, 1) + unshadowed.at(x, y, 2);
+      if (a < 0.9f * b) ++darker;  // the sun term is lost, the sky light stays
+    }
+  EXPECT_GT(darker, lit.pixel_count() / 20) << "the model's shadow shows";
+  std::printf("shadows: %llu triangles in the shadow pass, %zu of %zu pixels darker\n",
+              static_cast<unsigned long long>(cast), darker, lit.pixel_count());
 }
 
 // Tab. 4.6-4.11's axis from a file: tree.reduce_per_pass (seed -reduce) and tree.levels.
