@@ -5,6 +5,7 @@
 // leave the scene open with a warning naming the file and the JSON path or the grammar's
 // file:line:column; a grammar that would explode is refused before it is derived.
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/image.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/queries.hpp>
@@ -47,6 +48,7 @@ class VoxelSpeciesGl : public render::GlTest {
            fmt::format("sylva_voxel_species_gl_{}_{}", ::getpid(), ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "species");
+    fs::create_directories(dir_ / "blocks");
     write("species/pillar.lsys", kPillar);
     set_log_sink([this](LogLevel level, std::string_view message) {
       if (level == LogLevel::kWarn) logged_ += std::string(message) + "\n";
@@ -60,12 +62,13 @@ class VoxelSpeciesGl : public render::GlTest {
 
   void write(const std::string& name, const std::string& text) { ASSERT_TRUE(write_file_atomic(dir_ / name, text).ok()); }
 
-  // scene.json with a 3 x 3 column voxel world (seed 3) and `flora`, opened from the file.
-  std::unique_ptr<Scene> open(const std::string& flora, int variants = 2) {
+  // scene.json with a 3 x 3 column voxel world (seed 3), `flora` and `blocks`, opened from the file.
+  std::unique_ptr<Scene> open(const std::string& flora, int variants = 2, const std::string& blocks = "{}") {
     const std::string text = fmt::format(R"({{"camera": {{"position": [16, 95, 16], "yaw_deg": 0, "pitch_deg": -89.9, "fov_deg": 60}},
         "render": {{"msaa_samples": 1, "shadows": {{"enabled": false}}}},
-        "voxel": {{"radius_chunks": 1, "threads": 2, "worldgen": {{"seed": 3, "variants_per_species": {}}}, "flora": {}}}}})",
-                                         variants, flora);
+        "voxel": {{"radius_chunks": 1, "threads": 2, "worldgen": {{"seed": 3, "variants_per_species": {}}}, "flora": {},
+                   "blocks": {}}}}})",
+                                         variants, flora, blocks);
     EXPECT_TRUE(write_file_atomic(dir_ / "scene.json", text).ok());
     std::vector<std::string> warnings;
     auto doc = SceneDocument::load(dir_ / "scene.json", warnings);
@@ -82,6 +85,14 @@ class VoxelSpeciesGl : public render::GlTest {
   // (0.86, 0.92, 0.95 measured) where grass, leaves, logs and dry grass have a channel below
   // 0.8; counted in the middle 100 x 100 pixels, inside the fade into the sky at the edge.
   static int glow_pixels(Scene& scene) {
+    return count_pixels(scene, [](float r, float g, float b) { return std::min({r, g, b}) > 0.8f; });
+  }
+  // Pixels of a pure red image texture, lit: red well above green and blue.
+  static int red_pixels(Scene& scene) {
+    return count_pixels(scene, [](float r, float g, float b) { return r > 0.25f && g < 0.3f * r && b < 0.3f * r; });
+  }
+  template <class Pick>
+  static int count_pixels(Scene& scene, Pick pick) {
     const glm::ivec2 size(160, 160);
     auto fb = render::Framebuffer::create({.width = size.x, .height = size.y}).value();
     render::FrameProfiler profiler;
@@ -92,8 +103,7 @@ class VoxelSpeciesGl : public render::GlTest {
     int n = 0;
     for (int y = 30; y < 130; ++y)
       for (int x = 30; x < 130; ++x) {
-        const float lo = std::min({img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)});
-        n += lo > 0.8f;
+        n += pick(img.at(x, y, 0), img.at(x, y, 1), img.at(x, y, 2)) ? 1 : 0;
       }
     return n;
   }
@@ -212,6 +222,74 @@ TEST_F(VoxelSpeciesGl, AMissingOrBrokenFileGivesTheShippedSpecies) {
   EXPECT_NE(logged_.find(fmt::format("voxel.flora.species_file: {}:1:", (dir_ / "species/cut.json").string())), std::string::npos)
       << logged_;
   EXPECT_EQ(stats(*scene)["species_table"], "species.json");
+}
+
+// The blocks the generator lays (worldgen.cpp) and a brick from a red image, a user's palette.
+std::string small_palette(const std::string& more = "") {
+  return R"({"blocks": [{"name": "stone", "texture": "stone"}, {"name": "dirt", "texture": "dirt"},
+      {"name": "grass", "texture": {"top": "grass_top", "side": "grass_side", "bottom": "dirt"}},
+      {"name": "dry_grass", "texture": {"top": "dry_grass_top", "side": "dry_grass_side", "bottom": "dirt"}},
+      {"name": "sand", "texture": "sand"}, {"name": "snow", "texture": "snow"},
+      {"name": "tall_grass", "render": "alpha_cut", "texture": "tall_grass", "cull_same": false, "sides_only": true},
+      {"name": "flowers", "render": "alpha_cut", "texture": "flowers", "cull_same": false, "sides_only": true})" +
+         more + "]}";
+}
+
+TEST_F(VoxelSpeciesGl, AUserPaletteGivesImageTexturedBlocks) {
+  Image red(8, 8, 3);
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) red.at(x, y, 0) = 1.0f;
+  ASSERT_TRUE(write_image(dir_ / "blocks" / "red.png", red, PixelFormat::kU8).ok());
+  write("blocks/palette.json", small_palette(R"(, {"name": "brick", "texture": "red.png"})"));
+  write("species/pillars.json", pillar_species(3, R"({"0": "brick"})"));
+  auto shipped = open("{}");
+  ASSERT_TRUE(shipped);
+  const int red_before = red_pixels(*shipped);
+  EXPECT_EQ(stats(*shipped)["palette_blocks"], 21);
+  shipped.reset();
+
+  auto scene = open(R"({"species_file": "species/pillars.json"})", 2, R"({"palette_file": "blocks/palette.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_TRUE(logged_.empty()) << logged_;
+  const nlohmann::json s = stats(*scene);
+  EXPECT_EQ(s["palette_blocks"], 9);
+  const int plants = s["plants_per_species"]["pillar"].get<int>();
+  EXPECT_EQ(plants, 371) << "the same places as with the shipped palette";
+  EXPECT_EQ(s["plant_blocks"], nlohmann::json({{"brick", 8 * plants}}));
+  const int red_after = red_pixels(*scene);
+  EXPECT_GT(red_after, 20 * red_before + 200) << "before " << red_before;
+  std::printf("red pixels shipped %d, brick pillars %d\n", red_before, red_after);
+}
+
+TEST_F(VoxelSpeciesGl, APaletteLackingBlocksLeavesOutWhatNeedsThem) {
+  // The shipped species need woods and leaves this palette lacks: each is left out.
+  write("blocks/palette.json", small_palette());
+  auto scene = open("{}", 2, R"({"palette_file": "blocks/palette.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find("voxel.blocks.palette_file: species.json: species[0].blocks.0: no block 'acacia_log' in the palette; "
+                         "the species is left out"),
+            std::string::npos)
+      << logged_;
+  EXPECT_EQ(stats(*scene)["palette_blocks"], 8);
+  EXPECT_TRUE(stats(*scene)["plants_per_species"].empty());
+  // Without a block the generator lays (stone), the standard palette is used.
+  logged_.clear();
+  write("blocks/palette.json", R"({"blocks": [{"name": "dirt", "texture": "dirt"}]})");
+  scene = open("{}", 2, R"({"palette_file": "blocks/palette.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find("stone"), std::string::npos) << logged_;
+  EXPECT_NE(logged_.find("; the standard palette is used"), std::string::npos) << logged_;
+  EXPECT_EQ(stats(*scene)["palette_blocks"], 21);
+  // A palette error names the file and the JSON path.
+  logged_.clear();
+  write("blocks/palette.json", small_palette(R"(, {"name": "brick", "texture": "granite"})"));
+  scene = open("{}", 2, R"({"palette_file": "blocks/palette.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_NE(logged_.find(fmt::format("voxel.blocks.palette_file: {}: blocks[8].texture: no procedural texture 'granite'",
+                                     (dir_ / "blocks/palette.json").string())),
+            std::string::npos)
+      << logged_;
+  EXPECT_EQ(stats(*scene)["palette_blocks"], 21);
 }
 
 }  // namespace

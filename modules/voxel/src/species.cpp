@@ -298,10 +298,7 @@ Result<SpeciesTable> builtin_species_table(const BlockPalette& palette) {
   const auto text = detail::embedded_file(kFile);
   if (!text) return make_error(ErrorCode::kNotFound, "no built-in species.json");
   std::vector<std::string> warnings;
-  auto table = parse_species_table(*text, kFile, {}, &read_builtin_grammar, palette, warnings);
-  if (!table.ok()) return table.error();
-  if (!table->rejected.empty()) return table->rejected.front();
-  return table;
+  return parse_species_table(*text, kFile, {}, &read_builtin_grammar, palette, warnings);
 }
 
 }  // namespace sylva::voxel

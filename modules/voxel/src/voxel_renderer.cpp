@@ -24,6 +24,27 @@ namespace sylva::voxel {
 
 namespace {
 
+// `image` (RGBA) at `size` x `size` in the layout of `like` (a procedural layer): the mean of the
+// texels each target texel covers when shrinking, the nearest texel when enlarging.
+Image resample_rgba(const Image& image, int size, const Image& like) {
+  Image out = like;
+  for (int y = 0; y < size; ++y) {
+    const int y0 = y * image.height() / size;
+    const int y1 = std::max(y0 + 1, (y + 1) * image.height() / size);
+    for (int x = 0; x < size; ++x) {
+      const int x0 = x * image.width() / size;
+      const int x1 = std::max(x0 + 1, (x + 1) * image.width() / size);
+      for (int c = 0; c < 4; ++c) {
+        float sum = 0.0f;
+        for (int v = y0; v < y1; ++v)
+          for (int u = x0; u < x1; ++u) sum += image.at(u, v, c);
+        out.at(x, y, c) = sum / static_cast<float>((y1 - y0) * (x1 - x0));
+      }
+    }
+  }
+  return out;
+}
+
 constexpr GLuint kQuadBinding = 1;
 constexpr GLuint kPlantBinding = 2;
 constexpr GLuint kBlockBinding = 3;
@@ -148,13 +169,23 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
       [self](const render::ShadowCasterContext& c) { self->draw_shadow(c); });
   SYLVA_TRY(r->set_shadow_receiver({}));
 
-  // Texture arrays: one layer per TextureId.
+  // Texture arrays: one layer per TextureId, then the palette's images (palette_file.hpp)
+  // resampled to texture_size (box filter when smaller, nearest texel when larger: pixel art
+  // stays crisp) with no specular map.
+  const BlockPalette& palette = world.palette();
   std::vector<Image> diffuse, specular;
   for (int i = 0; i < kTextureCount; ++i) {
     auto t = generate_block_texture(static_cast<TextureId>(i), settings.texture_size);
     diffuse.push_back(std::move(t.diffuse));
     specular.push_back(std::move(t.specular));
   }
+  for (const Image& image : palette.images()) {
+    diffuse.push_back(resample_rgba(image, settings.texture_size, diffuse.front()));
+    Image none = specular.front();
+    std::fill(none.data().begin(), none.data().end(), 0.0f);
+    specular.push_back(std::move(none));
+  }
+  const int layers = static_cast<int>(diffuse.size());
   render::TextureOptions opt;
   opt.encoding = render::TextureEncoding::kSrgb8;
   opt.min_filter = GL_NEAREST_MIPMAP_LINEAR;
@@ -167,14 +198,13 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   r->diffuse_ = std::move(*d);
   r->specular_ = std::move(*s);
 
-  const BlockPalette& palette = world.palette();
   std::vector<BlockGpu> table(palette.size());
   for (std::size_t i = 0; i < palette.size(); ++i) {
     const BlockType& t = palette[static_cast<BlockId>(i)];
     BlockGpu& g = table[i];
-    g.layers[0] = static_cast<std::uint32_t>(std::clamp(t.texture_top, 0, kTextureCount - 1));
-    g.layers[1] = static_cast<std::uint32_t>(std::clamp(t.texture_side, 0, kTextureCount - 1));
-    g.layers[2] = static_cast<std::uint32_t>(std::clamp(t.texture_bottom, 0, kTextureCount - 1));
+    g.layers[0] = static_cast<std::uint32_t>(std::clamp(t.texture_top, 0, layers - 1));
+    g.layers[1] = static_cast<std::uint32_t>(std::clamp(t.texture_side, 0, layers - 1));
+    g.layers[2] = static_cast<std::uint32_t>(std::clamp(t.texture_bottom, 0, layers - 1));
     g.layers[3] = (t.render == RenderClass::kAlphaCut ? 1u : 0u) | (t.emits_light() ? 2u : 0u);
     g.emission[0] = t.emission.x;
     g.emission[1] = t.emission.y;

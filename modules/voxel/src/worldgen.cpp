@@ -91,6 +91,7 @@ Result<std::shared_ptr<const WorldGenerator>> WorldGenerator::create(const World
   if (!species) {
     auto shipped = builtin_species_table(palette);
     if (!shipped.ok()) return shipped.error();
+    if (!shipped->rejected.empty()) return shipped->rejected.front();  // a palette without the shipped blocks
     species = std::make_shared<const SpeciesTable>(std::move(*shipped));
   }
   if (species->palette != &palette) {

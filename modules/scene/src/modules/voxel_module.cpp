@@ -10,12 +10,19 @@
 // species, each with a warning naming the file and the JSON path or the grammar's
 // file:line:column. A world is still a world without a user's plants, and the editor keeps the
 // scene open while its user fixes the file (the scene's warnings are its messages).
+//
+// The block palette is data too: `blocks.palette_file` (voxel/palette_file.hpp; "" = the shipped
+// data/palette.json) names blocks with render class, procedural or image textures, emission and
+// specular. A palette that fails, or that lacks a block the generator lays (stone, dirt, grass,
+// dry_grass, sand, snow, tall_grass, flowers), gives the standard palette with a warning; species
+// whose blocks a user's palette lacks are left out with a warning.
 
 #include "modules/module_factories.hpp"
 
 #include <sylva/core/log.hpp>
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/scene/module_instance.hpp>
+#include <sylva/voxel/palette_file.hpp>
 #include <sylva/voxel/species.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
 #include <sylva/voxel/worker_pool.hpp>
@@ -42,6 +49,17 @@ struct FloraSettings {
   }
 };
 
+struct BlockSettings {
+  std::string palette_file;  // "" = the shipped data/palette.json
+
+  template <class V>
+  void visit(V& v) {
+    v(palette_file, "palette_file",
+      {.max = 4096.0, .help = "Block palette (JSON: names, render class, textures from images or procedural, see the voxel README), relative to the scene file; empty = the shipped blocks",
+       .rebuild = Rebuild::kOffline});
+  }
+};
+
 struct VoxelSectionSettings {
   glm::dvec2 center{0.0, 0.0};   // world x/z the generated area is centred on [blocks = m]
   int radius_chunks = 3;         // chunks generated in each direction around the centre
@@ -49,6 +67,7 @@ struct VoxelSectionSettings {
   int threads = 0;               // generation and meshing workers (0 = all cores)
   voxel::WorldGenSettings worldgen;
   FloraSettings flora;
+  BlockSettings blocks;
   // A scene's world fades into the sky at the edge of its generated area (view_distance caps the
   // inscribed radius around the camera; the library's default 0 means no fade).
   voxel::VoxelRenderSettings render = [] {
@@ -65,6 +84,7 @@ struct VoxelSectionSettings {
     v(threads, "threads", {.min = 0, .max = 256, .help = "Worker threads (0 = all cores)", .rebuild = Rebuild::kOffline});
     v(worldgen, "worldgen");
     v(flora, "flora");
+    v(blocks, "blocks");
     v(render, "render");
   }
 };
@@ -128,6 +148,7 @@ class VoxelInstance final : public ModuleInstance {
             {"shadow_chunks_cast", s.shadow_chunks_cast},
             {"generation_ms", generation_ms_},
             {"species_table", generator_->species().source},
+            {"palette_blocks", generator_->palette().size() - 1},
             {"plants_per_species", plants_per_species_},
             {"plant_blocks", plant_blocks_}};
   }
@@ -147,19 +168,55 @@ class VoxelInstance final : public ModuleInstance {
 
   const VoxelSectionSettings& settings() const { return static_cast<const Settings&>(*ctx_.section->settings).value; }
 
-  // The scene's species table (see the top of the file for the policy).
-  std::shared_ptr<const voxel::SpeciesTable> species_table() const {
-    const std::string& file = settings().flora.species_file;
+  // The scene's block palette; null: the standard one (see the top of the file for the policy).
+  std::shared_ptr<const voxel::BlockPalette> user_palette() const {
+    const std::string& file = settings().blocks.palette_file;
     if (file.empty()) return nullptr;
     std::vector<std::string> warnings;
-    auto table = voxel::load_species_table(ctx_.document->resolve(file), voxel::BlockPalette::standard(), warnings);
+    auto palette = voxel::load_palette(ctx_.document->resolve(file), warnings);
+    for (const std::string& w : warnings) log_warn("voxel.blocks.palette_file: {}", w);
+    if (!palette.ok()) {
+      log_warn("voxel.blocks.palette_file: {}; the standard palette is used", palette.error().message);
+      return nullptr;
+    }
+    return std::make_shared<const voxel::BlockPalette>(std::move(*palette));
+  }
+
+  // The shipped species for `palette`: null (the generator's default) for the standard palette.
+  static std::shared_ptr<const voxel::SpeciesTable> shipped_species(const voxel::BlockPalette& palette) {
+    if (&palette == &voxel::BlockPalette::standard()) return nullptr;
+    auto table = voxel::builtin_species_table(palette);
+    if (!table.ok()) return nullptr;
+    for (const Error& e : table->rejected) log_warn("voxel.blocks.palette_file: {}; the species is left out", e.message);
+    table->rejected.clear();
+    return std::make_shared<const voxel::SpeciesTable>(std::move(*table));
+  }
+
+  // The scene's species table read for `palette` (see the top of the file for the policy).
+  std::shared_ptr<const voxel::SpeciesTable> species_table(const voxel::BlockPalette& palette) const {
+    const std::string& file = settings().flora.species_file;
+    if (file.empty()) return shipped_species(palette);
+    std::vector<std::string> warnings;
+    auto table = voxel::load_species_table(ctx_.document->resolve(file), palette, warnings);
     for (const std::string& w : warnings) log_warn("voxel.flora.species_file: {}", w);
     if (!table.ok()) {
       log_warn("voxel.flora.species_file: {}; the shipped species are used", table.error().message);
-      return nullptr;
+      return shipped_species(palette);
     }
     for (const Error& e : table->rejected) log_warn("voxel.flora.species_file: {}; the species is left out", e.message);
     return std::make_shared<const voxel::SpeciesTable>(std::move(*table));
+  }
+
+  Result<std::shared_ptr<const voxel::WorldGenerator>> make_generator(const voxel::BlockPalette& palette) const {
+    const VoxelSectionSettings& s = settings();
+    auto generator = voxel::WorldGenerator::create(s.worldgen, palette, species_table(palette));
+    if (!generator.ok() && !s.flora.species_file.empty()) {
+      // A user's grammar that fails while its variants are built (e.g. brackets nested past
+      // max_depth, which the worst-case check before deriving does not bound).
+      log_warn("voxel.flora.species_file: {}; the shipped species are used", generator.error().message);
+      generator = voxel::WorldGenerator::create(s.worldgen, palette, shipped_species(palette));
+    }
+    return generator;
   }
 
   // Plants per species and their blocks per block name, counted from the generated world.
@@ -187,16 +244,15 @@ class VoxelInstance final : public ModuleInstance {
 
   Status build() {
     const VoxelSectionSettings& s = settings();
-    const std::shared_ptr<const voxel::SpeciesTable> table = species_table();
-    auto generator = voxel::WorldGenerator::create(s.worldgen, voxel::BlockPalette::standard(), table);
-    if (!generator.ok() && table) {
-      // A user's grammar that fails while its variants are built (e.g. brackets nested past
-      // max_depth, which the worst-case check before deriving does not bound).
-      log_warn("voxel.flora.species_file: {}; the shipped species are used", generator.error().message);
-      generator = voxel::WorldGenerator::create(s.worldgen);
+    std::shared_ptr<const voxel::BlockPalette> palette = user_palette();
+    auto generator = make_generator(palette ? *palette : voxel::BlockPalette::standard());
+    if (!generator.ok() && palette) {
+      log_warn("voxel.blocks.palette_file: {}; the standard palette is used", generator.error().message);
+      palette = nullptr;
+      generator = make_generator(voxel::BlockPalette::standard());
     }
     if (!generator.ok()) return make_error(generator.error().code, "voxel: " + generator.error().message);
-    auto world = std::make_unique<voxel::World>();
+    auto world = std::make_unique<voxel::World>((*generator)->palette());
     voxel::WorkerPool pool(s.threads);
     std::int64_t y0 = 0, y1 = 0;
     voxel::chunk_y_range(s.worldgen, y0, y1);
@@ -214,12 +270,14 @@ class VoxelInstance final : public ModuleInstance {
     renderer_ptr_ = renderer_.get();
     world_ = std::move(world);
     generator_ = *generator;
+    palette_ = std::move(palette);  // last: the old world, generator and renderer used the old one
     generation_ms_ = report.milliseconds;
     count_plants();
     return {};
   }
 
   ModuleBuildContext ctx_;
+  std::shared_ptr<const voxel::BlockPalette> palette_;  // a user's palette (null: standard), outlives the rest
   std::shared_ptr<const voxel::WorldGenerator> generator_;
   std::unique_ptr<voxel::World> world_;
   std::unique_ptr<voxel::VoxelRenderer> renderer_;

@@ -5,6 +5,7 @@
 // A BlockId is an index into one BlockPalette. Chunks store ids; region files store block
 // *names* so a saved world survives a palette that gained or reordered entries.
 
+#include <sylva/core/image.hpp>
 #include <sylva/core/result.hpp>
 
 #include <glm/vec3.hpp>
@@ -63,7 +64,8 @@ class BlockPalette {
   BlockPalette();
 
   // The standard palette used by world generation: terrain, the woods and leaves of the seed's
-  // species (acacia, birch, oak, jungle, two bushes), plains grass and two light sources.
+  // species (acacia, birch, oak, jungle, two bushes), plains grass and two light sources. It is
+  // data/palette.json (palette_file.hpp), embedded, read by the same parser as a user's palette.
   static const BlockPalette& standard();
 
   // Adds a type. Errors (kInvalidArgument): duplicate or malformed name, more than 65535 types,
@@ -85,6 +87,12 @@ class BlockPalette {
   bool culls_same(BlockId id) const { return types_[id].cull_same; }
   const std::vector<std::uint8_t>& sides_only_table() const { return sides_only_; }
   bool sides_only(BlockId id) const { return sides_only_[id] != 0; }
+  // Diffuse RGBA images a palette file brought (palette_file.hpp): texture index
+  // kTextureCount + i (block_textures.hpp) is images()[i]; the procedural textures come first.
+  // Returns that index; kLimit past kMaxPaletteImages.
+  Result<int> add_image(Image rgba);
+  const std::vector<Image>& images() const { return images_; }
+
   // Smallest alpha-cut id (0xffff when there is none): ids below it are air or opaque, which lets
   // the bitmask mesher classify whole rows with SIMD compares.
   BlockId first_alpha_cut() const { return first_alpha_cut_; }
@@ -95,6 +103,9 @@ class BlockPalette {
   std::vector<std::uint8_t> render_;
   std::vector<std::uint8_t> sides_only_;
   BlockId first_alpha_cut_ = 0xffff;
+  std::vector<Image> images_;
 };
+
+inline constexpr std::size_t kMaxPaletteImages = 256;
 
 }  // namespace sylva::voxel

@@ -94,7 +94,8 @@ Result<SpeciesTable> parse_species_table(std::string_view text, std::string_view
 // A file on disk (size checked before reading); grammars relative to its folder.
 Result<SpeciesTable> load_species_table(const std::filesystem::path& path, const BlockPalette& palette,
                                         std::vector<std::string>& warnings, const ExpansionLimits& limits = {});
-// The shipped table (data/species.json with the shipped grammars, both embedded).
+// The shipped table (data/species.json with the shipped grammars, both embedded). With another
+// palette than the standard one, species whose blocks it lacks are in `rejected`.
 Result<SpeciesTable> builtin_species_table(const BlockPalette& palette = BlockPalette::standard());
 
 // Reads a grammar from disk (size checked first); errors name `relative`.
