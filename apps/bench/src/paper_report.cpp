@@ -55,9 +55,8 @@ std::string heading(const std::string& thesis, CostMetric cost, const MachineInf
       thesis, m.cpu_model, m.cpu_cores, gl_renderer, m.build_type, m.date_utc, to_string(cost));
 }
 
-}  // namespace
-
-double paper_measure(const SettingResult& result, const PaperValue& value, CostMetric cost) {
+// A value as measured (ms: the cost metric's mean; counts per frame; metrics their mean).
+double unscaled_measure(const SettingResult& result, const PaperValue& value, CostMetric cost) {
   const auto per_frame = [&](std::uint64_t total) {
     return result.frames > 0 ? static_cast<double>(total) / result.frames : std::nan("");
   };
@@ -71,6 +70,12 @@ double paper_measure(const SettingResult& result, const PaperValue& value, CostM
     }
   }
   return std::nan("");
+}
+
+}  // namespace
+
+double paper_measure(const SettingResult& result, const PaperValue& value, CostMetric cost) {
+  return value.scale * unscaled_measure(result, value, cost);
 }
 
 PaperGrid paper_grid(const PaperOutcome& o, CostMetric cost) {

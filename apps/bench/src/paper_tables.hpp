@@ -36,6 +36,7 @@ struct PaperValue {
   // >= 0: Sylva's value minus the same quantity of that column in the same row (a baseline column,
   // such as the scene without the measured object, so a count is the object's own).
   int minus_column = -1;
+  double scale = 1.0;           // Sylva's value is multiplied by this (e.g. 0.001: a metric in ms shown in s)
 };
 
 // One column: a setting applied on top of the row's, and what is reported of it.
@@ -78,6 +79,9 @@ struct PaperTable {
   std::string differences;            // deliberate differences from the thesis's set-up
   bool thesis_has_numbers = true;     // false: the thesis shows figures only; Sylva's column stands alone
   std::string missing;                // non-empty: Sylva cannot run this table yet, and why
+  // Files the stage scene names by relative path (name, content), written next to it before the
+  // table runs: a generated mesh, so a table needs nothing from the source tree.
+  std::vector<std::pair<std::string, std::string>> stage_files;
 };
 
 // A value of a column (ms and counts per frame: see PaperMeasure) with the thesis's numbers.

@@ -170,7 +170,13 @@ TEST(PaperTables, Seed003IsCompleteAndKeepsTheThesisDashes) {
 
 TEST(PaperTables, Seed002FpsAreShownAsMs) {
   const std::vector<PaperTable> tables = paper_tables("002");
-  ASSERT_EQ(tables.size(), 7u);  // 3.1 - 3.5, 3.6-3.7, 4.6-4.11
+  ASSERT_EQ(tables.size(), 8u);  // 3.1 - 3.5, 3.6-3.7, general model by level (4.6/4.8/4.10) and by reduction
+  EXPECT_TRUE(tables[6].missing.empty());
+  EXPECT_EQ(tables[6].id, "4.6, 4.8, 4.10");
+  EXPECT_DOUBLE_EQ(tables[7].columns[0].values[1].thesis.back(), 93.0);  // Tab. 4.9 at 90 %: 93 FPS
+  EXPECT_TRUE(tables[7].columns[0].values[1].thesis_fps);
+  ASSERT_EQ(tables[6].stage_files.size(), 1u);
+  EXPECT_NE(tables[6].stage_files[0].second.find("\nf 1 98 2\n"), std::string::npos) << "a 96-quad sheet, first triangle";
   expect_complete(tables, "002");
   const PaperTable& t31 = tables[0];
   EXPECT_EQ(t31.id, "3.1");

@@ -4,6 +4,8 @@
 #include "paper_tables.hpp"
 #include "with_scene/scene_target.hpp"
 
+#include <sylva/core/atomic_file.hpp>
+
 #include <fmt/format.h>
 
 #include <cctype>
@@ -27,9 +29,10 @@ std::string folder_name(const std::string& id) {
   return out;
 }
 
-RunSpec row_spec(const PaperTable& t, std::size_t row, const PaperRunOptions& o, const std::filesystem::path& folder) {
+RunSpec row_spec(const PaperTable& t, std::size_t row, const PaperRunOptions& o, const std::filesystem::path& folder,
+                 const std::filesystem::path& stage_dir) {
   RunSpec spec;
-  spec.factory = scene_text_factory(t.scene_json, fmt::format("<paper {} tab {}>", t.thesis, t.id));
+  spec.factory = scene_text_factory(t.scene_json, fmt::format("<paper {} tab {}>", t.thesis, t.id), stage_dir);
   spec.scene = fmt::format("paper {} tab. {} stage", t.thesis, t.id);
   spec.suite = fmt::format("paper-{}", t.thesis);
   spec.description = fmt::format("Seed {} Tab. {}: {}; row {} = {}", t.thesis, t.id, t.title, t.row_header, t.rows[row].label);
@@ -64,13 +67,23 @@ PaperOutcome run_table(const PaperTable& t, const PaperRunOptions& o, const std:
   outcome.rows.resize(t.rows.size());
   outcome.row_reports.resize(t.rows.size());
   if (!t.missing.empty()) return outcome;
+  // The stage's own files (a generated mesh), next to where its scene is resolved.
+  const std::filesystem::path stage_dir = thesis_dir / fmt::format("tab-{}", folder_name(t.id)) / "stage";
+  for (const auto& [name, content] : t.stage_files) {
+    std::error_code ec;
+    std::filesystem::create_directories(stage_dir, ec);
+    if (Status s = write_file_atomic(stage_dir / name, content); !s.ok()) {
+      outcome.failure = s.error().message;
+      return outcome;
+    }
+  }
   bool ran_one = false;
   for (std::size_t r = 0; r < t.rows.size(); ++r) {
     if (!t.rows[r].missing.empty()) continue;  // shown with the thesis's numbers, not run
     if (o.quick && ran_one) break;             // --quick: the first row Sylva can run
     ran_one = true;
     const std::string rel = fmt::format("tab-{}/row-{}", folder_name(t.id), r);
-    RunSpec spec = row_spec(t, r, o, thesis_dir / rel);
+    RunSpec spec = row_spec(t, r, o, thesis_dir / rel, stage_dir);
     cost = spec.cost;
     out << fmt::format("paper {} tab. {} row {} ({}): {} setting(s)\n", t.thesis, t.id, r, t.rows[r].label,
                        spec.sweep_groups.size());
