@@ -99,6 +99,55 @@ TEST_F(BackwardTransformGl, ZeroWindRendersTheBakedSliceExactly) {
   EXPECT_EQ(mismatched, 0u);
 }
 
+// Seed 000 Tab. 5.5's animation levels reach the image-based LODs: under a storm, the slice drawn
+// with each level of vegetation.forest.animation_level (static, + trunk, + main branches, +
+// leaves) differs from the one before it, and the static program does not move at all.
+TEST_F(BackwardTransformGl, EachAnimationLevelAddsMotionToTheSlices) {
+  Forest forest = testing::make_lod_forest(64);
+  SliceRenderer renderer = SliceRenderer::create().value();
+  render::LightingUniforms lighting = render::LightingUniforms::create();
+  render::Lighting light;
+  light.fog_density = 0.0f;
+  lighting.update(light, 0.0, 0.0);
+  lighting.bind();
+  const SliceLayout& layout = forest.slices(0)->layout(2);
+  const int res = forest.baked(0)->lod[1].images.resolution;
+  const WindField storm(WindSettings{.direction_deg = 30.0f, .strength = 28.0f, .gust_amplitude = 10.0f, .turbulence_amplitude = 4.0f});
+  const double t = 3.7;
+  AnimationSettings anim;
+  const InstanceGpu g = make_instance_gpu(TreeInstance{}, glm::dvec3(0.0), storm, t, anim);
+  const render::Buffer inst = render::Buffer::immutable(sizeof(InstanceGpu), &g);
+  renderer.set_frame(make_animation_gpu(anim, t), storm.frame(t, glm::dvec3(0.0)).gpu, t, LodSettings{});
+  SliceDrawParams p;
+  p.view_proj = slice_view(layout);
+  p.view_direction = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+  p.shading.alpha_mode = AlphaMode::kAlphaTest;
+  const glm::vec4 clear(1.0f, 0.0f, 1.0f, 1.0f);
+  std::vector<Image> pictures;
+  for (AnimationLevel level : {AnimationLevel::kStatic, AnimationLevel::kTrunk, AnimationLevel::kBranches, AnimationLevel::kLeaves}) {
+    p.level = level;
+    pictures.push_back(render_slice(renderer, forest, inst, p, res, clear));
+  }
+  const auto differing = [](const Image& a, const Image& b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < a.data().size(); i += 4) {
+      bool d = false;
+      for (std::size_t c = 0; c < 3; ++c) d = d || std::abs(a.data()[i + c] - b.data()[i + c]) > 1e-3f;
+      n += d ? 1u : 0u;
+    }
+    return n;
+  };
+  const std::size_t trunk = differing(pictures[1], pictures[0]), branches = differing(pictures[2], pictures[1]),
+                    leaves = differing(pictures[3], pictures[2]);
+  const std::size_t whole = differing(pictures[3], pictures[0]);
+  std::printf("slice pixels changed by + trunk %zu, + main branches %zu, + leaves %zu; full against static %zu of %d\n",
+              trunk, branches, leaves, whole, res * res);
+  EXPECT_GT(trunk, 50u) << "the trunk's bend moves the slice";
+  EXPECT_GT(branches, 50u) << "the level-1 branches add their own sway";
+  EXPECT_GT(leaves, 50u) << "the leaves add their displacement";
+  EXPECT_GE(whole, trunk);
+}
+
 // Screen rectangle [min, max] in pixels of the camera-relative box corners.
 glm::vec4 screen_box(const render::Camera& cam, glm::vec3 lo, glm::vec3 hi, int w, int h) {
   glm::vec4 out(1e9f, 1e9f, -1e9f, -1e9f);
