@@ -2,16 +2,20 @@
 // The command line of sylva-bake (offline baking, DESIGN.md §1 apps/bake):
 //   sylva-bake terrain SOURCE --out FILE.sylvaterrain [--tiles I/N] [--set terrain.KEY=VALUE]... [--quiet]
 //   sylva-bake merge SHARE... --out FILE.sylvaterrain [--quiet]
+//   sylva-bake tree SPECIES.json|--preset NAME [--seed N] --out DIR [--format gltf|objt|both] [--slices] [--quiet]
 // SOURCE is any elevation raster core/elevation_raster.hpp reads (GDAL: GeoTIFF, SRTM .hgt,
 // ASCII grids; OpenImageIO: PNG/EXR/TIFF height maps). KEY is terrain.tree.* (ChunkTreeSettings)
 // or terrain.elevation.* (ElevationReadOptions). With --tiles I/N (0 <= I < N) the bake writes
 // share I of N to --out; `merge` joins the N shares into a file byte-identical to a one-process
-// bake.
+// bake. `tree` exports a species (a species file, or a generator preset at a seed) as OBJT and/or
+// glTF 2.0 with its textures, and with --slices its baked LOD1/LOD2 impostor layers
+// (modules/vegetation/include/sylva/vegetation/tree_export.hpp; README "Export").
 
 #include <sylva/core/elevation_raster.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/terrain/settings.hpp>
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -29,10 +33,21 @@ struct TerrainBakeSettings {
   }
 };
 
+// `tree`: what to export and how.
+struct TreeCommand {
+  std::filesystem::path species;  // a species file, or
+  std::string preset;             // a generator preset name (broadleaf, conifer, birch, shrub)
+  std::uint32_t seed = 1;         // the preset's seed
+  bool objt = true;               // --format objt|both
+  bool gltf = true;               // --format gltf|both
+  bool slices = false;            // --slices: bake LOD1/LOD2 (headless GL) and write their layers
+};
+
 struct BakeCommand {
-  enum class Kind { kHelp, kTerrain, kMerge } kind = Kind::kHelp;
+  enum class Kind { kHelp, kTerrain, kMerge, kTree } kind = Kind::kHelp;
   std::filesystem::path source;               // kTerrain
   std::vector<std::filesystem::path> shares;  // kMerge
+  TreeCommand tree;                           // kTree (out is the folder)
   std::filesystem::path out;
   TerrainBakeSettings settings;
   int share = 0, shares_total = 1;            // --tiles I/N
@@ -41,7 +56,9 @@ struct BakeCommand {
 };
 
 // Errors (kInvalidArgument): unknown command or option, missing SOURCE/--out, a bad --tiles or
-// --set (the message names the parameter and its range).
+// --set (the message names the parameter and its range); for `tree` an unknown --preset (the
+// names are listed), a bad --seed or --format, both or neither of SPECIES.json and --preset,
+// --seed without --preset.
 Result<BakeCommand> parse_bake_args(const std::vector<std::string>& args);
 std::string bake_usage();
 

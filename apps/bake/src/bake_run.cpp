@@ -1,6 +1,9 @@
 #include "bake_run.hpp"
 
 #include <sylva/core/timer.hpp>
+#if SYLVA_BAKE_TREE
+#include "bake_tree.hpp"
+#endif
 #include <sylva/terrain/bake.hpp>
 
 #include <fmt/format.h>
@@ -65,6 +68,13 @@ Status check_not_an_input(const BakeCommand& command) {
 }  // namespace
 
 int run_bake(const BakeCommand& command, const std::atomic<bool>& cancel, std::ostream& out, std::ostream& err) {
+  if (command.kind == BakeCommand::Kind::kTree) {
+#if SYLVA_BAKE_TREE
+    return run_tree_export(command, out, err);
+#else
+    return fail(err, make_error(ErrorCode::kUnsupported, "tree: sylva-bake was built without the vegetation module"));
+#endif
+  }
   Stopwatch watch;
   ProgressPrinter printer{err, command.quiet, {}, {}, -1};
   terrain::BuildControl control;

@@ -1,6 +1,7 @@
 #pragma once
 // Runs a parsed sylva-bake command: reads the raster, bakes (or merges) with progress lines
-// (percent, elapsed, ETA) on `err`, and a summary (chunks, triangles, bytes, time, peak RSS).
+// (percent, elapsed, ETA) on `err`, and a summary (chunks, triangles, bytes, time, peak RSS);
+// `tree` exports a species (bake_tree.hpp).
 
 #include "bake_options.hpp"
 

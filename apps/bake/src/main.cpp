@@ -1,4 +1,4 @@
-// sylva-bake: offline baking (terrain chunk files, tiled shares + merge). See bake_options.hpp.
+// sylva-bake: offline baking (terrain chunk files, tiled shares + merge, tree export). See bake_options.hpp.
 #include "bake_options.hpp"
 #include "bake_run.hpp"
 

@@ -49,5 +49,36 @@ TEST(BakeOptions, MistakesAreNamed) {
   EXPECT_EQ(parse_bake_args({"--help"})->kind, BakeCommand::Kind::kHelp);
 }
 
+TEST(BakeOptions, TreeFromAPresetOrASpeciesFile) {
+  auto c = parse_bake_args({"tree", "--preset", "conifer", "--seed", "4294967295", "--out", "dir", "--format", "gltf", "--slices"});
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  EXPECT_EQ(c->kind, BakeCommand::Kind::kTree);
+  EXPECT_EQ(c->tree.preset, "conifer");
+  EXPECT_EQ(c->tree.seed, 4294967295u);
+  EXPECT_TRUE(c->tree.gltf);
+  EXPECT_FALSE(c->tree.objt);
+  EXPECT_TRUE(c->tree.slices);
+  auto f = parse_bake_args({"tree", "oak.json", "--out", "dir", "--format", "objt"});
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  EXPECT_EQ(f->tree.species, "oak.json");
+  EXPECT_TRUE(f->tree.objt);
+  EXPECT_FALSE(f->tree.gltf);
+  EXPECT_FALSE(f->tree.slices);
+  auto both = parse_bake_args({"tree", "oak.json", "--out", "dir"});
+  EXPECT_TRUE(both->tree.objt && both->tree.gltf);
+  auto message = [](std::vector<std::string> args) {
+    auto r = parse_bake_args(args);
+    return r.ok() ? std::string("accepted") : r.error().message;
+  };
+  EXPECT_NE(message({"tree", "a.json", "--preset", "shrub", "--out", "d"}).find("either"), std::string::npos);
+  EXPECT_NE(message({"tree", "a.json", "b.json", "--out", "d"}).find("one SPECIES.json"), std::string::npos);
+  EXPECT_NE(message({"tree", "--preset", "shrub", "--seed", "4294967296", "--out", "d"}).find("--seed"), std::string::npos);
+  EXPECT_NE(message({"tree", "--preset", "shrub", "--seed", "1x", "--out", "d"}).find("--seed"), std::string::npos);
+  EXPECT_NE(message({"tree", "--preset", "Shrub", "--out", "d"}).find("expected one of"), std::string::npos);
+  EXPECT_NE(message({"tree", "--preset", "shrub", "--out", "d", "--tiles", "0/2"}).find("unknown option '--tiles'"),
+            std::string::npos);
+  EXPECT_NE(message({"terrain", "dem.tif", "--out", "x", "--slices"}).find("unknown option '--slices'"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace sylva::bake

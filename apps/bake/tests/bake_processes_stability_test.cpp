@@ -4,65 +4,24 @@
 // and corrupt rasters, and a damaged share, are errors naming the file.
 #include <sylva/core/atomic_file.hpp>
 
+#include "bake_process.hpp"
 #include "geotiff_fixture.hpp"
 
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
 #include <thread>
 
-extern char** environ;
-
 namespace sylva::bake {
 namespace {
 
 namespace fs = std::filesystem;
 
-// A folder of this process's own (ctest runs test cases side by side).
-fs::path test_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / fmt::format("sylva_bake_{}_{}", ::getpid(), name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
-
-// Starts sylva-bake with stdout and stderr into `log`.
-pid_t spawn_bake(const std::vector<std::string>& args, const fs::path& log) {
-  std::vector<std::string> all{SYLVA_BAKE_EXE};
-  all.insert(all.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  EXPECT_EQ(rc, 0) << "cannot start " << SYLVA_BAKE_EXE;
-  return pid;
-}
-
-// Exit status, or 128 + signal.
-int wait_for(pid_t pid) {
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-std::string text_of(const fs::path& p) {
-  Result<std::string> r = read_file(p);
-  return r ? r.value() : std::string();
-}
-
-int run_bake(const std::vector<std::string>& args, const fs::path& log) { return wait_for(spawn_bake(args, log)); }
+using namespace testing;  // bake_process.hpp: test_dir, spawn_bake, wait_for, run_bake, text_of
 
 // A float GeoTIFF of smooth hills with some roughness, side x side samples at 10 m.
 fs::path write_dem(const fs::path& dir, int side) {
