@@ -8,8 +8,10 @@
 //    by a relative path is copied byte for byte into the new scene's own map folder, so the two
 //    scenes share no map file that either could later overwrite;
 //  - otherwise an unedited map keeps its file; a relative path is rewritten for the new folder;
-//  - an elevation raster (<section>.elevation.file) is only referenced, its relative path
-//    rewritten for the new folder: it is read-only source data, often too large to copy.
+//  - a source file a setting names (an elevation raster, a species file, a mesh, a voxel species
+//    table or palette: by the scenes' convention a string setting called `file` or `*_file`,
+//    resolved against the scene file, scene_document.hpp) is only referenced, its relative path
+//    rewritten for the new folder: it is read-only source data, a raster often too large to copy.
 // The scene file is staged last and so renamed last. The in-memory document and maps change only
 // after the commit succeeded.
 
@@ -36,6 +38,14 @@ fs::path absolute_normal(const fs::path& p) {
   std::error_code ec;
   const fs::path a = fs::absolute(p, ec);
   return (ec ? p : a).lexically_normal();
+}
+
+// Whether a setting (its path inside its section) names a file relative to the scene file: by the
+// scenes' convention its last name is `file` or ends in `_file`.
+bool names_scene_file(std::string_view path) {
+  const std::size_t dot = path.rfind('.');
+  const std::string_view last = dot == std::string_view::npos ? path : path.substr(dot + 1);
+  return last == "file" || last.ends_with("_file");
 }
 
 // `path` (relative to old_dir, or absolute) as seen from new_dir.
@@ -119,12 +129,12 @@ Status Scene::save(const std::filesystem::path& file) {
   // The saved document: the same settings with the planned map paths.
   SceneDocument saved = *document_;
   for (ModuleSection& section : saved.modules()) {
-    // An elevation raster is the user's source, referenced and never copied (it may be
-    // gigabytes): a save into another folder rebases its relative path to the same file.
+    // Source files named by settings are the user's, referenced and never copied (a raster may be
+    // gigabytes): a save into another folder rebases their relative paths to the same files.
     for (const ParamDescriptor& param : sylva::describe_params(*section.settings)) {
-      if (param.path != "elevation.file" || param.ref.type != ParamType::kString) continue;
-      auto& raster = *static_cast<std::string*>(param.ref.ptr);
-      if (!raster.empty()) raster = rebase(raster, old_dir, new_dir);
+      if (!names_scene_file(param.path) || param.ref.type != ParamType::kString) continue;
+      auto& source = *static_cast<std::string*>(param.ref.ptr);
+      if (!source.empty()) source = rebase(source, old_dir, new_dir);
     }
     for (auto& [slot, path] : section.maps) path = plans.at({section.name, slot}).path;
     for (const auto& [key, plan] : plans) {

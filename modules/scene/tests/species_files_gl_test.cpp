@@ -186,6 +186,26 @@ TEST_F(SpeciesFilesGl, TheLoadedTreeStandsWithItsModelsHeight) {
   EXPECT_GE(right - left + 1, 4) << "the trunk's 1.2 m base at least";
 }
 
+// "Save as" into another folder keeps naming the same species file (its relative path rebased,
+// the file not copied), so the saved scene opens with the same tree.
+TEST_F(SpeciesFilesGl, SaveAsIntoAnotherFolderKeepsTheSpeciesFile) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  auto scene = open(kSideCamera, kOneTree);
+  ASSERT_TRUE(scene);
+  fs::create_directories(dir_ / "elsewhere");
+  const fs::path copy = dir_ / "elsewhere" / "copy.json";
+  ASSERT_TRUE(scene->save(copy).ok());
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(copy, warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto reloaded = Scene::create(std::move(*doc));
+  ASSERT_TRUE(reloaded.ok()) << reloaded.error().message;
+  EXPECT_EQ((*reloaded)->get_param("vegetation.species_files.0.file").value(), "../species/red.json");
+  EXPECT_FALSE(fs::exists(dir_ / "elsewhere" / "species")) << "referenced, not copied";
+  EXPECT_EQ((*reloaded)->module_stats()["vegetation"]["trees_per_species"]["red"], 1)
+      << (*reloaded)->module_stats()["vegetation"].dump();
+}
+
 TEST_F(SpeciesFilesGl, AForestOfTwoSpeciesFromFilesShowsBoth) {
   if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
   const std::string camera = R"({"position": [0, 8, 70], "yaw_deg": 0, "pitch_deg": -4, "fov_deg": 40})";
