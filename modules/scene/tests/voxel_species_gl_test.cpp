@@ -224,6 +224,43 @@ TEST_F(VoxelSpeciesGl, AMissingOrBrokenFileGivesTheShippedSpecies) {
   EXPECT_EQ(stats(*scene)["species_table"], "species.json");
 }
 
+// The seed's acacia (seed 004 §4.5.4, verbatim, its typo included) in a user's file with the
+// shipped acacia's growth, blocks and habitat grows the shipped acacias: same places, same blocks.
+TEST_F(VoxelSpeciesGl, TheSeedsAcaciaFromAUserFileGrowsTheShippedAcacias) {
+  write("species/acacia.lsys", R"(45.0 45.0 0.8
+# make sure the plant has splits
+# random lenght stem - then split
+^uA1S&F+F+F+F
+U > uU
+A > +uuE
+A > -uE
+A > +uE
+A > -E
+A > uuE
+A > uE
+# top of the plant
+E > x [++++UE1S&F+F+F+F] +UE
+E > x [++++++UE1S&F+F+F+F] ++UE
+E > x [++UE1S&F+F+F+F] -UE
+)");
+  write("species/acacia.json", R"({"species": [{"name": "acacia", "grammar": "acacia.lsys", "derivations": [5, 7], "size": [1.0, 1.2],
+      "blocks": {"0": "acacia_log", "1": "acacia_leaves"}, "biomes": {"savanna": {"spacing": 14, "chance": 0.4}}}]})");
+  auto shipped = open("{}");
+  ASSERT_TRUE(shipped);
+  const nlohmann::json want = stats(*shipped);
+  shipped.reset();
+  auto scene = open(R"({"species_file": "species/acacia.json"})");
+  ASSERT_TRUE(scene);
+  EXPECT_TRUE(logged_.empty()) << logged_;
+  const nlohmann::json got = stats(*scene);
+  ASSERT_EQ(got["plants_per_species"].size(), 1u) << got.dump();
+  EXPECT_EQ(got["plants_per_species"]["acacia"], want["plants_per_species"]["acacia"]) << want.dump();
+  EXPECT_GE(got["plants_per_species"]["acacia"].get<int>(), 2);
+  EXPECT_EQ(got["plant_blocks"], nlohmann::json({{"acacia_log", want["plant_blocks"]["acacia_log"]},
+                                                 {"acacia_leaves", want["plant_blocks"]["acacia_leaves"]}}))
+      << want.dump();
+}
+
 // The blocks the generator lays (worldgen.cpp) and a brick from a red image, a user's palette.
 std::string small_palette(const std::string& more = "") {
   return R"({"blocks": [{"name": "stone", "texture": "stone"}, {"name": "dirt", "texture": "dirt"},
