@@ -1,5 +1,6 @@
 #include "paper_html.hpp"
 
+#include "report_html.hpp"
 #include "svg_plot.hpp"
 
 #include <fmt/format.h>
@@ -89,15 +90,7 @@ std::string error_time_svg(const PaperOutcome& o, CostMetric cost) {
 
 std::string paper_html(const std::string& thesis, const std::vector<PaperOutcome>& outcomes, CostMetric cost,
                        const MachineInfo& machine, const std::string& gl_renderer) {
-  std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-  h += fmt::format("<title>sylva-bench --paper {}</title>\n", html_escape(thesis));
-  h += "<style>\n"
-       "body{font-family:sans-serif;margin:24px;color:#111;max-width:1400px}\n"
-       "table{border-collapse:collapse;margin:8px 0 12px 0;font-size:13px}\n"
-       "th,td{border:1px solid #ccc;padding:3px 7px;text-align:right}\n"
-       "th{background:#f0f0f0} td.l,th.l{text-align:left}\n"
-       ".note{color:#555;font-size:13px} .failed{color:#b01010}\n"
-       "</style>\n</head>\n<body>\n";
+  std::string h = html_page_start("sylva-bench --paper " + thesis, ".note{color:#555;font-size:13px} .failed{color:#b01010}\n");
   h += fmt::format("<h1>sylva-bench --paper {}</h1>\n", html_escape(thesis));
   h += fmt::format(
       "<p>Sylva: {} ({} logical cores), {}, {} build, {}. Sylva's ms are <code>{}</code> (mean over the frames of a "

@@ -40,6 +40,17 @@ std::string point_tooltip(const SettingResult& r, const RunInfo& info) {
 
 }  // namespace
 
+std::string html_page_start(const std::string& title, const std::string& extra_css) {
+  return "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n" +
+         fmt::format("<title>{}</title>\n", html_escape(title)) +
+         "<style>\n"
+         "body{font-family:sans-serif;margin:24px;color:#111;max-width:1400px}\n"
+         "table{border-collapse:collapse;margin:8px 0 20px 0;font-size:13px}\n"
+         "th,td{border:1px solid #ccc;padding:3px 7px;text-align:right}\n"
+         "th{background:#f0f0f0} td.l,th.l{text-align:left}\n" +
+         extra_css + "</style>\n</head>\n<body>\n";
+}
+
 std::string report_plot_svg(const BenchReport& report) {
   std::vector<PlotPoint> points;
   const RunInfo& info = report.info;
@@ -64,22 +75,14 @@ std::string render_report_html(const BenchReport& report, const ImageSource& ima
   const MachineInfo& m = info.machine;
   std::string title = info.suite.empty() ? fmt::format("sylva-bench: {}", info.scene)
                                          : fmt::format("sylva-bench suite {}", info.suite);
-  std::string h;
-  h += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
-  h += fmt::format("<title>{}</title>\n", html_escape(title));
-  h += "<style>\n"
-       "body{font-family:sans-serif;margin:24px;color:#111;max-width:1400px}\n"
-       "table{border-collapse:collapse;margin:8px 0 20px 0;font-size:13px}\n"
-       "th,td{border:1px solid #ccc;padding:3px 7px;text-align:right}\n"
-       "th{background:#f0f0f0} td.l,th.l{text-align:left}\n"
-       "tr.reference td{background:#eef8ee} tr.pareto td.id{font-weight:bold;color:#b01010}\n"
-       "tr.failed td{background:#fbeaea}\n"
-       ".facts td{text-align:left} .facts th{text-align:left}\n"
-       ".gallery{display:flex;flex-wrap:wrap;gap:14px}\n"
-       ".card{border:1px solid #ccc;padding:6px;font-size:12px;max-width:800px}\n"
-       ".card img{image-rendering:pixelated;margin-right:4px;border:1px solid #999}\n"
-       ".note{color:#8a4b00}\n"
-       "</style>\n</head>\n<body>\n";
+  std::string h = html_page_start(title,
+                                  "tr.reference td{background:#eef8ee} tr.pareto td.id{font-weight:bold;color:#b01010}\n"
+                                  "tr.failed td{background:#fbeaea}\n"
+                                  ".facts td{text-align:left} .facts th{text-align:left}\n"
+                                  ".gallery{display:flex;flex-wrap:wrap;gap:14px}\n"
+                                  ".card{border:1px solid #ccc;padding:6px;font-size:12px;max-width:800px}\n"
+                                  ".card img{image-rendering:pixelated;margin-right:4px;border:1px solid #999}\n"
+                                  ".note{color:#8a4b00}\n");
   h += fmt::format("<h1>{}</h1>\n", html_escape(title));
   if (!info.description.empty()) h += fmt::format("<p>{}</p>\n", html_escape(info.description));
 

@@ -19,6 +19,10 @@ using ImageSource = std::function<std::string(const std::string& relative_path)>
 
 std::string render_report_html(const BenchReport& report, const ImageSource& image_src);
 
+// The start of a bench HTML page up to <body>: the title (escaped) and the reports' common style
+// (page, tables, left-aligned cells "l") followed by `extra_css` rules.
+std::string html_page_start(const std::string& title, const std::string& extra_css);
+
 // The plot alone (also used by tests and the README).
 std::string report_plot_svg(const BenchReport& report);
 

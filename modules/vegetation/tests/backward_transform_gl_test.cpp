@@ -52,32 +52,43 @@ Image render_slice(SliceRenderer& r, const Forest& forest, const render::Buffer&
   return render::read_color(fb).value();
 }
 
-TEST_F(BackwardTransformGl, ZeroWindRendersTheBakedSliceExactly) {
+// LOD2 slice 0 of a 64-texel test forest drawn face-on, one texel per pixel, under a sun without
+// fog, alpha-tested, over magenta: the stage of the slice tests below.
+struct SliceStage {
   Forest forest = testing::make_lod_forest(64);
   SliceRenderer renderer = SliceRenderer::create().value();
   render::LightingUniforms lighting = render::LightingUniforms::create();
-  render::Lighting light;
-  light.fog_density = 0.0f;
-  lighting.update(light, 0.0, 0.0);
-  lighting.bind();
-  const SliceLayout& layout = forest.slices(0)->layout(2);
-  const int res = forest.baked(0)->lod[1].images.resolution;
+  int res = forest.baked(0)->lod[1].images.resolution;
+  SliceDrawParams params;
+  glm::vec4 clear{1.0f, 0.0f, 1.0f, 1.0f};
+
+  SliceStage() {
+    render::Lighting light;
+    light.fog_density = 0.0f;
+    lighting.update(light, 0.0, 0.0);
+    lighting.bind();
+    params.view_proj = slice_view(forest.slices(0)->layout(2));
+    params.view_direction = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+    params.shading.alpha_mode = AlphaMode::kAlphaTest;
+  }
+  Image draw(const render::Buffer& inst, const SliceDrawParams& p) { return render_slice(renderer, forest, inst, p, res, clear); }
+};
+
+TEST_F(BackwardTransformGl, ZeroWindRendersTheBakedSliceExactly) {
+  SliceStage stage;
+  const Forest& forest = stage.forest;
+  const int res = stage.res;
   // Calm wind: the instance's wind is zero, so the transform is the identity.
   InstanceGpu g = make_instance_gpu(TreeInstance{}, glm::dvec3(0.0), glm::vec3(0.0f));
   const render::Buffer inst = render::Buffer::immutable(sizeof(InstanceGpu), &g);
-  SliceDrawParams p;
-  p.view_proj = slice_view(layout);
-  p.view_direction = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
-  p.shading.alpha_mode = AlphaMode::kAlphaTest;
-  const glm::vec4 clear(1.0f, 0.0f, 1.0f, 1.0f);
   AnimationSettings anim;
-  renderer.set_frame(make_animation_gpu(anim, 5.0), WindGpuParams{}, 5.0, LodSettings{});
-  const Image animated = render_slice(renderer, forest, inst, p, res, clear);
+  stage.renderer.set_frame(make_animation_gpu(anim, 5.0), WindGpuParams{}, 5.0, LodSettings{});
+  const Image animated = stage.draw(inst, stage.params);
   // The same picture from the static program (no transform compiled in) at another time.
-  SliceDrawParams ps = p;
+  SliceDrawParams ps = stage.params;
   ps.level = AnimationLevel::kStatic;
-  renderer.set_frame(make_animation_gpu(anim, 123.0), WindGpuParams{}, 123.0, LodSettings{});
-  const Image still = render_slice(renderer, forest, inst, ps, res, clear);
+  stage.renderer.set_frame(make_animation_gpu(anim, 123.0), WindGpuParams{}, 123.0, LodSettings{});
+  const Image still = stage.draw(inst, ps);
   testing::save_png(animated, "slice_zero_wind");
   ASSERT_EQ(animated.data().size(), still.data().size());
   std::size_t differ = 0;
@@ -103,30 +114,19 @@ TEST_F(BackwardTransformGl, ZeroWindRendersTheBakedSliceExactly) {
 // with each level of vegetation.forest.animation_level (static, + trunk, + main branches, +
 // leaves) differs from the one before it, and the static program does not move at all.
 TEST_F(BackwardTransformGl, EachAnimationLevelAddsMotionToTheSlices) {
-  Forest forest = testing::make_lod_forest(64);
-  SliceRenderer renderer = SliceRenderer::create().value();
-  render::LightingUniforms lighting = render::LightingUniforms::create();
-  render::Lighting light;
-  light.fog_density = 0.0f;
-  lighting.update(light, 0.0, 0.0);
-  lighting.bind();
-  const SliceLayout& layout = forest.slices(0)->layout(2);
-  const int res = forest.baked(0)->lod[1].images.resolution;
+  SliceStage stage;
   const WindField storm(WindSettings{.direction_deg = 30.0f, .strength = 28.0f, .gust_amplitude = 10.0f, .turbulence_amplitude = 4.0f});
   const double t = 3.7;
   AnimationSettings anim;
   const InstanceGpu g = make_instance_gpu(TreeInstance{}, glm::dvec3(0.0), storm, t, anim);
   const render::Buffer inst = render::Buffer::immutable(sizeof(InstanceGpu), &g);
-  renderer.set_frame(make_animation_gpu(anim, t), storm.frame(t, glm::dvec3(0.0)).gpu, t, LodSettings{});
-  SliceDrawParams p;
-  p.view_proj = slice_view(layout);
-  p.view_direction = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
-  p.shading.alpha_mode = AlphaMode::kAlphaTest;
-  const glm::vec4 clear(1.0f, 0.0f, 1.0f, 1.0f);
+  stage.renderer.set_frame(make_animation_gpu(anim, t), storm.frame(t, glm::dvec3(0.0)).gpu, t, LodSettings{});
+  const int res = stage.res;
   std::vector<Image> pictures;
   for (AnimationLevel level : {AnimationLevel::kStatic, AnimationLevel::kTrunk, AnimationLevel::kBranches, AnimationLevel::kLeaves}) {
+    SliceDrawParams p = stage.params;
     p.level = level;
-    pictures.push_back(render_slice(renderer, forest, inst, p, res, clear));
+    pictures.push_back(stage.draw(inst, p));
   }
   const auto differing = [](const Image& a, const Image& b) {
     std::size_t n = 0;
