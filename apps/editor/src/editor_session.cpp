@@ -6,9 +6,14 @@
 #include <sylva/render/readback.hpp>
 #include <sylva/scene/module_registry.hpp>
 
+#if SYLVA_EDITOR_TREE_EXPORT
+#include <sylva/vegetation/tree_export.hpp>
+#endif
+
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 
 namespace sylva::editor {
@@ -234,6 +239,52 @@ Status EditorSession::render_frame(double dt) {
   scene_->update(camera_, time_, static_cast<float>(std::max(dt, 0.0)), viewport_);
   scene_->render(framebuffer_, profiler_);
   return render::check_frame_gl_errors(mark, "the frame");
+}
+
+Result<std::string> EditorSession::export_tree(const std::filesystem::path& folder) {
+#if !SYLVA_EDITOR_TREE_EXPORT
+  (void)folder;
+  return make_error(ErrorCode::kUnsupported, "the editor was built without the vegetation module (no tree export)");
+#else
+  if (scene_->module("vegetation") == nullptr)
+    return make_error(ErrorCode::kNotFound, "the scene has no vegetation section (no forest to export a tree from)");
+  const auto param = [&](const std::string& path) { return scene_->get_param("vegetation." + path); };
+  const auto number = [&](const std::string& path, auto fallback) {
+    auto text = param(path);
+    auto v = fallback;
+    if (text.ok()) std::from_chars(text->data(), text->data() + text->size(), v);
+    return v;
+  };
+  const int texture_size = number("leaf_texture_size", 128);
+  std::optional<Result<vegetation::ExportTree>> tree;
+  for (int k = 0; k < 4 && !tree; ++k) {
+    auto file = param(fmt::format("species_files.{}.file", k));
+    if (!file.ok() || file->empty()) continue;
+    std::vector<std::string> warnings;
+    tree = vegetation::export_tree_from_species_file(scene_->document().resolve(*file), texture_size, warnings);
+    for (const std::string& w : warnings) log_warn("export tree: {}", w);
+  }
+  if (!tree) {
+    auto preset = param("species");
+    const auto seed = number("species_seed", std::uint32_t{1});
+    for (const auto& e : enum_names(vegetation::SpeciesPreset{}))
+      if (preset.ok() && *preset == e.name) tree = vegetation::export_tree_from_preset(e.value, seed, texture_size);
+    if (!tree) return make_error(ErrorCode::kNotFound, "the forest names no species to export");
+  }
+  if (!tree->ok()) return tree->error();
+  vegetation::TreeExportOptions options;
+  for (const ParamDescriptor& p : describe_params(options.mesh)) {
+    auto v = param("mesh." + p.path);
+    if (v.ok()) SYLVA_TRY(::sylva::set_param(options.mesh, p.path, *v));
+  }
+  Result<vegetation::BakedTree> baked = vegetation::bake_export_slices(
+      **tree, options, number("forest.lod.slice_resolution", 128), number("forest.lod.slice_margin", 0.12f));
+  if (!baked.ok()) return baked.error();
+  Result<vegetation::TreeExportReport> report = vegetation::export_tree(**tree, folder, options, &*baked);
+  if (!report.ok()) return report.error();
+  return fmt::format("exported '{}' to {}: {} files, {} + {} triangles, {} slice layers", (*tree)->name, folder.string(),
+                     report->files.size(), report->bark_triangles, report->leaf_triangles, report->slice_layers);
+#endif
 }
 
 Status EditorSession::screenshot(const std::filesystem::path& file, std::optional<glm::ivec2> size) {

@@ -85,6 +85,13 @@ class EditorSession final : public EditTarget {
   render::FrameProfiler& profiler() { return profiler_; }
   // Renders one frame at `size` (default: the viewport) and saves it. Errors name the file.
   Status screenshot(const std::filesystem::path& file, std::optional<glm::ivec2> size = std::nullopt);
+  // Exports the forest's first species (the first species file in vegetation.species_files, else
+  // the vegetation.species preset at species_seed) with the scene's leaf_texture_size, mesh and
+  // slice settings into `folder`: OBJT, glTF 2.0 and the LOD1/LOD2 slice layers (vegetation
+  // README "Export"). Returns a one-line summary. kNotFound without a vegetation section; load
+  // and write errors name the species file or the folder; nothing of a failed export replaces an
+  // earlier one.
+  Result<std::string> export_tree(const std::filesystem::path& folder);
   // World point of the ground under a viewport pixel (top-left origin), by marching the view ray
   // over the scene's ground (the plane y = 0 without one). nullopt when the ray misses.
   std::optional<glm::dvec3> pick_ground(glm::vec2 pixel) const;

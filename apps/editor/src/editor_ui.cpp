@@ -174,6 +174,10 @@ void EditorUi::menu_bar() {
       screenshot_dialog_ = true;
       std::snprintf(path_buffer_, sizeof(path_buffer_), "screenshot.png");
     }
+    if (ImGui::MenuItem("Export tree...", nullptr, false, session_.scene().module("vegetation") != nullptr)) {
+      export_tree_dialog_ = true;
+      std::snprintf(path_buffer_, sizeof(path_buffer_), "tree_export");
+    }
     ImGui::Separator();
     if (ImGui::MenuItem("Quit")) request_quit();
     ImGui::EndMenu();
@@ -543,6 +547,12 @@ void EditorUi::dialogs() {
     Status s = session_.screenshot(p);
     apply(s);
     if (s.ok()) message("wrote " + p);
+  });
+  // The forest's first species as OBJT + glTF + slice layers into a folder (vegetation README, "Export").
+  path_modal("Export tree to folder", export_tree_dialog_, "Export", [&](const std::string& p) {
+    Result<std::string> r = session_.export_tree(p);
+    if (r.ok()) message(*r);
+    else apply(r.error());
   });
   if (unsaved_dialog_) {
     ImGui::OpenPopup("Unsaved changes");

@@ -1,7 +1,7 @@
 #pragma once
 // The Dear ImGui front end of sylva-editor: menu, scene outline, generated parameter panels,
 // brush panel, viewport with fly/orbit cameras and painting, debug views, stats overlay, and the
-// modal dialogs (open, save as, screenshot, unsaved changes). All edits go through the
+// modal dialogs (open, save as, screenshot, export tree, unsaved changes). All edits go through the
 // EditorSession, so they are validated and undoable exactly like scripted ones.
 
 #include "camera_control.hpp"
@@ -57,7 +57,7 @@ class EditorUi {
   std::string paint_map_;
   Pending pending_ = Pending::kNone;
   bool quit_confirmed_ = false;
-  bool open_dialog_ = false, save_as_dialog_ = false, screenshot_dialog_ = false, unsaved_dialog_ = false;
+  bool open_dialog_ = false, save_as_dialog_ = false, screenshot_dialog_ = false, export_tree_dialog_ = false, unsaved_dialog_ = false;
   char path_buffer_[512] = {};
   std::string last_frame_error_;  // the viewport's last GL error, shown once
   char bookmark_buffer_[64] = "view";

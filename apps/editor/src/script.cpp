@@ -35,6 +35,7 @@ const std::map<std::string, Arity, std::less<>>& commands() {
       {"debug", {2, 2, "debug VIEW on|off"}},
       {"screenshot", {1, 2, "screenshot PATH [WxH]"}},
       {"screenshot_ui", {1, 1, "screenshot_ui PATH"}},
+      {"export_tree", {1, 1, "export_tree FOLDER"}},
       {"save", {0, 1, "save [PATH]"}},
       {"expect", {2, 2, "expect PATH VALUE"}},
       {"expect_unsaved", {1, 1, "expect_unsaved yes|no"}},

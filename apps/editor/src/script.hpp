@@ -21,6 +21,8 @@
 //   debug VIEW on|off            wireframe, lod_colors, chunk_bounds, freeze_culling
 //   screenshot PATH [WxH]        render the viewport and save it (PNG, EXR, ...)
 //   screenshot_ui PATH           save the whole window with its panels (window mode only)
+//   export_tree FOLDER           export the forest's first species (OBJT, glTF, slices; File >
+//                                Export tree...; EditorSession::export_tree)
 //   save [PATH]                  save the scene and its edited maps (atomic), PATH = save as
 //   expect PATH VALUE            fail unless the parameter's text equals VALUE (self-checking scripts)
 //   expect_unsaved yes|no        fail unless the unsaved-changes state is as given

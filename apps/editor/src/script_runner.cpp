@@ -83,6 +83,12 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     out << "sylva-editor: wrote " << std::filesystem::absolute(file).string() << "\n";
     return {};
   }
+  if (c.name == "export_tree") {
+    auto summary = s.export_tree(resolve(base, a[0]));
+    if (!summary.ok()) return summary.error();
+    out << "sylva-editor: " << *summary << "\n";
+    return {};
+  }
   if (c.name == "save") {
     if (a.empty()) return s.save();
     return s.save_as(resolve(base, a[0]));

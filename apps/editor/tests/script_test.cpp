@@ -32,11 +32,12 @@ expect grass.field.density 120
 expect_unsaved no
 print done "with spaces"
 load_default
+export_tree "out/my trees"
 quit
 )";
   auto script = parse_script(text, "t.sylva");
   ASSERT_TRUE(script.ok()) << script.error().message;
-  ASSERT_EQ(script->size(), 26u);
+  ASSERT_EQ(script->size(), 27u);
   const auto& c = *script;
   EXPECT_EQ(c[0].name, "load");
   EXPECT_EQ(c[0].line, 2);
@@ -51,8 +52,13 @@ quit
   EXPECT_EQ(c[23].args[1], "with spaces");
   EXPECT_EQ(c[24].name, "load_default");
   EXPECT_TRUE(c[24].args.empty());
+  EXPECT_EQ(c[25].name, "export_tree");
+  EXPECT_EQ(c[25].args, (std::vector<std::string>{"out/my trees"}));
   EXPECT_EQ(c.back().name, "quit");
-  EXPECT_EQ(c.back().line, 27);
+  EXPECT_EQ(c.back().line, 28);
+  auto missing = parse_script("export_tree\n", "t.sylva");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_NE(missing.error().message.find("export_tree FOLDER"), std::string::npos) << missing.error().message;
 }
 
 TEST(Script, MistakesNameTheLine) {

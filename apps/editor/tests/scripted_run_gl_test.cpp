@@ -6,11 +6,13 @@
 #include "script_runner.hpp"
 
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/image.hpp>
 #include <sylva/render/testing.hpp>
 #include <sylva/scene/height_source.hpp>
 #include <sylva/scene/module_registry.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cstring>
@@ -342,4 +344,43 @@ TEST(EditorScript, SaveAsKeepsTheOriginalAndReadOnlyScenesAreRefused) {
   EXPECT_EQ(read_file(dir / "a_maps" / "ground_height.exr").value_or(""), a_map);
   EXPECT_EQ(fs::status(dir / "a.json").permissions() & fs::perms::owner_write, fs::perms::none);
   fs::permissions(dir / "a.json", fs::perms::owner_all);
+}
+
+// File > Export tree... as a script command (issue #16, tree export): the forest's first species
+// file, exported with the scene's texture size and slice resolution; the second export replaces
+// the first; a scene without a forest is an error naming the script line.
+TEST(EditorScript, ExportsTheForestsFirstSpecies) {
+  if (scene::find_module("vegetation") == nullptr) GTEST_SKIP() << "built without the vegetation module";
+  const fs::path dir = temp_dir("export_tree");
+  const std::string species = (fs::path(SYLVA_SCENES_DIR) / "species" / "seed_example.json").string();
+  write(dir / "in.json", R"({"vegetation": {"area_min": [-4, -4], "area_max": [4, 4], "trees_per_hectare": 50,
+                             "leaf_texture_size": 32, "forest": {"lod": {"slice_resolution": 32}},
+                             "species_files": {"0": {"file": ")" + species + R"("}}}})");
+  write(dir / "run.sylva", "load in.json\nexport_tree out\nexport_tree out\nquit\n");
+  const RunResult run = run_editor("--headless --size 64x36 --script " + (dir / "run.sylva").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("exported 'seed example' to " + (dir / "out").string()), std::string::npos) << run.output;
+
+  const nlohmann::json gltf = nlohmann::json::parse(read_file(dir / "out" / "seed_example.gltf").value_or("{}"));
+  ASSERT_EQ(gltf["meshes"].size(), 2u);
+  std::size_t triangles = 0;
+  for (const auto& m : gltf["meshes"])
+    triangles += gltf["accessors"][m["primitives"][0]["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
+  EXPECT_EQ(triangles, 544u);  // the seed's example: 540 bark + 4 leaf triangles (sylva-bake tree gives the same)
+  auto leaf = read_image(dir / "out" / "seed_example_leaf_color.png");
+  ASSERT_TRUE(leaf.ok());
+  EXPECT_EQ(leaf->width(), 32);  // vegetation.leaf_texture_size
+  const nlohmann::json slices =
+      nlohmann::json::parse(read_file(dir / "out" / "seed_example_slices" / "slices.json").value_or("{}"));
+  ASSERT_EQ(slices["levels"].size(), 2u);
+  EXPECT_EQ(slices["levels"][0]["resolution"], 32);  // vegetation.forest.lod.slice_resolution
+  EXPECT_TRUE(fs::exists(dir / "out" / "seed_example.objt"));
+
+  write(dir / "in_bare.json", kSmallGround);
+  write(dir / "bare.sylva", "load in_bare.json\nexport_tree out2\n");
+  const RunResult bare = run_editor("--headless --script " + (dir / "bare.sylva").string());
+  EXPECT_EQ(bare.exit_code, 1);
+  EXPECT_NE(bare.output.find("bare.sylva:2: export_tree: the scene has no vegetation section"), std::string::npos)
+      << bare.output;
+  EXPECT_FALSE(fs::exists(dir / "out2"));
 }
