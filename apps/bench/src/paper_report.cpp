@@ -181,6 +181,7 @@ nlohmann::json paper_json(const std::string& thesis, const std::vector<PaperOutc
           cells[t.columns[c].name + " " + v.name] = {
               {"thesis", finite_or_null(thesis_value(v, r))},
               {"sylva", finite_or_null(sylva_value(o, r, c, v, cost))},
+              {"minus_baseline", v.minus_column >= 0},
               {"column_missing", t.columns[c].missing}};
         }
       }
