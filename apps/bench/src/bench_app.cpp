@@ -225,6 +225,7 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
     PaperRunOptions po;
     po.which = *o.paper;
     po.quick = o.quick;
+    po.tables = o.tables;
     po.out = out_dir;
     po.customise = [&o](RunSpec& spec) { apply_common(o, spec); };
     po.embed_images = o.embed_images;

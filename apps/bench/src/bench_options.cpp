@@ -1,9 +1,12 @@
 #include "bench_options.hpp"
 
+#include "paper_tables.hpp"
+
 #include <sylva/core/render_size.hpp>
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -106,6 +109,9 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
       o.paper = *v;
     } else if (name == "--quick") {
       o.quick = true;
+    } else if (name == "--table") {
+      SYLVA_BENCH_VALUE(v, "a table of the --paper thesis, as paper.md names it (e.g. 5.5, or 4.8 of \"4.6, 4.8, 4.10\")");
+      o.tables.push_back(*v);
     } else if (name == "--camera-path") {
       SYLVA_BENCH_VALUE(v, "a camera path name of the scene (see --list-camera-paths)");
       o.camera_path = *v;
@@ -171,6 +177,20 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
                                   *o.paper));
   }
   if (o.quick && !o.paper) return make_error(ErrorCode::kInvalidArgument, "--quick goes with --paper");
+  if (!o.tables.empty()) {
+    if (!o.paper || *o.paper == "all") {
+      return make_error(ErrorCode::kInvalidArgument, "--table goes with --paper and one thesis (000 .. 004, not all)");
+    }
+    const std::vector<PaperTable> known = paper_tables(*o.paper);
+    for (const std::string& id : o.tables) {
+      if (std::none_of(known.begin(), known.end(), [&](const PaperTable& t) { return paper_table_matches(t, id); })) {
+        std::string ids;
+        for (const PaperTable& t : known) ids += (ids.empty() ? "" : "; ") + t.id;
+        return make_error(ErrorCode::kInvalidArgument,
+                          fmt::format("--table: seed {} has no table \"{}\" (its tables: {})", *o.paper, id, ids));
+      }
+    }
+  }
   if (!o.scene && !o.suite && !o.paper && (!o.sweeps.empty() || !o.reference.empty())) {
     return make_error(ErrorCode::kInvalidArgument, "--sweep and --reference need a SCENE to sweep");
   }
@@ -213,6 +233,7 @@ std::string bench_usage() {
          "  --paper THESIS         the thesis's experiments: per table the thesis's numbers beside Sylva's\n"
          "                         (DIR/paper-THESIS/paper.md, paper.json, a sweep report per row)\n"
          "  --quick                with --paper: the first row of each table at 256x144, 2 frames (for CI)\n"
+         "  --table ID             with --paper and one thesis: only this table (repeatable; e.g. 5.5)\n"
          "  --stability            run every available module's extreme cases; writes stability.{csv,json,html}\n"
          "  --camera-path NAME     named camera path of the scene (default: the scene's first)\n"
          "  --frames N             frames along the path (default 24)\n"

@@ -7,7 +7,7 @@
 //               [--error-metric dssim|share_exceeding|coverage_loss|rmse] [--no-embed] --out DIR
 //   sylva-bench --suite terrain|grass|trees|voxel|all [--frames N] [--size WxH] --out DIR
 //   sylva-bench --stability [--suite ...] --out DIR
-//   sylva-bench --paper 000|001|002|003|004|all [--quick] [--frames N] [--size WxH] --out DIR
+//   sylva-bench --paper 000|001|002|003|004|all [--quick] [--table ID]... [--frames N] [--size WxH] --out DIR
 //   sylva-bench SCENE --list-params | --list-camera-paths
 //
 // SCENE is a scene JSON file or "builtin:ground" (the bench's own sky + fBm ground, which needs
@@ -32,6 +32,7 @@ struct BenchOptions {
   std::optional<std::string> suite;        // terrain, grass, trees, voxel or all
   std::optional<std::string> paper;        // --paper: 000 .. 004 or all (paper_tables.hpp)
   bool quick = false;                      // --paper --quick: one row per table, small and short
+  std::vector<std::string> tables;         // --table (repeatable): only these tables of the one --paper thesis
   std::vector<SweepAxis> sweeps;           // --sweep, in order (first varies slowest)
   std::vector<Assignment> reference;       // --reference: the maximum-quality setting
   std::vector<Assignment> overrides;       // --set: applied to every setting and the reference

@@ -715,6 +715,19 @@ PaperValue paper_value(std::string name, PaperMeasure measure, std::vector<doubl
 
 std::vector<std::string> paper_names() { return {"000", "001", "002", "003", "004"}; }
 
+bool paper_table_matches(const PaperTable& t, std::string_view id) {
+  if (t.id == id) return true;
+  std::string_view rest = t.id;
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    std::string_view part = rest.substr(0, comma);
+    while (!part.empty() && part.front() == ' ') part.remove_prefix(1);
+    if (part == id) return true;
+    rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+  }
+  return false;
+}
+
 std::vector<PaperTable> paper_tables(const std::string& thesis) {
   if (thesis == "000") return tables_000();
   if (thesis == "002") return tables_002();

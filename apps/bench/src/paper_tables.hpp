@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -86,6 +87,9 @@ struct PaperTable {
 
 // A value of a column (ms and counts per frame: see PaperMeasure) with the thesis's numbers.
 PaperValue paper_value(std::string name, PaperMeasure measure, std::vector<double> thesis);
+
+// Whether `id` names table t: its id ("5.5"), or one part of a combined id ("4.8" of "4.6, 4.8, 4.10").
+bool paper_table_matches(const PaperTable& t, std::string_view id);
 
 // Theses with a --paper command: "000" ... "004", in the order `--paper all` runs them.
 std::vector<std::string> paper_names();

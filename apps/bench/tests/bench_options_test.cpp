@@ -1,5 +1,6 @@
 // Command-line parsing of sylva-bench (GL-free).
 #include "bench_options.hpp"
+#include "paper_tables.hpp"
 
 #include <gtest/gtest.h>
 
@@ -96,6 +97,26 @@ TEST(BenchOptions, PaperWithQuick) {
   auto quick_alone = parse({"--suite", "grass", "--quick", "--out", "x"});
   ASSERT_FALSE(quick_alone.ok());
   EXPECT_NE(quick_alone.error().message.find("--quick goes with --paper"), std::string::npos);
+}
+
+// --table picks tables of one thesis by their id or a part of a combined id.
+TEST(BenchOptions, PaperTables) {
+  auto o = parse({"--paper", "002", "--table", "4.8", "--table", "3.1", "--out", "x"});
+  ASSERT_TRUE(o.ok()) << o.error().message;
+  EXPECT_EQ(o->tables, (std::vector<std::string>{"4.8", "3.1"}));
+  auto unknown = parse({"--paper", "000", "--table", "4.8", "--out", "x"});
+  ASSERT_FALSE(unknown.ok());
+  EXPECT_NE(unknown.error().message.find("--table: seed 000 has no table \"4.8\" (its tables: 5.1; 5.2; 5.3; 5.4; 5.5; 5.6)"),
+            std::string::npos)
+      << unknown.error().message;
+  auto all = parse({"--paper", "all", "--table", "5.5", "--out", "x"});
+  ASSERT_FALSE(all.ok());
+  EXPECT_NE(all.error().message.find("--table goes with --paper and one thesis"), std::string::npos);
+  const std::vector<PaperTable> t002 = paper_tables("002");
+  EXPECT_TRUE(paper_table_matches(t002[6], "4.6, 4.8, 4.10"));
+  EXPECT_TRUE(paper_table_matches(t002[6], "4.10"));
+  EXPECT_FALSE(paper_table_matches(t002[6], "4.1"));
+  EXPECT_FALSE(paper_table_matches(t002[6], "4.7"));
 }
 
 }  // namespace

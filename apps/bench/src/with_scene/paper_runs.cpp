@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cctype>
 #include <ostream>
 
@@ -121,7 +122,12 @@ int run_paper(const PaperRunOptions& o, std::ostream& out, std::ostream& err) {
   const std::vector<std::string> theses = o.which == "all" ? paper_names() : std::vector<std::string>{o.which};
   int status = 0;
   for (const std::string& thesis : theses) {
-    const std::vector<PaperTable> tables = paper_tables(thesis);
+    std::vector<PaperTable> tables = paper_tables(thesis);
+    if (!o.tables.empty()) {
+      std::erase_if(tables, [&](const PaperTable& t) {
+        return std::none_of(o.tables.begin(), o.tables.end(), [&](const std::string& id) { return paper_table_matches(t, id); });
+      });
+    }
     if (tables.empty()) {
       err << fmt::format("sylva-bench: --paper {}: not available yet: the tables of seed {} are not transcribed into "
                          "apps/bench/src/paper_tables.cpp (issue 20)\n",

@@ -15,6 +15,7 @@ namespace sylva::bench {
 struct PaperRunOptions {
   std::string which;                       // 000 .. 004 or all
   bool quick = false;                      // first row of each table, 256x144, 2 frames
+  std::vector<std::string> tables;         // only these tables (paper_table_matches); empty = all
   std::filesystem::path out;               // DIR: each thesis writes DIR/paper-<thesis>/
   std::function<void(RunSpec&)> customise; // the command line's --frames, --size, --set ... (may be empty)
   bool embed_images = true;
