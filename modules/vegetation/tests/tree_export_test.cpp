@@ -18,6 +18,10 @@
 #include <cmath>
 #include <cstring>
 
+#if SYLVA_HAVE_TINYGLTF
+#include <tiny_gltf.h>
+#endif
+
 namespace sylva::vegetation {
 namespace {
 
@@ -278,6 +282,59 @@ TEST(TreeExport, SpeciesFileInOtherUnitsIsWrittenInMetres) {
   fs::remove_all(src);
   fs::remove_all(dir);
 }
+
+#if SYLVA_HAVE_TINYGLTF
+// The check: another glTF reader (tinygltf 2.7, Debian libtinygltf-dev) loads the file,
+// its buffers and images, and finds the tree's triangle count and bounds.
+TEST(TreeExport, TinyGltfReadsItBack) {
+  Result<ExportTree> tree = export_tree_from_preset(SpeciesPreset::kBirch, 5, 64);
+  ASSERT_TRUE(tree.ok()) << tree.error().message;
+  const fs::path dir = fresh("export_tinygltf");
+  ASSERT_TRUE(export_tree(*tree, dir, {}).ok());
+  const TreeMesh mesh = build_tree_mesh(tree->model);
+
+  tinygltf::TinyGLTF loader;
+  tinygltf::Model m;
+  std::string err, warn;
+  ASSERT_TRUE(loader.LoadASCIIFromFile(&m, &err, &warn, (dir / "birch_5.gltf").string())) << err;
+  EXPECT_TRUE(err.empty()) << err;
+  EXPECT_TRUE(warn.empty()) << warn;
+  std::size_t triangles = 0, bad_indices = 0;
+  glm::vec3 lo(INFINITY), hi(-INFINITY);
+  for (const tinygltf::Mesh& me : m.meshes)
+    for (const tinygltf::Primitive& p : me.primitives) {
+      EXPECT_EQ(p.mode, TINYGLTF_MODE_TRIANGLES);
+      const tinygltf::Accessor& pos = m.accessors[static_cast<std::size_t>(p.attributes.at("POSITION"))];
+      const tinygltf::Accessor& idx = m.accessors[static_cast<std::size_t>(p.indices)];
+      ASSERT_EQ(idx.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+      triangles += idx.count / 3;
+      for (int k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], static_cast<float>(pos.minValues[static_cast<std::size_t>(k)]));
+        hi[k] = std::max(hi[k], static_cast<float>(pos.maxValues[static_cast<std::size_t>(k)]));
+      }
+      const tinygltf::BufferView& view = m.bufferViews[static_cast<std::size_t>(idx.bufferView)];
+      const tinygltf::Buffer& buffer = m.buffers[static_cast<std::size_t>(view.buffer)];
+      ASSERT_LE(view.byteOffset + idx.byteOffset + idx.count * 4, buffer.data.size());
+      const auto* data = reinterpret_cast<const std::uint32_t*>(buffer.data.data() + view.byteOffset + idx.byteOffset);
+      for (std::size_t i = 0; i < idx.count; ++i) bad_indices += data[i] >= pos.count ? 1 : 0;
+    }
+  EXPECT_EQ(triangles, (mesh.branch_indices.size() + mesh.leaf_indices.size()) / 3);
+  EXPECT_EQ(bad_indices, 0u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(lo[k], mesh.bounds_min[k], 1e-5f) << k;
+    EXPECT_NEAR(hi[k], mesh.bounds_max[k], 1e-5f) << k;
+  }
+  ASSERT_EQ(m.images.size(), 4u);
+  for (const tinygltf::Image& im : m.images) EXPECT_EQ(im.width, 64) << im.uri;
+  int masked = 0;
+  for (const tinygltf::Material& mat : m.materials)
+    if (mat.alphaMode == "MASK" && mat.alphaCutoff == 0.5 && mat.doubleSided) ++masked;
+  EXPECT_EQ(masked, 1);
+  std::printf("tinygltf: birch_5 %zu triangles, bounds (%.3f %.3f %.3f)-(%.3f %.3f %.3f)\n", triangles, lo.x, lo.y, lo.z,
+              hi.x, hi.y, hi.z);
+  fs::remove_all(dir);
+}
+#endif
 
 TEST(TreeExport, FileStems) {
   EXPECT_EQ(export_file_stem("seed example"), "seed_example");
