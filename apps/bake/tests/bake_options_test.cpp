@@ -49,6 +49,7 @@ TEST(BakeOptions, MistakesAreNamed) {
   EXPECT_EQ(parse_bake_args({"--help"})->kind, BakeCommand::Kind::kHelp);
 }
 
+#if SYLVA_BAKE_TREE  // built with the vegetation module
 TEST(BakeOptions, TreeFromAPresetOrASpeciesFile) {
   auto c = parse_bake_args({"tree", "--preset", "conifer", "--seed", "4294967295", "--out", "dir", "--format", "gltf", "--slices"});
   ASSERT_TRUE(c.ok()) << c.error().message;
@@ -79,6 +80,7 @@ TEST(BakeOptions, TreeFromAPresetOrASpeciesFile) {
             std::string::npos);
   EXPECT_NE(message({"terrain", "dem.tif", "--out", "x", "--slices"}).find("unknown option '--slices'"), std::string::npos);
 }
+#endif
 
 }  // namespace
 }  // namespace sylva::bake
