@@ -7,7 +7,9 @@
 // bounced off the lit ground onto faces looking sideways or down, so a face turned away from the
 // sun is lit by sky and bounce light and never black. ALPHA_CUT builds the cut-out variant
 // (discard below u_alpha_cutoff, two-sided normals); CROSS_QUADS the tuft variant (tinted, its
-// normal already faces the viewer).
+// normal already faces the viewer); TRANSLUCENT the blended variant for glass, water and ice
+// (seed §2.2: alpha = texture alpha x the block's opacity, texels below u_translucent_cutoff
+// discarded, the seed's 0.05).
 #include "voxel/common.glsl"
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
@@ -15,7 +17,7 @@
 #include "voxel/distance_fade.glsl"
 #include "voxel/shadow_hook.glsl"
 
-#ifndef ALPHA_CUT
+#if !defined(ALPHA_CUT) && !defined(TRANSLUCENT)
 layout(early_fragment_tests) in;
 #endif
 
@@ -28,6 +30,9 @@ uniform float u_ao_strength;
 uniform float u_specular_scale;
 uniform float u_sky_light;  // multiplier of the render core's hemisphere ambient
 uniform float u_bounce;  // albedo of the ground that reflects the sun onto shaded faces
+#ifdef TRANSLUCENT
+uniform float u_translucent_cutoff;
+#endif
 
 in vec3 v_rel_pos;
 in vec3 v_normal;
@@ -49,6 +54,10 @@ void main() {
   vec4 albedo = texture(u_diffuse, vec3(v_uv, float(v_layer)));
 #ifdef ALPHA_CUT
   if (albedo.a < u_alpha_cutoff) discard;
+#endif
+#ifdef TRANSLUCENT
+  float alpha = albedo.a * voxel_blocks[v_block].material.z;
+  if (alpha < u_translucent_cutoff) discard;
 #endif
 #ifdef CROSS_QUADS
   albedo.rgb *= v_tint;
@@ -82,5 +91,9 @@ void main() {
   // The host's point lights (e.g. the scene's), same attenuation family, diffuse only.
   color += albedo.rgb * sylva_point_lights_diffuse(v_rel_pos, n);
   color += b.emission.rgb * albedo.rgb * 2.0;
+#ifdef TRANSLUCENT
+  o_color = vec4(voxel_distance_fade(apply_fog(color, v_rel_pos), v_rel_pos), alpha);
+#else
   o_color = vec4(voxel_distance_fade(apply_fog(color, v_rel_pos), v_rel_pos), 1.0);
+#endif
 }

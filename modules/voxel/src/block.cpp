@@ -37,10 +37,15 @@ Result<BlockId> BlockPalette::add(BlockType type) {
   if (types_.size() >= 0xffff) {
     return make_error(ErrorCode::kLimit, fmt::format("block palette: more than 65535 types adding '{}'", type.name));
   }
+  if (!(type.opacity >= 0.0f && type.opacity <= 1.0f)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("block palette: '{}' opacity outside [0, 1]", type.name));
+  }
   const auto id = static_cast<BlockId>(types_.size());
-  if (type.render == RenderClass::kAlphaCut && id < first_alpha_cut_) first_alpha_cut_ = id;
+  // Translucent blocks mesh as alpha-cut ones (render()).
+  const RenderClass meshed = type.render == RenderClass::kTranslucent ? RenderClass::kAlphaCut : type.render;
+  if (meshed == RenderClass::kAlphaCut && id < first_alpha_cut_) first_alpha_cut_ = id;
   opaque_.push_back(type.render == RenderClass::kOpaque ? 1 : 0);
-  render_.push_back(static_cast<std::uint8_t>(type.render));
+  render_.push_back(static_cast<std::uint8_t>(meshed));
   sides_only_.push_back(type.sides_only ? 1 : 0);
   types_.push_back(std::move(type));
   return id;

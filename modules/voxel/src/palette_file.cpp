@@ -21,9 +21,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-enum class BlockRender : std::uint8_t { kOpaque, kAlphaCut };
-constexpr std::array<EnumName<BlockRender>, 2> enum_names(BlockRender) {
-  return {{{BlockRender::kOpaque, "opaque"}, {BlockRender::kAlphaCut, "alpha_cut"}}};
+enum class BlockRender : std::uint8_t { kOpaque, kAlphaCut, kTranslucent };
+constexpr std::array<EnumName<BlockRender>, 3> enum_names(BlockRender) {
+  return {{{BlockRender::kOpaque, "opaque"}, {BlockRender::kAlphaCut, "alpha_cut"}, {BlockRender::kTranslucent, "translucent"}}};
 }
 
 // Everything of a block but "texture".
@@ -35,16 +35,18 @@ struct BlockHead {
   glm::vec3 emission{0.0f};
   float specular = 0.0f;
   float shininess = 16.0f;
+  float opacity = 1.0f;
 
   template <class V>
   void visit(V& v) {
     v(name, "name", {.max = 64, .help = "Block name, [a-z0-9_]+, unique"});
-    v(render, "render", {.help = "opaque or alpha_cut (cut-out texels, seed 004 §2.2)"});
+    v(render, "render", {.help = "opaque, alpha_cut (cut-out texels) or translucent (blended: glass, water, ice; seed 004 §2.2)"});
     v(cull_same, "cull_same", {.help = "Faces between two blocks of this alpha-cut type are removed (glass); leaves keep them"});
     v(sides_only, "sides_only", {.help = "The seed's cube without bases (§1.3): grass tufts and flowers"});
     v(emission, "emission", {.min = 0.0, .max = 64.0, .help = "Linear RGB light emitted; non-zero makes a point light (seed 004 §2.3.3.2)"});
     v(specular, "specular", {.min = 0.0, .max = 1.0, .help = "Specular intensity scaling the specular map (seed 004 §2.3.2)"});
     v(shininess, "shininess", {.min = 1.0, .max = 1024.0, .help = "Phong shininess"});
+    v(opacity, "opacity", {.min = 0.0, .max = 1.0, .help = "Multiplies the texture's alpha of a translucent block"});
   }
 };
 
@@ -124,7 +126,10 @@ class PaletteReader {
     if (!s.ok()) return fail(s.error().code, source_, s.error().message);
     BlockType t;
     t.name = head.name;
-    t.render = head.render == BlockRender::kAlphaCut ? RenderClass::kAlphaCut : RenderClass::kOpaque;
+    t.render = head.render == BlockRender::kAlphaCut      ? RenderClass::kAlphaCut
+               : head.render == BlockRender::kTranslucent ? RenderClass::kTranslucent
+                                                          : RenderClass::kOpaque;
+    t.opacity = head.opacity;
     t.cull_same = head.cull_same;
     t.sides_only = head.sides_only;
     t.emission = head.emission;

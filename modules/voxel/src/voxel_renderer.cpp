@@ -109,6 +109,7 @@ struct VoxelRenderer::ChunkGpu {
   render::Buffer quads;
   std::uint32_t opaque_quads = 0;
   std::uint32_t alpha_quads = 0;
+  std::uint32_t translucent_quads = 0;  // after the alpha-cut ones
   std::uint64_t revision = ~std::uint64_t{0};
   render::Buffer plants;
   std::uint32_t plant_opaque = 0;
@@ -212,7 +213,8 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
     g.emission[3] = 0.0f;
     g.material[0] = t.specular;
     g.material[1] = t.shininess;
-    g.material[2] = g.material[3] = 0.0f;
+    g.material[2] = t.opacity;
+    g.material[3] = 0.0f;
   }
   r->block_table_ = render::Buffer::immutable(std::span<const BlockGpu>(table));
   return r;
@@ -242,6 +244,7 @@ Status VoxelRenderer::build_programs() {
   };
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, {}, opaque_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, alpha, alpha_program_));
+  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, {{"TRANSLUCENT", "1"}}, translucent_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, {}, plant_opaque_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, alpha, plant_alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, tuft, tuft_program_));
@@ -260,17 +263,25 @@ void VoxelRenderer::upload_chunk(const ChunkCoord& c, ChunkGpu& gpu) {
   gpu.origin = glm::dvec3(static_cast<double>(o.x), static_cast<double>(o.y), static_cast<double>(o.z));
   const BlockPalette& palette = world_->palette();
   gpu.quads = {};
-  gpu.opaque_quads = gpu.alpha_quads = 0;
+  gpu.opaque_quads = gpu.alpha_quads = gpu.translucent_quads = 0;
   if (mesh && mesh->opaque.size() + mesh->alpha_cut.size() > 0) {
-    std::vector<PackedQuad> all;
+    std::vector<PackedQuad> all, translucent;
     all.reserve(mesh->opaque.size() + mesh->alpha_cut.size());
     all.insert(all.end(), mesh->opaque.begin(), mesh->opaque.end());
-    // Sides-only blocks are drawn as tufts (upload_tufts), not as the mesher's side faces.
+    // Sides-only blocks are drawn as tufts (upload_tufts), not as the mesher's side faces;
+    // translucent blocks (meshed as alpha-cut) go last, for the translucent pass.
     for (const PackedQuad& q : mesh->alpha_cut) {
-      if (!palette.sides_only(static_cast<BlockId>(q.word1 & 0xffffu))) all.push_back(q);
+      const auto block = static_cast<BlockId>(q.word1 & 0xffffu);
+      if (palette.translucent(block)) {
+        translucent.push_back(q);
+      } else if (!palette.sides_only(block)) {
+        all.push_back(q);
+      }
     }
     gpu.opaque_quads = static_cast<std::uint32_t>(mesh->opaque.size());
     gpu.alpha_quads = static_cast<std::uint32_t>(all.size()) - gpu.opaque_quads;
+    gpu.translucent_quads = static_cast<std::uint32_t>(translucent.size());
+    all.insert(all.end(), translucent.begin(), translucent.end());
     if (!all.empty()) gpu.quads = render::Buffer::immutable(std::span<const PackedQuad>(all));
   }
   upload_tufts(c, gpu);
@@ -391,8 +402,8 @@ void VoxelRenderer::update(const render::FrameContext& frame) {
   visible_.clear();
   for (auto& [c, gpu] : chunks_) {
     ++stats_.chunks_total;
-    const bool empty =
-        gpu->opaque_quads + gpu->alpha_quads + gpu->tuft_count == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
+    const bool empty = gpu->opaque_quads + gpu->alpha_quads + gpu->translucent_quads + gpu->tuft_count == 0 &&
+                       gpu->plant_opaque + gpu->plant_alpha == 0;
     if (empty) continue;
     if (settings_.frustum_culling && !frustum.intersects(gpu->box)) continue;
     if (fade_.y > 0.0f && horizontal_distance(gpu->box, eye) > fade_.y) continue;  // wholly faded into the sky
@@ -440,6 +451,7 @@ void VoxelRenderer::bind_common(const render::Program& program, const render::Fr
   specular_.bind(1);
   block_table_.bind_base(GL_SHADER_STORAGE_BUFFER, kBlockBinding);
   set_if_active(program, "u_alpha_cutoff", settings_.alpha_cutoff);
+  set_if_active(program, "u_translucent_cutoff", settings_.translucent_cutoff);
   if (frame) {
     set_if_active(program, "u_light_count", static_cast<int>(light_pos_.size()));
     if (!light_pos_.empty()) {
@@ -579,6 +591,10 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
     }
     return;
   }
+  if (pass == render::Pass::kTransparent) {
+    draw_translucent(frame, stats);
+    return;
+  }
   if (pass != render::Pass::kOpaque) return;
   vao_.bind();  // vertex pulling: an empty VAO (the core profile needs one bound)
   // Shadows (UBO 2) and the host's point lights (UBO 3) as the host bound them, or all-zero
@@ -606,6 +622,60 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   bind_common(horizon_program_, &frame);
   draw_horizon(vp, eye, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
+  restore_block(light_block);
+  restore_block(shadow_block);
+}
+
+// Translucent faces (glass, water, ice; seed §2.2): after everything opaque, blended over it,
+// chunks back to front (the seed sorted transparent objects by distance; the faces of one chunk
+// keep the mesher's order), depth tested but not written, back faces culled so a block's far
+// faces do not double its colour. Texels below translucent_cutoff (the seed's 0.05) are
+// discarded. They cast no shadows.
+void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::PassStats& stats) {
+  bool any = false;
+  for (const ChunkGpu* gpu : visible_) any = any || gpu->translucent_quads > 0;
+  if (!any) return;
+  vao_.bind();
+  const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
+  const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
+  const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
+  const GLboolean blend_was = glIsEnabled(GL_BLEND);
+  GLboolean depth_mask_was = GL_TRUE;
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_was);
+  GLint blend_was_func[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO};
+  glGetIntegerv(GL_BLEND_SRC_RGB, &blend_was_func[0]);
+  glGetIntegerv(GL_BLEND_DST_RGB, &blend_was_func[1]);
+  glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_was_func[2]);
+  glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_was_func[3]);
+  glEnable(GL_DEPTH_TEST);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  glDepthMask(GL_FALSE);
+  const glm::dvec3 eye = frame.camera.position();
+  bind_common(translucent_program_, &frame);
+  translucent_program_.use();
+  translucent_program_.set("u_view_projection", frame.camera.view_projection());
+  // visible_ is front to back.
+  for (auto it = visible_.rbegin(); it != visible_.rend(); ++it) {
+    ChunkGpu* gpu = *it;
+    if (gpu->translucent_quads == 0) continue;
+    translucent_program_.set("u_chunk_offset", glm::vec3(gpu->origin - eye));
+    translucent_program_.set("u_quad_base", gpu->opaque_quads + gpu->alpha_quads);
+    gpu->quads.bind_base(GL_SHADER_STORAGE_BUFFER, kQuadBinding);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(gpu->translucent_quads) * 6);
+    ++stats.draw_calls;
+    stats.triangles += 2ull * gpu->translucent_quads;
+    stats_.quads_drawn += gpu->translucent_quads;
+    stats_.translucent_quads_drawn += gpu->translucent_quads;
+  }
+  glDepthMask(depth_mask_was);
+  glBlendFuncSeparate(static_cast<GLenum>(blend_was_func[0]), static_cast<GLenum>(blend_was_func[1]),
+                      static_cast<GLenum>(blend_was_func[2]), static_cast<GLenum>(blend_was_func[3]));
+  if (!blend_was) glDisable(GL_BLEND);
+  if (!cull_was) glDisable(GL_CULL_FACE);
   restore_block(light_block);
   restore_block(shadow_block);
 }

@@ -68,10 +68,11 @@ TEST_F(PaletteFile, ImageAndProceduralTextures) {
   write(R"({"blocks": [
       {"name": "brick", "texture": "textures/red.png", "specular": 0.3},
       {"name": "crate", "texture": {"top": "log_top", "side": "textures/red.png", "bottom": "stone"}},
-      {"name": "glass", "render": "alpha_cut", "texture": "snow"}]})");
+      {"name": "fence", "render": "alpha_cut", "texture": "snow"},
+      {"name": "glass", "render": "translucent", "texture": "snow", "opacity": 0.4}]})");
   auto p = load();
   ASSERT_TRUE(p.ok()) << p.error().message;
-  ASSERT_EQ(p->size(), 4u);
+  ASSERT_EQ(p->size(), 5u);
   ASSERT_EQ(p->images().size(), 1u) << "one layer per image file";
   const Image& layer = p->images()[0];
   EXPECT_EQ(layer.width(), 2);
@@ -88,7 +89,14 @@ TEST_F(PaletteFile, ImageAndProceduralTextures) {
   EXPECT_EQ(crate.texture_top, static_cast<int>(TextureId::kLogTop));
   EXPECT_EQ(crate.texture_side, kTextureCount);
   EXPECT_EQ(crate.texture_bottom, static_cast<int>(TextureId::kStone));
+  EXPECT_EQ(p->render(p->id("fence")), RenderClass::kAlphaCut);
+  EXPECT_FALSE(p->translucent(p->id("fence")));
+  // Translucent blocks mesh as alpha-cut ones and are drawn blended (voxel_translucent_gl_test).
+  EXPECT_TRUE(p->translucent(p->id("glass")));
   EXPECT_EQ(p->render(p->id("glass")), RenderClass::kAlphaCut);
+  EXPECT_FALSE(p->is_opaque(p->id("glass")));
+  EXPECT_FLOAT_EQ((*p)[p->id("glass")].opacity, 0.4f);
+  EXPECT_EQ(p->first_alpha_cut(), p->id("fence"));
 }
 
 TEST_F(PaletteFile, ErrorsNameTheFileAndTheJsonPath) {

@@ -28,6 +28,7 @@ void VoxelGlScene::render(VoxelRenderer& renderer, double time) {
   renderer.update(frame);
   last_stats = {};
   renderer.draw(render::Pass::kOpaque, frame, last_stats);
+  renderer.draw(render::Pass::kTransparent, frame, last_stats);
 }
 
 Image VoxelGlScene::color() const { return render::read_color(target).value(); }

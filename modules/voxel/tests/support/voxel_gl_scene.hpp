@@ -24,7 +24,7 @@ struct VoxelGlScene {
   render::PassStats last_stats;
 
   static VoxelGlScene create(int width = 256, int height = 144);
-  // update() + draw(kOpaque) into the target.
+  // update() + draw(kOpaque) + draw(kTransparent) into the target.
   void render(VoxelRenderer& renderer, double time = 0.0);
   Image color() const;
   Image depth() const;

@@ -27,6 +27,9 @@ enum class RenderClass : std::uint8_t {
   kOpaque,    // hides the faces of every neighbour; drawn in the opaque mesh with back-face culling
   kAlphaCut,  // texels are either fully opaque or cut (alpha < 0.5 discarded, seed §2.2 used 0.05);
               // drawn in the alpha-cut mesh without back-face culling; hides nothing
+  kTranslucent,  // glass, water, ice (seed §2.2): meshed like alpha-cut (hides nothing, cull_same),
+                 // drawn after the opaque pass with blending, chunks back to front, texels below
+                 // the seed's alpha threshold discarded; alpha = texture alpha x opacity
 };
 
 // The six face directions. Index = 2 * axis + (negative ? 1 : 0); axis 0 = x, 1 = y (up), 2 = z.
@@ -54,6 +57,8 @@ struct BlockType {
   // Specular intensity in [0, 1] scaling the block's specular map, and Phong shininess (seed §2.3.2).
   float specular = 0.0f;
   float shininess = 16.0f;
+  // Multiplies the texture's alpha of a translucent block (1 = the texture's own alpha).
+  float opacity = 1.0f;
 
   bool emits_light() const { return emission.x > 0.0f || emission.y > 0.0f || emission.z > 0.0f; }
 };
@@ -83,7 +88,10 @@ class BlockPalette {
   const std::vector<std::uint8_t>& opaque_table() const { return opaque_; }
   const std::vector<std::uint8_t>& render_table() const { return render_; }
   bool is_opaque(BlockId id) const { return opaque_[id] != 0; }
+  // The class the meshers see: a translucent block meshes as alpha-cut (its faces go to the
+  // alpha-cut list; the renderer draws them in its translucent pass, translucent()).
   RenderClass render(BlockId id) const { return static_cast<RenderClass>(render_[id]); }
+  bool translucent(BlockId id) const { return types_[id].render == RenderClass::kTranslucent; }
   bool culls_same(BlockId id) const { return types_[id].cull_same; }
   const std::vector<std::uint8_t>& sides_only_table() const { return sides_only_; }
   bool sides_only(BlockId id) const { return sides_only_[id] != 0; }

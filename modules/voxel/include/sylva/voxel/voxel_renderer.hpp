@@ -76,6 +76,7 @@ constexpr std::array<EnumName<ShadowPassShaders>, 3> enum_names(ShadowPassShader
 
 struct VoxelRenderSettings {
   float alpha_cutoff = 0.5f;        // alpha-cut threshold (the seed used 0.05 for its textures)
+  float translucent_cutoff = 0.05f; // translucent blocks: texels with lower alpha are discarded (the seed's threshold, §2.2)
   int max_point_lights = 16;        // emissive blocks lit per frame, nearest first (<= 32)
   float light_kc = 1.0f;            // attenuation 1 / (Kc + Kl d + Kq d^2), seed §2.3.3.2
   float light_kl = 0.045f;
@@ -103,6 +104,8 @@ struct VoxelRenderSettings {
   template <class V>
   void visit(V& v) {
     v(alpha_cutoff, "alpha_cutoff", {.min = 0.0, .max = 1.0, .help = "Texels with lower alpha are cut out"});
+    v(translucent_cutoff, "translucent_cutoff",
+      {.min = 0.0, .max = 1.0, .help = "Translucent blocks (blended after the opaque pass): texels with lower alpha are discarded (seed 004 §2.2: 0.05)"});
     v(max_point_lights, "max_point_lights", {.min = 0, .max = 32, .help = "Emissive blocks lit per frame (nearest first)"});
     v(light_kc, "light_kc", {.min = 1.0, .max = 16.0, .help = "Constant attenuation (>= 1 never amplifies)"});
     v(light_kl, "light_kl", {.min = 0.0, .max = 4.0, .unit = "1/block", .help = "Linear attenuation"});
@@ -146,6 +149,7 @@ struct VoxelFrameStats {
   std::size_t point_lights = 0;
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
   std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
+  std::size_t translucent_quads_drawn = 0;  // in draw(kTransparent), also counted in quads_drawn
 };
 
 class VoxelRenderer final : public render::Drawable {
@@ -196,6 +200,7 @@ class VoxelRenderer final : public render::Drawable {
   void draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection, const glm::dvec3& origin,
                   render::PassStats& stats);
   void draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
+  void draw_translucent(const render::FrameContext& frame, render::PassStats& stats);
   void bind_common(const render::Program& program, const render::FrameContext* frame) const;
   void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin,
@@ -217,7 +222,7 @@ class VoxelRenderer final : public render::Drawable {
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
   render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_;
-  render::Program tuft_program_, horizon_program_;
+  render::Program tuft_program_, horizon_program_, translucent_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Buffer no_shadows_ubo_;
   render::Buffer no_point_lights_ubo_;
