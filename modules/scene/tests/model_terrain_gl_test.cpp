@@ -2,7 +2,9 @@
 // the shipped scenes/model_terrain.json (an OBJ with an overhanging cliff) builds its model tree
 // and draws it, covering every pixel where it must be seen, with segments, triangles and GPU bytes
 // in the stats; the seed's reduce per pass is reachable from the file; missing and broken meshes
-// are clear errors naming the file (and line).
+// are clear errors naming the file (and line). The same mesh written as OBJ, Open Inventor .iv and
+// glTF (.gltf + .bin) draws the same picture; a control cage is refined by "subdivision"; hostile
+// .iv and glTF files are errors naming the file.
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/gpu_memory.hpp>
@@ -16,7 +18,11 @@
 #include "render_once.hpp"
 
 #include <gtest/gtest.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -201,6 +207,215 @@ TEST_F(ModelTerrainGl, MissingOrBrokenMeshIsAClearError) {
   ASSERT_FALSE(none.ok());
   EXPECT_NE(none.error().message.find("model_terrain.file"), std::string::npos) << none.error().message;
   fs::remove_all(dir);
+}
+
+// A small hill of n x n quads over 64 m (heights multiples of 1/16 m, so that the glTF's node
+// translation by 8 m restores them exactly), as a vertex grid and quads (a, b, c, d).
+struct Grid {
+  std::vector<glm::vec3> points;
+  std::vector<std::array<int, 4>> quads;
+};
+Grid hill(int n) {
+  Grid g;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = -32.0f + 64.0f * static_cast<float>(i) / static_cast<float>(n);
+      const float z = -32.0f + 64.0f * static_cast<float>(j) / static_cast<float>(n);
+      const float h = std::round(16.0f * (12.0f * std::exp(-(x * x + z * z) / 400.0f) + 0.05f * x)) / 16.0f;
+      g.points.emplace_back(x, h, z);
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i;
+      g.quads.push_back({a, a + n + 1, a + n + 2, a + 1});  // counter-clockwise seen from above (+y)
+    }
+  return g;
+}
+
+// OBJ with the quads as two triangles each (the fan triangulate() makes of a quad).
+std::string as_obj(const Grid& g, bool quads) {
+  std::string out = "# hill\n";
+  for (const glm::vec3& p : g.points) out += fmt::format("v {} {} {}\n", p.x, p.y, p.z);
+  for (const auto& q : g.quads) {
+    if (quads) {
+      out += fmt::format("f {} {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+    } else {
+      out += fmt::format("f {} {} {}\nf {} {} {}\n", q[0] + 1, q[1] + 1, q[2] + 1, q[0] + 1, q[2] + 1, q[3] + 1);
+    }
+  }
+  return out;
+}
+
+// The seed's Inventor subset: quads, comments, DEF, a Separator and nodes to be skipped.
+std::string as_iv(const Grid& g) {
+  std::string out = "#Inventor V2.1 ascii\n\n# hill\nSeparator {\n  Material { diffuseColor 0.5 0.4 0.3 }\n"
+                    "  ShapeHints { vertexOrdering COUNTERCLOCKWISE }\n  DEF Hill Coordinate3 {\n    point [\n";
+  for (const glm::vec3& p : g.points) out += fmt::format("      {} {} {},\n", p.x, p.y, p.z);
+  out += "    ]\n  }\n  IndexedFaceSet {\n    coordIndex [\n";
+  for (const auto& q : g.quads) out += fmt::format("      {}, {}, {}, {}, -1,\n", q[0], q[1], q[2], q[3]);
+  out += "    ]\n  }\n}\n";
+  return out;
+}
+
+// glTF 2.0: one node translated by +8 m in y over the mesh lowered by 8 m; float positions and
+// uint32 triangles in `bin` (an external buffer).
+nlohmann::json as_gltf(const Grid& g, const std::string& bin, std::string& bytes) {
+  std::vector<float> pos;
+  glm::vec3 lo(1e30f), hi(-1e30f);
+  for (const glm::vec3& p : g.points) {
+    const glm::vec3 q(p.x, p.y - 8.0f, p.z);
+    pos.insert(pos.end(), {q.x, q.y, q.z});
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  std::vector<std::uint32_t> idx;
+  for (const auto& q : g.quads) {
+    for (int k : {0, 1, 2, 0, 2, 3}) idx.push_back(static_cast<std::uint32_t>(q[static_cast<std::size_t>(k)]));
+  }
+  bytes.assign(reinterpret_cast<const char*>(pos.data()), pos.size() * 4);
+  bytes.append(reinterpret_cast<const char*>(idx.data()), idx.size() * 4);
+  nlohmann::json j;
+  j["asset"]["version"] = "2.0";
+  j["scene"] = 0;
+  j["scenes"] = nlohmann::json::array({{{"nodes", {0}}}});
+  j["nodes"] = nlohmann::json::array({{{"mesh", 0}, {"translation", {0.0, 8.0, 0.0}}}});
+  nlohmann::json primitive = {{"indices", 1}, {"mode", 4}};
+  primitive["attributes"]["POSITION"] = 0;
+  j["meshes"] = nlohmann::json::array({{{"primitives", nlohmann::json::array({primitive})}}});
+  j["buffers"] = nlohmann::json::array({{{"uri", bin}, {"byteLength", bytes.size()}}});
+  j["bufferViews"] = nlohmann::json::array(
+      {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", pos.size() * 4}},
+       {{"buffer", 0}, {"byteOffset", pos.size() * 4}, {"byteLength", idx.size() * 4}}});
+  j["accessors"] = nlohmann::json::array(
+      {{{"bufferView", 0}, {"componentType", 5126}, {"count", g.points.size()}, {"type", "VEC3"},
+        {"min", {lo.x, lo.y, lo.z}}, {"max", {hi.x, hi.y, hi.z}}},
+       {{"bufferView", 1}, {"componentType", 5125}, {"count", idx.size()}, {"type", "SCALAR"}}});
+  return j;
+}
+
+// The build has no libtinygltf (terrain/mesh.hpp load_gltf says so).
+bool without_gltf(const Error& e) { return e.message.find("configured without") != std::string::npos; }
+
+class MeshFiles : public ModelTerrainGl {
+ protected:
+  void SetUp() override {
+    ModelTerrainGl::SetUp();
+    dir_ = fs::temp_directory_path() / ("sylva_model_formats_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    fs::remove_all(dir_);
+    ModelTerrainGl::TearDown();
+  }
+  void write(const std::string& name, const std::string& text) { ASSERT_TRUE(write_file_atomic(dir_ / name, text).ok()); }
+  // A scene of the mesh file alone, seen from the south-west above the hill, shadows off.
+  Result<std::unique_ptr<Scene>> scene_of(const std::string& file, const std::string& extra = "") {
+    const std::string json = R"({"camera": {"position": [-45.0, 30.0, -45.0], "yaw_deg": -135.0, "pitch_deg": -25.0},
+      "render": {"shadows": {"enabled": false}},
+      "model_terrain": {"file": ")" + file + R"(", "tree": {"levels": 2})" + extra + "}}";
+    EXPECT_TRUE(write_file_atomic(dir_ / "s.json", json).ok());
+    std::vector<std::string> warnings;
+    auto doc = SceneDocument::load(dir_ / "s.json", warnings);
+    if (!doc.ok()) return doc.error();
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+    return Scene::create(std::move(*doc));
+  }
+  fs::path dir_;
+};
+
+TEST_F(MeshFiles, ObjIvAndGltfOfOneMeshDrawTheSamePicture) {
+  if (!find_module("model_terrain")) GTEST_SKIP() << "terrain is built out";
+  const Grid g = hill(16);
+  write("hill.obj", as_obj(g, false));
+  write("hill.iv", as_iv(g));
+  std::string bytes;
+  write("hill.gltf", as_gltf(g, "hill.bin", bytes).dump(1));
+  write("hill.bin", bytes);
+  std::vector<std::string> files = {"hill.obj", "hill.iv", "hill.gltf"};
+  const glm::ivec2 size(128, 80);
+  std::vector<Image> pictures;
+  for (const std::string& f : files) {
+    auto scene = scene_of(f);
+    if (!scene.ok() && without_gltf(scene.error())) {
+      files.pop_back();
+      break;
+    }
+    ASSERT_TRUE(scene.ok()) << f << ": " << scene.error().message;
+    const render::Camera camera = (*scene)->make_camera((*scene)->document().camera, size);
+    pictures.push_back(frame(**scene, camera, size));
+    const nlohmann::json s = (*scene)->module_stats()["model_terrain"];
+    EXPECT_EQ(s["mesh_triangles"].get<std::uint64_t>(), 2u * 16u * 16u) << f;
+    EXPECT_EQ(s["mesh_vertices"].get<std::uint64_t>(), 17u * 17u) << f;
+    EXPECT_GT(s["triangles"].get<std::uint64_t>(), 0u) << f;
+    std::printf("%s: %s triangles drawn of %s\n", f.c_str(), s["triangles"].dump().c_str(), s["mesh_triangles"].dump().c_str());
+  }
+  // The hill fills a good part of the frame (against the same scene without it).
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(dir_ / "s.json", warnings);
+  ASSERT_TRUE(doc.ok());
+  doc->remove_module("model_terrain");
+  auto none = Scene::create(std::move(*doc));
+  ASSERT_TRUE(none.ok()) << none.error().message;
+  const Image blank = frame(**none, (*none)->make_camera((*none)->document().camera, size), size);
+  EXPECT_GT(differing_pixels(pictures[0], blank), pictures[0].pixel_count() / 4) << "the hill is in view";
+  for (std::size_t i = 1; i < pictures.size(); ++i) {
+    EXPECT_EQ(differing_pixels(pictures[0], pictures[i]), 0u) << files[i] << " against " << files[0];
+  }
+  std::printf("formats: %zu files, hill covers %zu of %zu pixels\n", files.size(), differing_pixels(pictures[0], blank),
+              pictures[0].pixel_count());
+}
+
+TEST_F(MeshFiles, ControlCageIsRefinedBySubdivision) {
+  if (!find_module("model_terrain")) GTEST_SKIP() << "terrain is built out";
+  write("cage.obj", as_obj(hill(4), true));  // 16 quads
+  auto coarse = scene_of("cage.obj");
+  ASSERT_TRUE(coarse.ok()) << coarse.error().message;
+  auto fine = scene_of("cage.obj", R"(, "subdivision": {"scheme": "catmull_clark", "level": 2})");
+  ASSERT_TRUE(fine.ok()) << fine.error().message;
+  const glm::ivec2 size(96, 64);
+  const Image a = frame(**coarse, (*coarse)->make_camera((*coarse)->document().camera, size), size);
+  const Image b = frame(**fine, (*fine)->make_camera((*fine)->document().camera, size), size);
+  const std::uint64_t cage = (*coarse)->module_stats()["model_terrain"]["mesh_triangles"].get<std::uint64_t>();
+  const nlohmann::json s = (*fine)->module_stats()["model_terrain"];
+  EXPECT_EQ(cage, 32u) << "16 quads, two triangles each";
+  EXPECT_EQ(s["mesh_triangles"].get<std::uint64_t>(), 16u * cage) << "two levels: 4 x 4 quads per quad";
+  EXPECT_GT(s["triangles"].get<std::uint64_t>(), 0u);
+  EXPECT_GT(differing_pixels(a, b), 0u) << "the refined surface is smoother than the cage";
+  std::printf("subdivision: cage %llu triangles, level 2: %s, %zu pixels differ\n", static_cast<unsigned long long>(cage),
+              s["mesh_triangles"].dump().c_str(), differing_pixels(a, b));
+}
+
+TEST_F(MeshFiles, HostileIvAndGltfAreErrorsNamingTheFile) {
+  if (!find_module("model_terrain")) GTEST_SKIP() << "terrain is built out";
+  const std::string whole = as_iv(hill(2));
+  write("truncated.iv", whole.substr(0, whole.find("coordIndex") + 20));
+  write("range.iv", "#Inventor V2.1 ascii\nSeparator {\n Coordinate3 { point [ 0 0 0, 1 0 0, 0 0 1 ] }\n"
+                    " IndexedFaceSet { coordIndex [ 0, 1, 2, -1,\n 0, 2, 3, -1 ] }\n}\n");
+  const auto error_of = [&](const std::string& file) {
+    auto scene = scene_of(file);
+    EXPECT_FALSE(scene.ok()) << file;
+    return scene.ok() ? std::string() : scene.error().message;
+  };
+  const std::string truncated = error_of("truncated.iv");
+  EXPECT_NE(truncated.find("truncated.iv:"), std::string::npos) << truncated;
+  EXPECT_NE(truncated.find("end of file"), std::string::npos) << truncated;
+  const std::string range = error_of("range.iv");
+  EXPECT_NE(range.find("range.iv:5: coordIndex 3 is outside the 3 points"), std::string::npos) << range;
+  std::printf("errors: %s | %s\n", truncated.c_str(), range.c_str());
+  std::string bytes;
+  const nlohmann::json gltf = as_gltf(hill(2), "gone.bin", bytes);
+  write("missing.gltf", gltf.dump());
+  if (auto s = scene_of("missing.gltf"); !s.ok() && without_gltf(s.error())) return;
+  const std::string missing = error_of("missing.gltf");
+  EXPECT_NE(missing.find("missing.gltf"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("gone.bin"), std::string::npos) << missing;
+  nlohmann::json past = as_gltf(hill(2), "past.bin", bytes);
+  past["accessors"][1]["count"] = 1000;  // more indices than the view holds
+  write("past.gltf", past.dump());
+  write("past.bin", bytes);
+  const std::string beyond = error_of("past.gltf");
+  EXPECT_NE(beyond.find("past.gltf: accessors[1]"), std::string::npos) << beyond;
+  std::printf("errors: %s | %s\n", missing.c_str(), beyond.c_str());
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -117,6 +118,16 @@ Result<PolygonMesh> load_obj(const std::filesystem::path& path) {
   auto text = read_file(path);
   if (!text.ok()) return text.error();
   return parse_obj(*text, path.string());
+}
+
+Result<PolygonMesh> load_mesh(const std::filesystem::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".obj") return load_obj(path);
+  if (ext == ".iv") return load_iv(path);
+  if (ext == ".gltf" || ext == ".glb") return load_gltf(path);
+  return make_error(ErrorCode::kUnsupported,
+                    fmt::format("{}: unknown mesh format '{}' (.obj, .iv, .gltf or .glb)", path.string(), ext));
 }
 
 Status save_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {

@@ -1,5 +1,8 @@
 // The "model_terrain" section: the general-model terrain of seed 002 §4, a triangle mesh with
-// overhangs and arches (an OBJ file relative to the scene file), split into a quadtree of
+// overhangs and arches (an OBJ, Open Inventor ASCII .iv or glTF .gltf/.glb file relative to the
+// scene file, chosen by its extension: terrain/mesh.hpp load_mesh), optionally refined from a
+// coarse control cage by OpenSubdiv ("subdivision": scheme, level; level 0, the default, keeps
+// the file's mesh; terrain/subdivision.hpp), split into a quadtree of
 // segments with locked borders and each level reduced (terrain/model_tree.hpp: QEM by default or
 // the seed's shortest-edge reducer, keep_per_level or the seed's reduce_per_pass), drawn by
 // terrain::ModelRenderer with the height-field terrain's screen-space tau and material.
@@ -17,6 +20,7 @@
 #include <sylva/terrain/mesh.hpp>
 #include <sylva/terrain/model_renderer.hpp>
 #include <sylva/terrain/model_tree.hpp>
+#include <sylva/terrain/subdivision.hpp>
 
 #include <fmt/format.h>
 
@@ -26,16 +30,20 @@ namespace sylva::scene::detail {
 namespace {
 
 struct ModelTerrainSectionSettings {
-  std::string file;  // OBJ, relative to the scene file
+  std::string file;  // OBJ, IV, glTF or GLB, relative to the scene file
   glm::dvec3 offset{0.0};
+  terrain::SubdivisionSettings subdivision{.level = 0};  // off unless a level is set
   terrain::ModelTreeSettings tree;
   terrain::ModelRenderSettings render;
 
   template <class V>
   void visit(V& v) {
-    v(file, "file", {.max = 4096.0, .help = "Wavefront OBJ mesh relative to the scene file", .rebuild = Rebuild::kOffline});
+    v(file, "file", {.max = 4096.0,
+      .help = "Mesh relative to the scene file: Wavefront .obj, Open Inventor ASCII .iv, glTF .gltf or .glb",
+      .rebuild = Rebuild::kOffline});
     v(offset, "offset", {.min = -1.0e9, .max = 1.0e9, .unit = "m", .help = "Added to every vertex of the mesh",
       .rebuild = Rebuild::kOffline});
+    v(subdivision, "subdivision");  // a control cage refined before the tree is built (level 0: off)
     v(tree, "tree");
     v(render, "render");
   }
@@ -122,13 +130,22 @@ class ModelTerrainInstance final : public ModuleInstance {
   Status build() {
     const ModelTerrainSectionSettings& s = settings();
     if (s.file.empty()) {
-      return make_error(ErrorCode::kInvalidArgument, "model_terrain.file: no mesh given (an OBJ file relative to the scene file)");
+      return make_error(ErrorCode::kInvalidArgument,
+                        "model_terrain.file: no mesh given (an .obj, .iv, .gltf or .glb file relative to the scene file)");
     }
     const std::filesystem::path path = ctx_.document != nullptr ? ctx_.document->resolve(s.file) : std::filesystem::path(s.file);
     Stopwatch watch;
-    auto obj = terrain::load_obj(path);
-    if (!obj.ok()) return make_error(obj.error().code, "model_terrain.file: " + obj.error().message);
-    terrain::TriangleMesh mesh = terrain::triangulate(*obj);
+    auto polygons = terrain::load_mesh(path);
+    if (!polygons.ok()) return make_error(polygons.error().code, "model_terrain.file: " + polygons.error().message);
+    if (s.subdivision.level > 0) {
+      auto refined = terrain::subdivide(*polygons, s.subdivision);
+      if (!refined.ok()) {
+        return make_error(refined.error().code, fmt::format("model_terrain.subdivision: {}: {}", path.string(),
+                                                            refined.error().message));
+      }
+      polygons = std::move(*refined);
+    }
+    terrain::TriangleMesh mesh = terrain::triangulate(*polygons);
     for (glm::vec3& p : mesh.positions) p = glm::vec3(glm::dvec3(p) + s.offset);
     load_ms_ = watch.lap_ms();
     auto tree = terrain::ModelTree::build(mesh, s.tree);

@@ -37,6 +37,30 @@ struct PolygonMesh {
 // index of 0 or outside the vertices, a non-finite coordinate, no faces at all.
 Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source = "<obj>");
 Result<PolygonMesh> load_obj(const std::filesystem::path& path);
+// The Open Inventor ASCII subset of the seed's general-model files (cilaos.iv): the first line
+// `#Inventor V2.x ascii`, then `Coordinate3 { point [ x y z, ... ] }` and `IndexedFaceSet {
+// coordIndex [ a, b, c, -1, ... ] }` anywhere among Separators and other nodes (skipped by their
+// braces and brackets; DEF names allowed, USE not followed). A face set indexes the Coordinate3
+// current at its place (scoped by Separators); the last face may omit its -1; faces keep their
+// size (triangulate() fans them). Errors (kParse) name `source:line`: an index outside the
+// current points, a face of fewer than 3, a point with fewer than 3 numbers, end of file inside
+// a node or list, no faces at all.
+Result<PolygonMesh> parse_iv(std::string_view text, std::string_view source = "<iv>");
+Result<PolygonMesh> load_iv(const std::filesystem::path& path);
+
+// glTF 2.0 (.gltf with external or data-URI buffers, .glb) through Debian's libtinygltf: every
+// triangle primitive (mode 4) of every mesh reached from the default scene's nodes (or from every
+// root node when there is no scene), transformed by the node's world matrix; other modes are
+// skipped. Errors name the file and the glTF JSON path (`meshes[0].primitives[1].indices`,
+// `bufferViews[2]`): a missing buffer file, an accessor past its view or buffer, POSITION not
+// VEC3 FLOAT, an index outside the primitive's vertices. gltf_supported() is false when the build
+// has no tinygltf; load_gltf then returns kUnsupported.
+bool gltf_supported();
+Result<PolygonMesh> load_gltf(const std::filesystem::path& path);
+
+// By the file extension (case-insensitive): .obj, .iv, .gltf or .glb; any other is kUnsupported.
+Result<PolygonMesh> load_mesh(const std::filesystem::path& path);
+
 // Writes OBJ text (vertices and faces) through an atomic file write.
 Status save_obj(const std::filesystem::path& path, const TriangleMesh& mesh);
 
