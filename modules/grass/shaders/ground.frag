@@ -13,6 +13,8 @@
 
 layout(binding = 0) uniform sampler2D u_ground;
 layout(binding = 1) uniform sampler2D u_density;
+layout(binding = 2) uniform sampler2D u_tint;  // the maps' tint (maps.hpp), read when u_tinted is 1
+uniform int u_tinted;
 
 uniform vec4 u_fades;        // mid, mid_fade, far, far_fade
 uniform float u_texture_scale;
@@ -81,6 +83,9 @@ void main() {
   if (!top && !under) discard;
   vec3 albedo = grass_mean_albedo(u_base_color, u_tip_color) * g_color * (t.rgb * 1.4);
   if (!top) albedo *= u_shading.w;
+  // The tint map colours the layer as it colours the blades and clumps (seed 001 §3.3 texture
+  // maps; Sylva's tint), so the far field matches the near one.
+  if (u_tinted != 0) albedo *= texture(u_tint, vec2(m.x, 1.0 - m.y)).rgb;
   albedo *= grass_color_pulse(u_color_motion, 0.0);
   float lit = u_receive_shadows != 0 ? sylva_shadow(g_rel_pos, n) : 1.0;
   vec3 color = albedo * grass_canopy_light(g_rel_pos / max(distance, 1e-6), u_translucency, lit, u_shading.y) * u_shading.x;

@@ -662,6 +662,11 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   auto dens = render::Texture::from_image(maps.density_image(), linear);
   if (!dens) return dens.error();
   f.density_ = std::move(*dens);
+  // The tint map (maps.hpp) colours the ground layer as it colours blades and clumps.
+  f.tinted_ = maps.has_tint_map();
+  auto tint = render::Texture::from_image(maps.tint_image(), linear);
+  if (!tint) return tint.error();
+  f.tint_ = std::move(*tint);
   return f;
 }
 
@@ -845,6 +850,8 @@ void FarField::draw_far(const render::Camera& camera, const WindField& wind, dou
     }
     ground_texture_.bind(0);
     density_.bind(1);
+    tint_.bind(2);
+    p.set("u_tinted", tinted_ ? 1 : 0);
     ground_vao_.bind();
     p.use();
     std::uint64_t tris = 0;

@@ -199,17 +199,27 @@ double GrassMaps::density_integral(const Rect& area) const {
   return clip.empty() ? 0.0 : clip.size().x * clip.size().y;
 }
 
-Image GrassMaps::density_image() const {
-  if (!density_) {
-    Image one(1, 1, 1);
-    one.at(0, 0) = 1.0f;
+namespace {
+
+// The texels of `channels` (all of one size) as one float image; 1 x 1 white without maps.
+Image maps_image(const std::optional<ScalarMap>* channels, int count) {
+  if (!channels[0]) {
+    Image one(1, 1, count);
+    for (int c = 0; c < count; ++c) one.at(0, 0, c) = 1.0f;
     return one;
   }
-  Image img(density_->width(), density_->height(), 1);
+  Image img(channels[0]->width(), channels[0]->height(), count);
   for (int j = 0; j < img.height(); ++j)
-    for (int i = 0; i < img.width(); ++i) img.at(i, j) = density_->value(i, j);
+    for (int i = 0; i < img.width(); ++i)
+      for (int c = 0; c < count; ++c) img.at(i, j, c) = channels[c]->value(i, j);
   return img;
 }
+
+}  // namespace
+
+Image GrassMaps::density_image() const { return maps_image(&density_, 1); }
+
+Image GrassMaps::tint_image() const { return maps_image(tint_, 3); }
 
 glm::dvec2 GrassMaps::density_texel() const {
   if (!density_) return rect_.size();

@@ -1,7 +1,16 @@
 // The "grass" section: one field of tessellated blades (grass::GrassField) with the seed-003 far
 // field (grass::FarField) over a world rectangle, standing on the scene's ground HeightField (or
 // on flat ground at y = 0 when the scene has none), reading the scene's wind and lighting.
-// Maps: density (blade count) and height (blade height scale), both [0, 1] over the area.
+// Maps: density (blade count) and height (blade height scale), both [0, 1] over the area, and
+// tint_r/tint_g/tint_b (colour multiplier of blades, clumps and far ground layer, 1 = unchanged),
+// all painted and undone like any scene map. Two file-only slots fill them (seed 001 §3.3):
+//  - maps.control, seed 001's RGB control texture: its channels named by control.channels
+//    (default "rg": R density, G blade height) fill the density and height maps. Seed 001's B
+//    (terrain height, inverted: y = mix(0, max, 1 - B)) is not read here: a Sylva scene's ground
+//    comes from its terrain/ground section and its own height map;
+//  - maps.tint, an RGB image: its R, G, B fill tint_r, tint_g, tint_b.
+// A slot's own file (maps.density, maps.tint_r, ..., what saving an edited map writes) wins over
+// the channel of control/tint. Without a tint map (all three 1 everywhere) the field has none.
 //
 // Edits: a changed map or ground area marks the field dirty; it is regenerated once at the next
 // frame (sync_settings), so a brush stroke of many dabs costs one regeneration per frame. Blade
@@ -20,16 +29,32 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <optional>
+#include <string>
 
 namespace sylva::scene::detail {
 namespace {
+
+// Which channels of maps.control feed which map (seed 001 §3.3's layout is R density, G height).
+struct GrassControlSettings {
+  std::string channels = "rg";
+
+  template <class V>
+  void visit(V& v) {
+    v(channels, "channels", {.max = 2.0,
+      .help = "Channels of maps.control that fill the density and height maps, in that order: two of r, g, b, a "
+              "or - for none (\"rg\" = seed 001: R density, G height; \"gr\" swaps them)",
+      .rebuild = Rebuild::kOffline});
+  }
+};
 
 struct GrassSectionSettings {
   glm::dvec2 area_min{-10.0, -10.0};  // world x/z rectangle of the field [m]
   glm::dvec2 area_max{10.0, 10.0};
   int map_resolution = 128;           // texels along the longer side of a new density/height map
   float map_density_fill = 1.0f;      // value of a new density map (the scene names no density file)
+  GrassControlSettings control;
   grass::GrassFieldSettings field;
   grass::BladeSettings blade;
   grass::GrassRenderSettings render;
@@ -44,6 +69,7 @@ struct GrassSectionSettings {
     v(map_density_fill, "map_density_fill", {.min = 0.0f, .max = 1.0f,
       .help = "Value of a new density map, where the scene names no density map file (painting edits it afterwards)",
       .rebuild = Rebuild::kOffline});
+    v(control, "control");
     v(field, "field");
     v(blade, "blade");
     v(render, "render");
@@ -73,11 +99,73 @@ using Settings = SettingsOf<GrassSectionSettings>;
 
 const MapSlot kDensitySlot{"density", MapKind::kUnit, "Blade density, 1 = field.density blades per square metre"};
 const MapSlot kHeightSlot{"height", MapKind::kUnit, "Blade height scale, 1 = full blade height"};
+const MapSlot kTintSlots[3] = {
+    {"tint_r", MapKind::kUnit, "Red multiplier of the grass colour (blades and far field), 1 = unchanged"},
+    {"tint_g", MapKind::kUnit, "Green multiplier of the grass colour (blades and far field), 1 = unchanged"},
+    {"tint_b", MapKind::kUnit, "Blue multiplier of the grass colour (blades and far field), 1 = unchanged"}};
+// File-only slots: their channels fill the maps above (see the header comment).
+const MapSlot kControlSlot{"control", MapKind::kUnit,
+                           "Seed 001 control texture (RGB file): fills the density and height maps (control.channels)"};
+const MapSlot kTintFileSlot{"tint", MapKind::kUnit, "Tint image (RGB file): fills the tint_r, tint_g, tint_b maps"};
 
 Image to_image(const MapGrid& g) {
   Image image(g.width, g.height, 1);
   std::copy(g.values.begin(), g.values.end(), image.data().begin());
   return image;
+}
+
+// The image file of file-only slot `slot`, read once per build; errors name the key and the file.
+Result<Image> read_slot_image(const ModuleBuildContext& ctx, const MapSlot& slot, int channels_needed,
+                              const std::string& why) {
+  const std::string key = fmt::format("{}.maps.{}", ctx.section->name, slot.name);
+  const std::filesystem::path file = ctx.document->resolve(ctx.section->maps.at(slot.name));
+  ImageReadOptions options;
+  options.max_side = 16384;
+  options.allow_non_finite = false;
+  auto image = read_image(file, options);
+  if (!image.ok()) return make_error(image.error().code, fmt::format("{}: {}", key, image.error().message));
+  if (image->channels() < channels_needed) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {} has {} channel(s), {} needs {}", key, file.string(),
+                                                               image->channels(), why, channels_needed));
+  }
+  if (image->width() < 2 || image->height() < 2) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {} is {} x {} pixels, a map needs at least 2 x 2", key,
+                                                               file.string(), image->width(), image->height()));
+  }
+  return std::move(*image);
+}
+
+// Puts channel `channel` of `image` into the scene as map `slot` (an unsaved default: path "",
+// written only once edited) unless the scene already holds that map or the section names a file
+// for it; ensure_area_map then places it over the area.
+void fill_from_channel(const ModuleBuildContext& ctx, const MapSlot& slot, const Image& image, int channel) {
+  const std::string id = ctx.section->name + "." + slot.name;
+  if (ctx.maps->count(id) || ctx.section->maps.count(slot.name)) return;
+  SceneMap map;
+  map.module = ctx.section->name;
+  map.slot = slot.name;
+  map.kind = slot.kind;
+  map.grid = MapGrid(image.width(), image.height(), 0.0f, {0.0, 0.0}, {1.0, 1.0});
+  for (int j = 0; j < image.height(); ++j)
+    for (int i = 0; i < image.width(); ++i) map.grid.at(i, j) = std::clamp(image.at(i, j, channel), 0.0f, 1.0f);
+  ctx.maps->emplace(id, std::move(map));
+}
+
+// control.channels as channel indices (-1 = none); errors name the key.
+Result<std::array<int, 2>> control_channels(const std::string& text, std::string_view prefix) {
+  constexpr std::string_view kLetters = "rgba-";
+  std::array<int, 2> out{-1, -1};
+  bool valid = text.size() == 2;
+  for (std::size_t k = 0; valid && k < 2; ++k) {
+    const std::size_t c = kLetters.find(text[k]);
+    valid = c != std::string_view::npos;
+    if (valid && c < 4) out[k] = static_cast<int>(c);
+  }
+  if (!valid) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}.control.channels: \"{}\" is not two of r, g, b, a, - (density, height)", prefix, text));
+  }
+  return out;
 }
 
 // The blade draw is indirect (the GPU culls and tessellates), so GrassField::draw cannot know its
@@ -161,6 +249,7 @@ class GrassInstance final : public ModuleInstance {
     nlohmann::json j = {{"blades", field_->blade_count()},
                         {"tiles", field_->tiles().size()},
                         {"regenerations", regenerations_},
+                        {"max_blade_height", field_->max_height()},
                         {"blade_triangles", blades_.last_primitives()}};
     if (far_) {
       j["clumps"] = far_->clump_count();
@@ -203,8 +292,69 @@ class GrassInstance final : public ModuleInstance {
 
   const GrassSectionSettings& settings() const { return static_cast<const Settings&>(*ctx_.section->settings).value; }
 
+  // Fills the density/height/tint maps from maps.control and maps.tint where the scene has none.
+  Status fill_from_files() {
+    const GrassSectionSettings& s = settings();
+    const std::string& name = ctx_.section->name;
+    auto channels = control_channels(s.control.channels, name);
+    if (!channels.ok()) return channels.error();
+    const MapSlot* targets[2] = {&kDensitySlot, &kHeightSlot};
+    auto missing = [&](const MapSlot& slot) {
+      return !ctx_.maps->count(name + "." + slot.name) && !ctx_.section->maps.count(slot.name);
+    };
+    if (ctx_.section->maps.count(kControlSlot.name) && (missing(kDensitySlot) || missing(kHeightSlot))) {
+      const int needed = std::max((*channels)[0], (*channels)[1]) + 1;
+      auto control = read_slot_image(ctx_, kControlSlot, std::max(needed, 1),
+                                     fmt::format("{}.control.channels \"{}\"", name, s.control.channels));
+      if (!control.ok()) return control.error();
+      for (int k = 0; k < 2; ++k) {
+        if ((*channels)[k] >= 0) fill_from_channel(ctx_, *targets[k], *control, (*channels)[k]);
+      }
+    }
+    if (ctx_.section->maps.count(kTintFileSlot.name) &&
+        std::any_of(std::begin(kTintSlots), std::end(kTintSlots), missing)) {
+      auto tint = read_slot_image(ctx_, kTintFileSlot, 3, "a tint (RGB)");
+      if (!tint.ok()) return tint.error();
+      for (int c = 0; c < 3; ++c) fill_from_channel(ctx_, kTintSlots[c], *tint, c);
+    }
+    return {};
+  }
+
+  // The tint maps as one RGB image; nullopt when all three are 1 everywhere (no tint map, so the
+  // default field is what it was without tint maps). Errors when their sizes differ.
+  Result<std::optional<Image>> tint_image(const SceneMap* const (&maps)[3]) const {
+    const bool white = std::all_of(std::begin(maps), std::end(maps), [](const SceneMap* m) {
+      return std::all_of(m->grid.values.begin(), m->grid.values.end(), [](float v) { return v == 1.0f; });
+    });
+    if (white) return std::optional<Image>();
+    const MapGrid& r = maps[0]->grid;
+    for (int c = 1; c < 3; ++c) {
+      const MapGrid& g = maps[c]->grid;
+      if (g.width != r.width || g.height != r.height) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          fmt::format("{}.maps.{}: {} x {} texels, but {}.maps.tint_r has {} x {}: the tint maps must match",
+                                      ctx_.section->name, kTintSlots[c].name, g.width, g.height, ctx_.section->name,
+                                      r.width, r.height));
+      }
+    }
+    Image image(r.width, r.height, 3);
+    for (int j = 0; j < r.height; ++j)
+      for (int i = 0; i < r.width; ++i)
+        for (int c = 0; c < 3; ++c) image.at(i, j, c) = maps[c]->grid.at(i, j);
+    return std::optional<Image>(std::move(image));
+  }
+
   Status build() {
     const GrassSectionSettings& s = settings();
+    SYLVA_TRY(fill_from_files());
+    const SceneMap* tints[3];
+    for (int c = 0; c < 3; ++c) {
+      auto t = ensure_area_map(ctx_, kTintSlots[c], s.area_min, s.area_max, s.map_resolution, 1.0f);
+      if (!t.ok()) return t.error();
+      tints[c] = *t;
+    }
+    auto tint_rgb = tint_image(tints);
+    if (!tint_rgb.ok()) return tint_rgb.error();
     auto density = ensure_area_map(ctx_, kDensitySlot, s.area_min, s.area_max, s.map_resolution, s.map_density_fill);
     if (!density.ok()) return density.error();
     auto height = ensure_area_map(ctx_, kHeightSlot, s.area_min, s.area_max, s.map_resolution, 1.0f);
@@ -212,7 +362,8 @@ class GrassInstance final : public ModuleInstance {
     const grass::Rect rect{s.area_min, s.area_max};
     const Image density_image = to_image((*density)->grid);
     const Image height_image = to_image((*height)->grid);
-    auto maps = grass::GrassMaps::from_images(rect, &density_image, &height_image, nullptr);
+    const Image* tint = *tint_rgb ? &**tint_rgb : nullptr;
+    auto maps = grass::GrassMaps::from_images(rect, &density_image, &height_image, tint);
     if (!maps.ok()) return make_error(maps.error().code, "grass.maps: " + maps.error().message);
 
     const HeightField* ground = ctx_.ground;
@@ -260,7 +411,8 @@ ModuleDescriptor grass_module() {
   d.name = "grass";
   d.description = "tessellated grass blades with physics and a billboard/ground far field (seeds 001, 003)";
   d.needs_ground = true;
-  d.make_settings = [] { return std::make_unique<Settings>(std::vector<MapSlot>{kDensitySlot, kHeightSlot}, &check_grass); };
+  d.make_settings = [] { return std::make_unique<Settings>(std::vector<MapSlot>{kDensitySlot, kHeightSlot, kTintSlots[0], kTintSlots[1],
+                                                                             kTintSlots[2], kControlSlot, kTintFileSlot}, &check_grass); };
   d.create = &GrassInstance::create;
   return d;
 }

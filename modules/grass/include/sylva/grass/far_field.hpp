@@ -379,6 +379,8 @@ class FarField : public render::Drawable {
   render::Texture atlas_;
   render::Texture ground_texture_;
   render::Texture density_;
+  render::Texture tint_;   // the maps' tint (1 x 1 white without a tint map)
+  bool tinted_ = false;    // whether the maps have a tint map (else the ground layer skips it)
   render::Program clump_program_;
   render::Program ground_program_;
   Rect map_rect_;

@@ -93,6 +93,10 @@ class GrassMaps {
   // The density map as a one-channel float image (row 0 at rect().min.y, like the input);
   // a 1 x 1 white image when there is no map.
   Image density_image() const;
+  bool has_tint_map() const { return tint_[0].has_value(); }
+  // The tint map as a three-channel float image (same layout as density_image()); 1 x 1 white
+  // when there is no map. The far field's ground layer multiplies its colour by it.
+  Image tint_image() const;
 
  private:
   Rect rect_;
