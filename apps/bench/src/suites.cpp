@@ -17,12 +17,12 @@ Result<SuiteSpec> make_scene_suite(const std::string& name);
 Result<SuiteSpec> make_terrain_suite();
 #endif
 
-std::vector<std::string> suite_names() { return {"terrain", "grass", "trees", "voxel"}; }
+std::vector<std::string> suite_names() { return {"terrain", "grass", "trees", "voxel", "model"}; }
 
 Result<SuiteSpec> make_suite(const std::string& name) {
   const std::vector<std::string> names = suite_names();
   if (std::find(names.begin(), names.end(), name) == names.end()) {
-    return make_error(ErrorCode::kNotFound, fmt::format("unknown suite \"{}\"; suites are terrain, grass, trees, voxel", name));
+    return make_error(ErrorCode::kNotFound, fmt::format("unknown suite \"{}\"; suites are terrain, grass, trees, voxel, model", name));
   }
   if (name == "terrain") {
 #if defined(SYLVA_BENCH_WITH_SCENE) && defined(SYLVA_BENCH_WITH_TERRAIN)
@@ -40,7 +40,7 @@ Result<SuiteSpec> make_suite(const std::string& name) {
 #ifdef SYLVA_BENCH_WITH_SCENE
   return make_scene_suite(name);
 #else
-  const std::string module = name == "trees" ? "vegetation" : name;
+  const std::string module = name == "trees" ? "vegetation" : name == "model" ? "terrain" : name;
   return make_error(ErrorCode::kUnsupported,
                     fmt::format("module not available: the {} suite renders through the scene module, which is not part "
                                 "of this build, so {} cannot be assembled (build modules/scene with SYLVA_WITH_{}=ON)",

@@ -27,8 +27,32 @@ TEST(BenchSuites, EveryAvailableSuiteNamesExistingParameters) {
   }
 #if defined(SYLVA_BENCH_WITH_SCENE) && defined(SYLVA_BENCH_WITH_TERRAIN) && defined(SYLVA_BENCH_WITH_GRASS) && \
     defined(SYLVA_BENCH_WITH_VEGETATION) && defined(SYLVA_BENCH_WITH_VOXEL)
-  EXPECT_EQ(available, 4) << "every content module is built, so every suite must be available";
+  EXPECT_EQ(available, 5) << "every content module is built, so every suite must be available";
 #endif
+}
+
+// The general model (seed 002 §4): tau on a 5-level tree and the tree height at tau 1 against the
+// full-resolution mesh (a one-level tree), on the shipped scenes/model_terrain.obj.
+TEST(BenchSuites, ModelSuiteSweepsTauAndLevelsAgainstTheFullMesh) {
+  Result<SuiteSpec> suite = make_suite("model");
+  if (!suite.ok()) {
+    ASSERT_EQ(suite.error().code, ErrorCode::kUnsupported) << suite.error().message;
+    GTEST_SKIP() << suite.error().message;
+  }
+  EXPECT_EQ(suite->module, "model_terrain");
+  std::vector<std::string> taus, levels;
+  for (const auto& group : suite->run.sweep_groups) {
+    ASSERT_EQ(group.size(), 2u);
+    if (group[0].path == "model_terrain.tree.levels") taus = group[1].values;
+    if (group[1].path == "model_terrain.tree.levels") levels = group[1].values;
+  }
+  EXPECT_EQ(taus, (std::vector<std::string>{"0.5", "1", "2", "4", "8"}));
+  EXPECT_EQ(levels, (std::vector<std::string>{"2", "3", "4", "6"}));
+  ASSERT_EQ(suite->run.reference.size(), 1u);
+  EXPECT_EQ(suite->run.reference[0].path, "model_terrain.tree.levels");
+  EXPECT_EQ(suite->run.reference[0].value, "1") << "one level: the file's mesh itself";
+  const Status valid = validate_spec(suite->run);
+  EXPECT_TRUE(valid.ok()) << valid.error().message;
 }
 
 TEST(BenchSuites, UnknownSuiteIsNamed) {
