@@ -35,6 +35,9 @@ Status EditorSession::adopt(scene::SceneDocument document, std::optional<std::fi
   camera_ = scene_->make_camera(scene_->document().camera, viewport_);
   profiler_ = render::FrameProfiler();
   time_ = 0.0;
+  watcher_ = SourceWatcher();
+  watcher_.watch(scene_sources(scene_->document()));
+  reloads_.clear();
   return {};
 }
 
@@ -233,7 +236,41 @@ Status EditorSession::set_viewport(glm::ivec2 size) {
   return {};
 }
 
+void EditorSession::poll_sources(bool now) {
+  const auto t = std::chrono::steady_clock::now();
+  if (!now && t < next_poll_) return;
+  next_poll_ = t + std::chrono::milliseconds(500);
+  watcher_.watch(scene_sources(scene_->document()));
+  // The changed files by module, so a module whose grammar and table both changed rebuilds once.
+  std::map<std::string, std::vector<WatchedSource>> by_module;
+  for (const WatchedSource& w : watcher_.poll()) by_module[w.param.substr(0, w.param.find('.'))].push_back(w);
+  for (const auto& [module, changed] : by_module) {
+    std::vector<std::pair<LogLevel, std::string>> logged;
+    set_log_sink([&](LogLevel level, std::string_view text) { logged.emplace_back(level, std::string(text)); });
+    const Status reloaded = scene_->reload_module(module);
+    set_log_sink(nullptr);
+    for (const WatchedSource& w : changed) {
+      ++reloads_[w.file];
+      messages_.push_back(fmt::format("reloaded {} ({})", w.file.string(), w.param));
+    }
+    for (const auto& [level, text] : logged) {
+      log_message(level, text);  // still on stderr as before
+      if (level >= LogLevel::kWarn) messages_.push_back("warning: " + text);
+    }
+    if (!reloaded.ok()) messages_.push_back(fmt::format("error: reloading {}: {}", module, reloaded.error().message));
+  }
+  if (!by_module.empty()) watcher_.watch(scene_sources(scene_->document()));  // the files the new contents name
+}
+
+int EditorSession::reloads(const std::filesystem::path& file) const {
+  std::error_code ec;
+  const std::filesystem::path a = std::filesystem::absolute(file, ec);
+  auto it = reloads_.find((ec ? file : a).lexically_normal());
+  return it == reloads_.end() ? 0 : it->second;
+}
+
 Status EditorSession::render_frame(double dt) {
+  poll_sources();
   const std::size_t mark = render::gl_error_mark();
   time_ += std::max(dt, 0.0);
   scene_->update(camera_, time_, static_cast<float>(std::max(dt, 0.0)), viewport_);

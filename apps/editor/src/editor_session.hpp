@@ -12,6 +12,7 @@
 // unsaved() is what the "unsaved changes" prompt asks.
 
 #include "brush.hpp"
+#include "source_watcher.hpp"
 #include "undo.hpp"
 
 #include <sylva/core/result.hpp>
@@ -20,7 +21,9 @@
 #include <sylva/render/queries.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -96,6 +99,21 @@ class EditorSession final : public EditTarget {
   // over the scene's ground (the plane y = 0 without one). nullopt when the ray misses.
   std::optional<glm::dvec3> pick_ground(glm::vec2 pixel) const;
 
+  // --- source files (issue #16) ---
+  // Polls the files the scene's settings name (source_watcher.hpp; at most twice a second unless
+  // `now`; render_frame calls it) and rebuilds the module of each changed one in place
+  // (Scene::reload_module), so an edited grammar, species table, palette or tree species file
+  // shows without reopening the scene. Each reload adds "reloaded FILE (SETTING)" to messages(),
+  // then the warnings the module gave while rebuilding (a broken file's error naming its
+  // line:column; the module falls back and the scene keeps running), or "error: ..." when the
+  // rebuild failed (the module stays as it was). Not an edit: no undo entry, nothing unsaved.
+  void poll_sources(bool now = false);
+  // How many times `file` (any spelling of the path) was reloaded since the scene was opened.
+  int reloads(const std::filesystem::path& file) const;
+  // Every message so far, oldest first (the UI's message log and the script output read new ones).
+  const std::vector<std::string>& messages() const { return messages_; }
+  const SourceWatcher& sources() const { return watcher_; }
+
   // --- EditTarget (undo/redo) ---
   Status write_map_rect(const std::string& map_id, const scene::TexelRect& rect, const std::vector<float>& values) override;
   Status write_param(const std::string& path, const std::string& text) override;
@@ -125,6 +143,10 @@ class EditorSession final : public EditTarget {
   render::Framebuffer framebuffer_;
   render::FrameProfiler profiler_;
   double time_ = 0.0;
+  SourceWatcher watcher_;
+  std::chrono::steady_clock::time_point next_poll_{};
+  std::map<std::filesystem::path, int> reloads_;
+  std::vector<std::string> messages_;
 };
 
 }  // namespace sylva::editor

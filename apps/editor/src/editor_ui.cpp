@@ -95,6 +95,10 @@ void EditorUi::continue_pending() {
 }
 
 void EditorUi::frame(double dt) {
+  // The file watcher's reloads and their warnings (EditorSession::poll_sources).
+  for (; session_messages_shown_ < session_.messages().size(); ++session_messages_shown_) {
+    message(session_.messages()[session_messages_shown_]);
+  }
   handle_shortcuts();
   menu_bar();
   const ImGuiViewport* vp = ImGui::GetMainViewport();

@@ -62,6 +62,7 @@ class EditorUi {
   std::string last_frame_error_;  // the viewport's last GL error, shown once
   char bookmark_buffer_[64] = "view";
   std::deque<std::string> messages_;
+  std::size_t session_messages_shown_ = 0;  // of session_.messages()
   std::optional<glm::dvec3> brush_hit_;
   std::string playing_path_;
   // The overlay's memory line, rebuilt twice a second rather than every frame.

@@ -37,6 +37,9 @@ const std::map<std::string, Arity, std::less<>>& commands() {
       {"screenshot_ui", {1, 1, "screenshot_ui PATH"}},
       {"export_tree", {1, 1, "export_tree FOLDER"}},
       {"save", {0, 1, "save [PATH]"}},
+      {"copy_file", {2, 2, "copy_file FROM TO"}},
+      {"wait_reload", {1, 2, "wait_reload FILE [MAX_FRAMES]"}},
+      {"print_stats", {1, 1, "print_stats MODULE"}},
       {"expect", {2, 2, "expect PATH VALUE"}},
       {"expect_unsaved", {1, 1, "expect_unsaved yes|no"}},
       {"print", {0, -1, "print TEXT..."}},
@@ -159,8 +162,9 @@ Result<std::vector<ScriptCommand>> parse_script(std::string_view text, std::stri
             }
             c.points.push_back(*p);
           }
-        } else if ((c.name == "undo" || c.name == "redo" || c.name == "frames") && n == 1) {
-          auto count = parse_count(c.args[0], c.name == "frames" ? 1 : 1, 1000000);
+        } else if ((c.name == "undo" || c.name == "redo" || c.name == "frames" || c.name == "wait_reload") &&
+                   n == (c.name == "wait_reload" ? 2 : 1)) {
+          auto count = parse_count(c.args.back(), 1, 1000000);
           if (!count.ok()) fail(fmt::format("{}: {}", c.name, count.error().message));
           else c.count = *count;
         } else if (c.name == "set" && n == 1 && c.args[0].find('=') == std::string::npos) {

@@ -27,6 +27,12 @@
 //   expect PATH VALUE            fail unless the parameter's text equals VALUE (self-checking scripts)
 //   expect_unsaved yes|no        fail unless the unsaved-changes state is as given
 //   print TEXT...                write a line to the output
+//   print_stats MODULE           write "MODULE <its scene stats as JSON>" (plant_blocks, trees_per_species...)
+//   copy_file FROM TO            copy a file over another (tests: rewrite a grammar or species file
+//                                while the scene runs)
+//   wait_reload FILE [MAX_FRAMES]  render frames until the editor's file watcher has reloaded FILE
+//                                (again, since the last wait_reload of it); fails after MAX_FRAMES
+//                                (default 600). Reload messages are written to the output as they come
 //   quit                         stop (unsaved changes are discarded: scripts are explicit)
 //
 // Parsing checks every line before anything runs: unknown commands, wrong argument counts and
@@ -48,7 +54,7 @@ struct ScriptCommand {
   std::string name;                // "stroke"
   std::vector<std::string> args;   // the words after the name, unquoted
   std::vector<glm::dvec2> points;  // stroke: parsed X,Z points
-  int count = 1;                   // undo/redo/frames: N
+  int count = 1;                   // undo/redo/frames/wait_reload: N
 };
 
 // Parses a whole script. `source` names it in messages.

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <map>
 
 namespace sylva::editor {
 namespace {
@@ -21,8 +22,13 @@ std::filesystem::path resolve(const std::filesystem::path& base, const std::stri
   return path.is_absolute() || base.empty() ? path : base / path;
 }
 
+// What a run remembers between commands.
+struct RunState {
+  std::map<std::filesystem::path, int> reloads_seen;  // wait_reload: the count at the last wait
+};
+
 Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::path& base, std::ostream& out,
-               const ScriptHooks& hooks) {
+               const ScriptHooks& hooks, RunState& state) {
   const auto& a = c.args;
   if (c.name == "load") return s.load(resolve(base, a[0]));
   if (c.name == "new") return s.new_scene();
@@ -93,6 +99,29 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     if (a.empty()) return s.save();
     return s.save_as(resolve(base, a[0]));
   }
+  if (c.name == "copy_file") {
+    std::error_code ec;
+    std::filesystem::copy_file(resolve(base, a[0]), resolve(base, a[1]), std::filesystem::copy_options::overwrite_existing, ec);
+    if (ec) return make_error(ErrorCode::kIo, fmt::format("{} -> {}: {}", a[0], a[1], ec.message()));
+    return {};
+  }
+  if (c.name == "wait_reload") {
+    const std::filesystem::path file = resolve(base, a[0]);
+    int& seen = state.reloads_seen[file];
+    const int max_frames = a.size() == 2 ? c.count : 600;
+    for (int k = 0; k < max_frames && s.reloads(file) <= seen; ++k) SYLVA_TRY(s.render_frame(1.0 / 30.0));
+    if (s.reloads(file) <= seen) {
+      return make_error(ErrorCode::kNotFound, fmt::format("{} was not reloaded within {} frames", file.string(), max_frames));
+    }
+    seen = s.reloads(file);
+    return {};
+  }
+  if (c.name == "print_stats") {
+    const nlohmann::json stats = s.scene().module_stats();
+    if (!stats.contains(a[0])) return make_error(ErrorCode::kNotFound, fmt::format("the scene has no module \"{}\"", a[0]));
+    out << a[0] << " " << stats[a[0]].dump() << "\n";
+    return {};
+  }
   if (c.name == "expect") {
     auto value = s.scene().get_param(a[0]);
     if (!value.ok()) return value.error();
@@ -137,17 +166,26 @@ Result<ScriptOutcome> run_script(EditorSession& session, const std::vector<Scrip
                                  const ScriptHooks& hooks) {
   SYLVA_TRY(check_outputs(commands, source, base_dir));
   ScriptOutcome outcome;
+  RunState state;
+  std::size_t messages_shown = session.messages().size();
+  auto show_messages = [&] {
+    for (; messages_shown < session.messages().size(); ++messages_shown) {
+      out << "sylva-editor: " << session.messages()[messages_shown] << "\n";
+    }
+  };
   for (const ScriptCommand& c : commands) {
     if (c.name == "quit") {
       outcome.quit = true;
       break;
     }
-    Status s = run_one(session, c, base_dir, out, hooks);
+    Status s = run_one(session, c, base_dir, out, hooks, state);
+    show_messages();
     if (!s.ok()) {
       return make_error(s.error().code, fmt::format("{}: {}: {}", script_location(source, c.line), c.name, s.error().message));
     }
     ++outcome.commands_run;
     if (hooks.after_command) hooks.after_command();
+    show_messages();
   }
   return outcome;
 }

@@ -221,6 +221,20 @@ Status Scene::rebuild_module(std::string_view name, Rebuild what) {
   return m->rebuild(what);
 }
 
+Status Scene::reload_module(std::string_view name) {
+  const ModuleDescriptor* d = find_module(name);
+  if (d && d->provides_ground) return rebuild_module(name, Rebuild::kOffline);
+  const ModuleSection* section = document_->module(name);
+  if (!section) return make_error(ErrorCode::kNotFound, fmt::format("reload {}: the scene has no such section", name));
+  for (auto& m : modules_) {
+    if (m->module() != name) continue;
+    auto fresh = create_module(*section);
+    if (!fresh.ok()) return fresh.error();
+    m = std::move(*fresh);
+  }
+  return {};
+}
+
 Status Scene::set_param(std::string_view path, std::string_view text) {
   ParamRegistry registry = document_->params();
   auto param = registry.find(path);

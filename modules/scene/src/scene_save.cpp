@@ -40,13 +40,15 @@ fs::path absolute_normal(const fs::path& p) {
   return (ec ? p : a).lexically_normal();
 }
 
-// Whether a setting (its path inside its section) names a file relative to the scene file: by the
-// scenes' convention its last name is `file` or ends in `_file`.
+}  // namespace
+
 bool names_scene_file(std::string_view path) {
   const std::size_t dot = path.rfind('.');
   const std::string_view last = dot == std::string_view::npos ? path : path.substr(dot + 1);
   return last == "file" || last.ends_with("_file");
 }
+
+namespace {
 
 // `path` (relative to old_dir, or absolute) as seen from new_dir.
 std::string rebase(const std::string& path, const fs::path& old_dir, const fs::path& new_dir) {

@@ -108,6 +108,10 @@ class Scene {
   // their edits. The new document is validated first; on any failure the scene keeps the old
   // document and modules.
   Status replace_document(SceneDocument document);
+  // Re-reads the files a module's settings name (the editor's file watcher): the module is made
+  // anew from its section and replaces the old one; on failure the old one stays. The ground
+  // provider rebuilds the ground and every module.
+  Status reload_module(std::string_view name);
   // Current value as text (round-trips through set_param bit-exactly).
   Result<std::string> get_param(std::string_view path);
   // Every parameter of the document (for panels, sweeps and listings).

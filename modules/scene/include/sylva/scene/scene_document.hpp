@@ -54,6 +54,10 @@ namespace sylva::scene {
 
 inline constexpr int kSceneFormatVersion = 1;
 
+// Whether a setting (its path inside its section, "flora.species_file") names a file relative to
+// the scene file: by the scenes' convention its last name is `file` or ends in `_file`.
+bool names_scene_file(std::string_view path);
+
 struct ModuleSection {
   std::string name;                          // module name = section key
   std::unique_ptr<ModuleSettings> settings;  // never null
