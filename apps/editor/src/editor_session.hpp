@@ -12,6 +12,7 @@
 // unsaved() is what the "unsaved changes" prompt asks.
 
 #include "brush.hpp"
+#include "plant_preview.hpp"
 #include "source_watcher.hpp"
 #include "undo.hpp"
 
@@ -114,6 +115,13 @@ class EditorSession final : public EditTarget {
   const std::vector<std::string>& messages() const { return messages_; }
   const SourceWatcher& sources() const { return watcher_; }
 
+  // --- plant preview (plant_preview.hpp) ---
+  // What the "Plant preview" panel and the `preview` script command show; `preview_open` opens
+  // the panel. Not part of the scene: no undo, nothing unsaved.
+  PlantPreviewSettings& preview_settings() { return preview_settings_; }
+  bool& preview_open() { return preview_open_; }
+  PlantPreview build_preview() { return build_plant_preview(*scene_, preview_settings_); }
+
   // --- EditTarget (undo/redo) ---
   Status write_map_rect(const std::string& map_id, const scene::TexelRect& rect, const std::vector<float>& values) override;
   Status write_param(const std::string& path, const std::string& text) override;
@@ -147,6 +155,8 @@ class EditorSession final : public EditTarget {
   std::chrono::steady_clock::time_point next_poll_{};
   std::map<std::filesystem::path, int> reloads_;
   std::vector<std::string> messages_;
+  PlantPreviewSettings preview_settings_;
+  bool preview_open_ = false;
 };
 
 }  // namespace sylva::editor

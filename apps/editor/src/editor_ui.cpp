@@ -123,6 +123,12 @@ void EditorUi::frame(double dt) {
   if (ImGui::Begin("Viewport", nullptr, fixed | ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoTitleBar)) viewport_panel(dt);
   ImGui::End();
   ImGui::PopStyleVar();
+  if (session_.preview_open()) {
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + left + 20.0f, vp->Pos.y + menu + 20.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340.0f, 520.0f), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Plant preview", &session_.preview_open())) plant_preview_panel();
+    ImGui::End();
+  }
   dialogs();
 }
 
@@ -199,6 +205,7 @@ void EditorUi::menu_bar() {
       camera_mode_ = CameraMode::kOrbit;
       orbit_ = orbit_from_camera(session_.camera(), 60.0);
     }
+    ImGui::MenuItem("Plant preview", nullptr, &session_.preview_open());
     ImGui::Separator();
     for (const ParamDescriptor& p : describe_params(session_.scene().debug())) {
       bool v = p.value<bool>();

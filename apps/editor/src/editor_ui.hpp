@@ -37,6 +37,7 @@ class EditorUi {
   void properties_panel();
   void section_params(const std::string& section);
   void brush_panel();
+  void plant_preview_panel();  // plant_preview_panel.cpp
   void viewport_panel(double dt);
   void stats_overlay(const glm::vec2& origin);
   void brush_outline(const glm::vec2& origin, const glm::dvec3& centre);
@@ -63,6 +64,13 @@ class EditorUi {
   char bookmark_buffer_[64] = "view";
   std::deque<std::string> messages_;
   std::size_t session_messages_shown_ = 0;  // of session_.messages()
+  // The plant preview: the plant last grown and what it was grown from.
+  PlantPreview preview_;
+  PlantPreviewSettings preview_settings_;
+  const scene::Scene* preview_scene_ = nullptr;
+  std::size_t preview_messages_ = 0;
+  char preview_file_[256] = {};
+  float preview_yaw_deg_ = 0.0f;
   std::optional<glm::dvec3> brush_hit_;
   std::string playing_path_;
   // The overlay's memory line, rebuilt twice a second rather than every frame.

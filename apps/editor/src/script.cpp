@@ -40,6 +40,7 @@ const std::map<std::string, Arity, std::less<>>& commands() {
       {"copy_file", {2, 2, "copy_file FROM TO"}},
       {"wait_reload", {1, 2, "wait_reload FILE [MAX_FRAMES]"}},
       {"print_stats", {1, 1, "print_stats MODULE"}},
+      {"preview", {0, -1, "preview [KEY=VALUE...]"}},
       {"expect", {2, 2, "expect PATH VALUE"}},
       {"expect_unsaved", {1, 1, "expect_unsaved yes|no"}},
       {"print", {0, -1, "print TEXT..."}},
@@ -189,10 +190,10 @@ Result<std::vector<ScriptCommand>> parse_script(std::string_view text, std::stri
               }
             }
           }
-        } else if (c.name == "brush") {
+        } else if (c.name == "brush" || c.name == "preview") {
           for (const std::string& a : c.args) {
             if (a.find('=') == std::string::npos || a.front() == '=') {
-              fail(fmt::format("brush: expected KEY=VALUE, got \"{}\"", a));
+              fail(fmt::format("{}: expected KEY=VALUE, got \"{}\"", c.name, a));
               break;
             }
           }

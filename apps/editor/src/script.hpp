@@ -27,6 +27,10 @@
 //   expect PATH VALUE            fail unless the parameter's text equals VALUE (self-checking scripts)
 //   expect_unsaved yes|no        fail unless the unsaved-changes state is as given
 //   print TEXT...                write a line to the output
+//   preview [KEY=VALUE...]       open the plant preview with these settings (species=NAME|FILE.lsys,
+//                                system, seed, derivations, angle_variation; plant_preview.hpp) and
+//                                write "preview <title>: N blocks (BLOCK n, ...), S symbols, D derivations"
+//                                or "preview <title>: error: <file:line:column: message>"
 //   print_stats MODULE           write "MODULE <its scene stats as JSON>" (plant_blocks, trees_per_species...)
 //   copy_file FROM TO            copy a file over another (tests: rewrite a grammar or species file
 //                                while the scene runs)

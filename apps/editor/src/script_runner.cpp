@@ -48,6 +48,18 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     return {};
   }
   if (c.name == "stroke") return s.stroke(a[0], c.points);
+  if (c.name == "preview") {
+    PlantPreviewSettings staged = s.preview_settings();
+    for (const std::string& kv : a) {
+      auto assignment = parse_param_assignment(kv);
+      if (!assignment.ok()) return assignment.error();
+      SYLVA_TRY(set_param(staged, assignment->first, assignment->second));
+    }
+    s.preview_settings() = staged;
+    s.preview_open() = true;
+    out << "preview " << s.build_preview().summary() << "\n";
+    return {};
+  }
   if (c.name == "undo" || c.name == "redo") {
     for (int k = 0; k < c.count; ++k) SYLVA_TRY(c.name == "undo" ? s.undo() : s.redo());
     return {};

@@ -2,7 +2,9 @@
 // program"): a scripted sylva-editor run rewrites a voxel species table's grammar, then breaks
 // it, and rewrites a tree species file while the scene runs; each change is reloaded in place
 // (the world's plant blocks, the forest's species), a broken grammar's error reaches the
-// messages with its line:column and the scene keeps running. Plus the watcher on its own.
+// messages with its line:column and the scene keeps running. Plus the watcher on its own, and
+// the plant preview (`preview`): its block counts follow the derivation slider and a broken
+// grammar shows its line:column.
 #include "source_watcher.hpp"
 
 #include <sylva/core/atomic_file.hpp>
@@ -143,6 +145,52 @@ quit
             std::string::npos)
       << run.output;
   if (::testing::Test::HasFailure() == false) fs::remove_all(dir.parent_path());
+}
+
+// The lines the `preview` command wrote, without the "preview " prefix.
+std::vector<std::string> previews(const std::string& output) {
+  std::vector<std::string> out;
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("preview ", 0) == 0) out.push_back(line.substr(8));
+  }
+  return out;
+}
+
+TEST(PlantPreview, CountsFollowTheDerivationsAndABrokenGrammarShowsItsLineAndColumn) {
+  if (!scene::find_module("voxel")) GTEST_SKIP() << "voxel is built out";
+  const fs::path dir = temp_dir("preview");
+  write(dir / "species/pillar.lsys", kPillar2);
+  write(dir / "species/pillar3.lsys", kPillar3);
+  write(dir / "species/broken.lsys", kBroken);
+  write(dir / "species/pillars.json", kPillarTable);
+  write(dir / "scene.json", R"({"voxel": {"radius_chunks": 1, "threads": 2, "flora": {"species_file": "species/pillars.json"}}})");
+  write(dir / "run.sylva", R"(load scene.json
+preview species=pillar derivations=2 seed=7
+preview derivations=3
+preview derivations=5 angle_variation=0.5
+preview species=species/pillar3.lsys derivations=2
+preview species=species/broken.lsys
+copy_file species/broken.lsys species/pillar.lsys
+preview species=pillar derivations=3
+quit
+)");
+  const sylva::test::RunResult run =
+      sylva::test::run_command(SYLVA_EDITOR_EXE, "--headless --size 64x64 --script " + (dir / "run.sylva").string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> p = previews(run.output);
+  ASSERT_EQ(p.size(), 6u) << run.output;
+  // U > UU from one U: 2^n blocks and symbols after n derivations.
+  EXPECT_EQ(p[0], "pillar (species/pillars.json): 4 blocks (glowstone 4), 4 symbols, 2 derivations");
+  EXPECT_EQ(p[1], "pillar (species/pillars.json): 8 blocks (glowstone 8), 8 symbols, 3 derivations");
+  EXPECT_EQ(p[2], "pillar (species/pillars.json): 32 blocks (glowstone 32), 32 symbols, 5 derivations");
+  EXPECT_EQ(p[3], "species/pillar3.lsys: 9 blocks (output 0 9), 9 symbols, 2 derivations") << "a grammar file: U > UUU";
+  EXPECT_EQ(p[4].rfind("species/broken.lsys: error: " + (dir / "species/broken.lsys").string() + ":3:1: expected a rule", 0), 0u)
+      << p[4];
+  // The table's species whose grammar broke: the table's error for it, with the grammar's line:column.
+  EXPECT_EQ(p[5].rfind("pillar (species/pillars.json): error: ", 0), 0u) << p[5];
+  EXPECT_NE(p[5].find("species[0].grammar: pillar.lsys:3:1: expected a rule"), std::string::npos) << p[5];
+  fs::remove_all(dir);
 }
 
 }  // namespace
