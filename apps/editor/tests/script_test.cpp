@@ -61,6 +61,18 @@ quit
   EXPECT_NE(missing.error().message.find("export_tree FOLDER"), std::string::npos) << missing.error().message;
 }
 
+TEST(Script, ParsesTheFileCommands) {
+  auto script = parse_script("copy_file a.lsys b.lsys\nwait_reload b.lsys\nwait_reload b.lsys 40\n"
+                             "preview species=pillar derivations=4\npreview\nprint_stats voxel\n",
+                             "t.sylva");
+  ASSERT_TRUE(script.ok()) << script.error().message;
+  ASSERT_EQ(script->size(), 6u);
+  EXPECT_EQ((*script)[1].args, (std::vector<std::string>{"b.lsys"}));
+  EXPECT_EQ((*script)[2].count, 40);
+  EXPECT_EQ((*script)[3].args, (std::vector<std::string>{"species=pillar", "derivations=4"}));
+  EXPECT_TRUE((*script)[4].args.empty());
+}
+
 TEST(Script, MistakesNameTheLine) {
   struct Case {
     const char* text;
@@ -85,6 +97,12 @@ TEST(Script, MistakesNameTheLine) {
       {"load \"unterminated", "t.sylva:1: unterminated quote"},
       {"expect_unsaved perhaps", "expect_unsaved: expected yes or no"},
       {"quit now", "quit: expected quit"},
+      {"wait_reload", "wait_reload: expected wait_reload FILE [MAX_FRAMES]"},
+      {"wait_reload a.lsys soon", "wait_reload: expected a whole number in 1.."},
+      {"wait_reload a.lsys 0", "wait_reload: expected a whole number in 1.."},
+      {"preview derivations", "preview: expected KEY=VALUE, got \"derivations\""},
+      {"copy_file a.lsys", "copy_file: expected copy_file FROM TO"},
+      {"print_stats", "print_stats: expected print_stats MODULE"},
   };
   for (const Case& c : cases) {
     auto script = parse_script(c.text, "t.sylva");
