@@ -415,7 +415,15 @@ TEST_F(MeshFiles, HostileIvAndGltfAreErrorsNamingTheFile) {
   write("past.bin", bytes);
   const std::string beyond = error_of("past.gltf");
   EXPECT_NE(beyond.find("past.gltf: accessors[1]"), std::string::npos) << beyond;
-  std::printf("errors: %s | %s\n", missing.c_str(), beyond.c_str());
+  const nlohmann::json outside = as_gltf(hill(2), "outside.bin", bytes);
+  const std::uint32_t nine = 9;  // hill(2) has 9 vertices: 0..8
+  bytes.replace(9 * 12, 4, reinterpret_cast<const char*>(&nine), 4);  // the first index
+  write("outside.gltf", outside.dump());
+  write("outside.bin", bytes);
+  const std::string index = error_of("outside.gltf");
+  EXPECT_NE(index.find("outside.gltf: meshes[0].primitives[0].indices: index 9 is outside the 9 vertices"),
+            std::string::npos) << index;
+  std::printf("errors: %s | %s | %s\n", missing.c_str(), beyond.c_str(), index.c_str());
 }
 
 }  // namespace
