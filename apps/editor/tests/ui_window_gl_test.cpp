@@ -41,6 +41,11 @@ constexpr Rgb kMenuBarBg{36, 36, 36};        // ImGuiCol_MenuBarBg (0.14)
 constexpr Rgb kTitleBg{10, 10, 10};          // ImGuiCol_TitleBg (0.04)
 constexpr Rgb kTitleBgActive{41, 74, 122};   // ImGuiCol_TitleBgActive (0.16, 0.29, 0.48)
 constexpr Rgb kWindowBg{16, 16, 16};         // ImGuiCol_WindowBg (0.06 at 0.94) over the clear colour
+// The plant preview's block colours for outputs 0 and 1 (plant_preview_panel.cpp) and where its
+// window opens (EditorUi::frame: 20 px right of the Scene panel and below the menu, 340 x 520).
+constexpr Rgb kTrunk{130, 90, 50}, kLeaves{70, 160, 60};
+// A small tree grammar: 3 derivations lay 8 trunk blocks (output 0) and 42 leaf blocks (output 1).
+const char* kTreeGrammar = "25 25 0.9\nU\nU > UU[+1FF][-1FF][^1FF]\n";
 
 // The scene: flat ground at height 0, so every painted texel's value is known exactly.
 const char* kFlatGround = R"({"ground": {"resolution": 65, "size": 128, "height": 0, "generator": "flat"},
@@ -60,6 +65,8 @@ std::string script() {
     << "stroke ground.height " << kUndone.x << "," << kUndone.y << "\n"
     << "undo\n"
     << "screenshot_ui ui.png\n"
+    << "preview species=tree.lsys derivations=3\n"
+    << "screenshot_ui preview.png\n"
     << "save out/saved.json\n"
     << "expect_unsaved no\n"
     << "quit\n";
@@ -135,6 +142,7 @@ TEST(EditorWindow, UiScriptPaintsSavesAndTheScreenshotShowsThePanels) {
   fs::create_directories(dir);
   ASSERT_TRUE(write_file_atomic(dir / "in.json", kFlatGround).ok());
   ASSERT_TRUE(write_file_atomic(dir / "ui.sylva", script()).ok());
+  ASSERT_TRUE(write_file_atomic(dir / "tree.lsys", kTreeGrammar).ok());
 
   // -a picks a free display number, starting from one of our own so parallel runs rarely race.
   const std::string args = "-a -n " + std::to_string(100 + ::getpid() % 400) + " -s \"-screen 0 " +
@@ -199,5 +207,19 @@ TEST(EditorWindow, UiScriptPaintsSavesAndTheScreenshotShowsThePanels) {
   const Region viewport{kLeftPanel + 10, top + 180, w - kRightPanel - 10, h - 10};
   EXPECT_LT(share(ui, viewport, is_panel_colour), 0.05) << "viewport";
   EXPECT_GT(luminance_stddev(ui, viewport), 10.0) << "the viewport is flat";
+
+  // The plant preview window (issue #16): its counts in the output, its blocks drawn in their
+  // colours inside the window, none of those colours before it opened.
+  EXPECT_NE(run.output.find("preview tree.lsys: 50 blocks (output 0 8, output 1 42), 134 symbols, 3 derivations"),
+            std::string::npos)
+      << run.output;
+  auto preview = read_image(dir / "preview.png");
+  ASSERT_TRUE(preview.ok()) << preview.error().message;
+  const Region window{kLeftPanel + 20, top + 20, kLeftPanel + 360, top + 540};
+  auto exactly = [](Rgb c) { return [c](const Rgb& p) { return p.r == c.r && p.g == c.g && p.b == c.b; }; };
+  const double area = (window.x1 - window.x0) * (window.y1 - window.y0);
+  EXPECT_GT(share(*preview, window, exactly(kTrunk)) * area, 200.0) << "trunk pixels in the plant preview";
+  EXPECT_GT(share(*preview, window, exactly(kLeaves)) * area, 200.0) << "leaf pixels in the plant preview";
+  EXPECT_LT(share(ui, window, exactly(kTrunk)) * area, 10.0) << "trunk-coloured pixels before the preview opened";
   if (!HasFailure()) fs::remove_all(dir);
 }
