@@ -3,6 +3,7 @@
 // the blade count (10k .. 2M). One iteration = one frame (update + draw + glFinish).
 #include <sylva/core/image_metrics.hpp>
 #include <sylva/core/log.hpp>
+#include <sylva/grass/far_field.hpp>
 #include <sylva/grass/generator.hpp>
 #include <sylva/grass/grass_field.hpp>
 #include <sylva/render/camera.hpp>
@@ -302,5 +303,70 @@ BENCHMARK(BM_GrassLodError)
     ->ArgsProduct({{1}, {2, 3, 4, 6, 8, 16}})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+
+// Map edits (issue 16): what a dab on the default meadow costs (60 x 80 m at 100 blades/m^2 =
+// 480k blades, 4 m tiles, the meadow's far field: clumps 150 m and ground layer 800 m beyond the
+// field, on a 1.6 km ground of 257^2 samples). Args: 0 = full regeneration (maps, every tile,
+// GrassField::create, FarField::create: what every dab cost before), 1 = the blades of a dab
+// (regenerate_tiles of a 1 m-radius dab's area plus GrassField::set_blades), 2 = the far field
+// alone (FarField::create), 3 = the dab's blades on the CPU only (regenerate_tiles).
+// One iteration = one dab with glFinish.
+void BM_GrassMapEdit(benchmark::State& state) {
+  if (!context()) {
+    state.SkipWithError("no headless GL context");
+    return;
+  }
+  context()->make_current();
+  const int mode = static_cast<int>(state.range(0));
+  GrassFieldSettings fs;
+  fs.density = 100.0f;
+  BladeSettings bs;
+  FarFieldSettings far;
+  far.clump_margin = 150.0f;
+  far.ground_margin = 800.0f;
+  far.ground_spacing = 6.25f;
+  HeightField ground(257, 257, 6.25, {-800.0, -800.0});
+  const Rect rect{{-30.0, -40.0}, {30.0, 40.0}};
+  Image density(96, 128, 1);  // the scene's map_resolution 128 along the longer side
+  for (float& v : density.data()) v = 1.0f;
+  const glm::dvec3 origin(0.0, 0.0, 0.0);
+  auto maps = GrassMaps::from_images(rect, &density, nullptr, nullptr);
+  auto set = generate_blades(fs, bs, *maps, ground, origin);
+  auto field = GrassField::create(*set);
+  if (!maps || !set || !field) {
+    state.SkipWithError("setup failed");
+    return;
+  }
+  // The dab: 1 m radius at (3, -7), the texels it writes grown by one texel (changed_world_area).
+  const glm::dvec2 texel = rect.size() / glm::dvec2(96.0, 128.0);
+  const Rect area{glm::dvec2(3.0, -7.0) - (1.0 + 2.0 * texel.x), glm::dvec2(3.0, -7.0) + (1.0 + 2.0 * texel.x)};
+  for (int j = 0; j < 128; ++j)
+    for (int i = 0; i < 96; ++i) {
+      const glm::dvec2 p = rect.min + (glm::dvec2(i, j) + 0.5) * texel;
+      if (glm::length(p - glm::dvec2(3.0, -7.0)) < 1.0) density.at(i, j) = 0.2f;
+    }
+  std::size_t blades = 0;
+  for (auto _ : state) {
+    auto m = GrassMaps::from_images(rect, &density, nullptr, nullptr);
+    if (mode == 0) {
+      auto s = generate_blades(fs, bs, *m, ground, origin);
+      auto f = GrassField::create(std::move(*s));
+      auto ff = FarField::create(fs, bs, *m, ground, origin, far);
+      if (!f || !ff) state.SkipWithError("regeneration failed");
+      blades = f->blade_count();
+    } else if (mode == 1 || mode == 3) {
+      auto first = regenerate_tiles(*set, fs, bs, *m, ground, area);
+      if (!first) state.SkipWithError(first.error().message.c_str());
+      if (mode == 1 && !field->set_blades(*set).ok()) state.SkipWithError("set_blades failed");
+      blades = set->blades.size();
+    } else {
+      auto ff = FarField::create(fs, bs, *m, ground, origin, far);
+      if (!ff) state.SkipWithError(ff.error().message.c_str());
+    }
+    glFinish();
+  }
+  state.counters["blades"] = static_cast<double>(blades);
+}
+BENCHMARK(BM_GrassMapEdit)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace

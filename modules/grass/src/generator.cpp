@@ -247,6 +247,29 @@ Status check_settings(const GrassFieldSettings& field, const BladeSettings& blad
   return {};
 }
 
+namespace {
+
+// Appends the tiles of `range` in generate_blades' order (z, then x), skipping tiles that have
+// neither blades nor an expected count.
+void append_tiles(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                  const HeightField& ground, const TileRange& range, BladeSet& set) {
+  for (std::int64_t z = range.z0; z < range.z1; ++z) {
+    for (std::int64_t x = range.x0; x < range.x1; ++x) {
+      GrassTile tile;
+      tile.key = {static_cast<std::int32_t>(x), 0, static_cast<std::int32_t>(z)};
+      tile.first = static_cast<std::uint32_t>(set.blades.size());
+      tile.expected = tile_expected_blades(field, maps, tile.key);
+      generate_tile(field, blade, maps, ground, tile.key, set.origin, set.blades);
+      tile.count = static_cast<std::uint32_t>(set.blades.size()) - tile.first;
+      if (tile.count == 0 && tile.expected <= 0.0) continue;
+      finish_tile_bounds(tile, set.blades);
+      set.tiles.push_back(tile);
+    }
+  }
+}
+
+}  // namespace
+
 Result<BladeSet> generate_blades(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                                  const HeightField& ground, const glm::dvec3& origin) {
   SYLVA_TRY(check_settings(field, blade));
@@ -271,21 +294,56 @@ Result<BladeSet> generate_blades(const GrassFieldSettings& field, const BladeSet
                                                      field.density, expected, kMaxBlades));
   }
   set.blades.reserve(static_cast<std::size_t>(expected * 1.01) + 16);
-  for (std::int64_t z = z0; z < z1; ++z) {
-    for (std::int64_t x = x0; x < x1; ++x) {
-      GrassTile tile;
-      tile.key = {static_cast<std::int32_t>(x), 0, static_cast<std::int32_t>(z)};
-      tile.first = static_cast<std::uint32_t>(set.blades.size());
-      tile.expected = tile_expected_blades(field, maps, tile.key);
-      generate_tile(field, blade, maps, ground, tile.key, origin, set.blades);
-      tile.count = static_cast<std::uint32_t>(set.blades.size()) - tile.first;
-      if (tile.count == 0 && tile.expected <= 0.0) continue;
-      finish_tile_bounds(tile, set.blades);
-      set.tiles.push_back(tile);
-    }
-  }
+  append_tiles(field, blade, maps, ground, *range, set);
   for (const Blade& b : set.blades) set.max_height = std::max(set.max_height, b.height());
   return set;
+}
+
+Result<std::uint32_t> regenerate_tiles(BladeSet& set, const GrassFieldSettings& field, const BladeSettings& blade,
+                                       const GrassMaps& maps, const HeightField& ground, const Rect& area) {
+  SYLVA_TRY(check_settings(field, blade));
+  if (ground.samples().empty()) return make_error(ErrorCode::kInvalidArgument, "grass: the ground height field is empty");
+  const Rect clipped = area.intersect(maps.rect());
+  const auto unchanged = static_cast<std::uint32_t>(set.blades.size());
+  if (clipped.empty()) return unchanged;
+  const Result<TileRange> range = tiles_overlapping(clipped, field.tile_size);
+  if (!range.ok()) return range.error();
+  // The tiles of the area, made exactly as generate_blades makes them (first = into `fresh`).
+  BladeSet fresh;
+  fresh.origin = set.origin;
+  append_tiles(field, blade, maps, ground, *range, fresh);
+  // Merge in generate_blades' order (z, then x): old tiles outside the area, fresh ones inside.
+  const auto before = [](const TileKey& a, const TileKey& b) { return a.z != b.z ? a.z < b.z : a.x < b.x; };
+  const auto inside = [&r = *range](const TileKey& k) { return k.x >= r.x0 && k.x < r.x1 && k.z >= r.z0 && k.z < r.z1; };
+  const TileKey first_key{static_cast<std::int32_t>(range->x0), 0, static_cast<std::int32_t>(range->z0)};
+  BladeSet out;
+  out.origin = set.origin;
+  out.blades.reserve(set.blades.size() + fresh.blades.size());
+  out.tiles.reserve(set.tiles.size() + fresh.tiles.size());
+  std::uint32_t first_changed = unchanged;
+  std::size_t i = 0, j = 0;
+  while (i < set.tiles.size() || j < fresh.tiles.size()) {
+    if (i < set.tiles.size() && inside(set.tiles[i].key)) {
+      ++i;
+      continue;
+    }
+    const bool take_old = j == fresh.tiles.size() || (i < set.tiles.size() && before(set.tiles[i].key, fresh.tiles[j].key));
+    GrassTile t = take_old ? set.tiles[i++] : fresh.tiles[j++];
+    const Blade* src = (take_old ? set.blades.data() : fresh.blades.data()) + t.first;
+    if (first_changed == unchanged && !before(t.key, first_key)) first_changed = static_cast<std::uint32_t>(out.blades.size());
+    t.first = static_cast<std::uint32_t>(out.blades.size());
+    out.blades.insert(out.blades.end(), src, src + t.count);
+    out.tiles.push_back(t);
+  }
+  if (out.blades.size() > kMaxBlades) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.field.density: {} blades/m^2 over this map gives {} "
+                                                     "blades, above the limit of {}",
+                                                     field.density, out.blades.size(), kMaxBlades));
+  }
+  for (const Blade& b : out.blades) out.max_height = std::max(out.max_height, b.height());
+  if (first_changed == unchanged) first_changed = static_cast<std::uint32_t>(out.blades.size());
+  set = std::move(out);
+  return first_changed;
 }
 
 Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const BladeSettings& blade,

@@ -72,10 +72,38 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
                                      std::size_t max_blades_per_buffer) {
   render::embedded::register_render_shaders();  // render/lib/*.glsl (wind, lighting, fog, shadows)
   render::embedded::register_grass_shaders();
+  GrassField f;
+  f.settings_ = settings;
+  f.max_blades_per_buffer_ = max_blades_per_buffer;
+  auto physics = render::Program::create({"grass/physics.comp"});
+  if (!physics) return physics.error();
+  auto cull = render::Program::create({"grass/cull.comp"});
+  if (!cull) return cull.error();
+  auto blade = blade_programs(settings.cull.tess_spacing);
+  if (!blade) return blade.error();
+  auto batch = render::Program::create({"grass/draw_batches.comp"});
+  if (!batch) return batch.error();
+  f.physics_ = std::move(*physics);
+  f.cull_ = std::move(*cull);
+  f.draw_ = std::move(blade->first);
+  f.depth_ = std::move(blade->second);
+  f.blade_spacing_ = settings.cull.tess_spacing;
+  f.batch_ = std::move(*batch);
+  f.spheres_ = render::Buffer::immutable(kMaxColliders * sizeof(glm::vec4), nullptr, true);
+  f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
+  f.vao_ = render::VertexArray::create();
+  f.sim_query_ = render::PassQuery::create(false);
+  f.cull_query_ = render::PassQuery::create(false);
+  f.draw_query_ = render::PassQuery::create(true);
+  SYLVA_TRY(f.set_blades(blades));
+  return f;
+}
+
+Status GrassField::set_blades(const BladeSet& blades) {
   GLint64 max_block = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
   std::size_t per_chunk = max_block > 0 ? static_cast<std::size_t>(max_block) / sizeof(Blade) : kMaxBlades;
-  if (max_blades_per_buffer > 0) per_chunk = std::min(per_chunk, max_blades_per_buffer);
+  if (max_blades_per_buffer_ > 0) per_chunk = std::min(per_chunk, max_blades_per_buffer_);
   per_chunk = std::max<std::size_t>(per_chunk, 1);
 
   // Tiles in blade order; they must not overlap and must lie inside the blade array.
@@ -100,28 +128,12 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
     if (t.count > 0) end_of_previous = end;
   }
 
-  GrassField f;
-  f.settings_ = settings;
-  f.origin_ = blades.origin;
-  f.blade_count_ = blades.blades.size();
-  f.max_height_ = blades.max_height;
-  f.tile_sim_time_.assign(blades.tiles.size(), -1.0);
-  f.tile_chunk_.assign(blades.tiles.size(), 0);
-
-  auto physics = render::Program::create({"grass/physics.comp"});
-  if (!physics) return physics.error();
-  auto cull = render::Program::create({"grass/cull.comp"});
-  if (!cull) return cull.error();
-  auto blade = blade_programs(settings.cull.tess_spacing);
-  if (!blade) return blade.error();
-  auto batch = render::Program::create({"grass/draw_batches.comp"});
-  if (!batch) return batch.error();
-  f.physics_ = std::move(*physics);
-  f.cull_ = std::move(*cull);
-  f.draw_ = std::move(blade->first);
-  f.depth_ = std::move(blade->second);
-  f.blade_spacing_ = settings.cull.tess_spacing;
-  f.batch_ = std::move(*batch);
+  origin_ = blades.origin;
+  blade_count_ = blades.blades.size();
+  max_height_ = blades.max_height;
+  tile_sim_time_.assign(blades.tiles.size(), -1.0);
+  tile_chunk_.assign(blades.tiles.size(), 0);
+  chunks_.clear();
 
   // Chunks: greedy runs of whole tiles in blade order (blades between tiles ride along).
   struct Range {
@@ -136,7 +148,7 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
     } else {
       ranges.back().end = std::uint64_t{t.first} + t.count;
     }
-    f.tile_chunk_[i] = static_cast<std::uint32_t>(ranges.size() - 1);
+    tile_chunk_[i] = static_cast<std::uint32_t>(ranges.size() - 1);
   }
   if (ranges.empty()) ranges.push_back({0, 0});
   for (const Range& r : ranges) {
@@ -154,22 +166,11 @@ Result<GrassField> GrassField::create(BladeSet blades, const GrassRenderSettings
       pass->command = render::Buffer::immutable(sizeof(CommandBlock), nullptr, true);
       pass->jobs = render::Buffer::dynamic(sizeof(TileJob));
     }
-    f.chunks_.push_back(std::move(c));
+    chunks_.push_back(std::move(c));
   }
-  f.allocate_draw_batches();
-  f.tiles_ = std::move(blades.tiles);
-  f.spheres_ = render::Buffer::immutable(kMaxColliders * sizeof(glm::vec4), nullptr, true);
-  f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
-  f.vao_ = render::VertexArray::create();
-  f.sim_query_ = render::PassQuery::create(false);
-  f.cull_query_ = render::PassQuery::create(false);
-  f.draw_query_ = render::PassQuery::create(true);
-  {
-    // Blades go to the GPU; free the CPU copy now rather than at the end of the caller's scope.
-    std::vector<Blade> drop;
-    drop.swap(blades.blades);
-  }
-  return f;
+  allocate_draw_batches();
+  tiles_ = blades.tiles;
+  return {};
 }
 
 void GrassField::set_colliders(std::span<const glm::dvec3> centers, std::span<const float> radii) {

@@ -357,3 +357,72 @@ TEST(GrassGenerator, TilesOverlappingCoverTheAreaAndCapTheCount) {
 
 }  // namespace
 }  // namespace sylva::grass
+
+namespace sylva::grass {
+namespace {
+
+bool same_sets(const BladeSet& a, const BladeSet& b) {
+  if (a.blades.size() != b.blades.size() || a.tiles.size() != b.tiles.size() || a.max_height != b.max_height) return false;
+  if (std::memcmp(a.blades.data(), b.blades.data(), a.blades.size() * sizeof(Blade)) != 0) return false;
+  for (std::size_t i = 0; i < a.tiles.size(); ++i) {
+    const GrassTile &s = a.tiles[i], &t = b.tiles[i];
+    if (!(s.key == t.key) || s.first != t.first || s.count != t.count || s.bounds_min != t.bounds_min ||
+        s.bounds_max != t.bounds_max || s.expected != t.expected)
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+// Tile-local regeneration (issue 16): a dab on the density, height and tint maps regenerates
+// only the tiles it reaches, and the set equals a full regeneration of the same maps bit for bit
+// (blades, tiles with bounds and expected counts, tallest blade), dab after dab, also at the
+// map's edge; the blades before the returned index are untouched. Regenerating a smaller area
+// than the dab's gives a different set (the comparison can fail).
+TEST(GrassGenerator, RegeneratingTheTilesOfADabEqualsAFullRegeneration) {
+  Fixture f;
+  f.field.density = 30.0f;
+  Image height(48, 40, 1), tint(48, 40, 3);
+  for (float& v : height.data()) v = 0.8f;
+  for (float& v : tint.data()) v = 1.0f;
+  auto maps = [&] { return GrassMaps::from_images(f.rect, &f.density, &height, &tint).value(); };
+  const glm::dvec3 origin(45.0, 0.0, 42.0);
+  auto set = generate_blades(f.field, f.blade, maps(), f.ground, origin);
+  ASSERT_TRUE(set.ok());
+  const glm::dvec2 texel = f.rect.size() / glm::dvec2(48.0, 40.0);
+  // Texel rectangles [i0, i1) x [j0, j1): inside, at the map's corner, then one again.
+  const int dabs[][4] = {{10, 8, 15, 13}, {0, 0, 3, 4}, {30, 20, 33, 22}};
+  int k = 0;
+  for (const auto& d : dabs) {
+    SCOPED_TRACE(k);
+    for (int j = d[1]; j < d[3]; ++j)
+      for (int i = d[0]; i < d[2]; ++i) {
+        f.density.at(i, j) = (i + j + k) % 3 == 0 ? 0.0f : 1.0f;
+        height.at(i, j) = 0.3f + 0.1f * static_cast<float>((i + k) % 5);
+        tint.at(i, j, 1) = 0.25f;
+      }
+    ++k;
+    // The world area the edit shows in: the texels grown by one (bilinear interpolation).
+    const Rect area{f.rect.min + glm::dvec2(d[0] - 1, d[1] - 1) * texel, f.rect.min + glm::dvec2(d[2] + 1, d[3] + 1) * texel};
+    const BladeSet old = *set;
+    auto first = regenerate_tiles(*set, f.field, f.blade, maps(), f.ground, area);
+    ASSERT_TRUE(first.ok()) << first.error().message;
+    auto full = generate_blades(f.field, f.blade, maps(), f.ground, origin);
+    ASSERT_TRUE(full.ok());
+    EXPECT_FALSE(same_sets(old, *full)) << "the dab changes the field";
+    EXPECT_TRUE(same_sets(*set, *full)) << "per-tile update == full regeneration";
+    ASSERT_LE(*first, old.blades.size());
+    EXPECT_EQ(std::memcmp(old.blades.data(), set->blades.data(), *first * sizeof(Blade)), 0);
+    std::printf("dab %d: %zu -> %zu blades, first changed %u\n", k, old.blades.size(), set->blades.size(), *first);
+  }
+  // Too small an area leaves tiles the edit reached as they were: no longer a full regeneration.
+  for (int j = 20; j < 30; ++j)
+    for (int i = 20; i < 30; ++i) f.density.at(i, j) = 0.0f;
+  BladeSet partial = *set;
+  const Rect corner{f.rect.min + glm::dvec2(20, 20) * texel, f.rect.min + glm::dvec2(21, 21) * texel};
+  ASSERT_TRUE(regenerate_tiles(partial, f.field, f.blade, maps(), f.ground, corner).ok());
+  EXPECT_FALSE(same_sets(partial, generate_blades(f.field, f.blade, maps(), f.ground, origin).value()));
+}
+
+}  // namespace sylva::grass

@@ -385,5 +385,47 @@ TEST_F(GrassFieldGl, GrassOnASphereRendersAndKeepsInvariants) {
   EXPECT_GE(lowest_tip, -1e-4f);
 }
 
+// Tile-local regeneration on the GPU (issue 16): after a dab on the density map,
+// regenerate_tiles + set_blades on the existing field (split into >= 3 storage buffers, so the
+// chunks are laid out anew) holds the same blade buffer, tiles and chunks as a field created from
+// a full regeneration of the painted map, bit for bit.
+TEST_F(GrassFieldGl, SetBladesAfterATileEditEqualsAFullRegeneration) {
+  GrassFieldSettings fs;
+  fs.density = 12.0f;
+  const double extent = 40.0;
+  const HeightField ground = testing::make_ground(-10.0, extent + 10.0);
+  Image dens = testing::make_density_image(32, 32);
+  const Rect rect{{0, 0}, {extent, extent}};
+  const glm::dvec3 origin(extent / 2, 0.0, extent / 2);
+  auto maps = [&] { return GrassMaps::from_images(rect, &dens, nullptr, nullptr).value(); };
+  BladeSet set = generate_blades(fs, BladeSettings{}, maps(), ground, origin).value();
+  const std::size_t per_buffer = set.blades.size() / 3 + 1;
+  auto field = GrassField::create(set, {}, per_buffer);
+  ASSERT_TRUE(field.ok()) << field.error().message;
+  // The dab: texels [8, 14) x [10, 15) to 0 (texel = 1.25 m), grown by a texel for the area.
+  for (int j = 10; j < 15; ++j)
+    for (int i = 8; i < 14; ++i) dens.at(i, j) = 0.0f;
+  const Rect area{glm::dvec2(7, 9) * 1.25, glm::dvec2(15, 16) * 1.25};
+  const std::size_t before = set.blades.size();
+  ASSERT_TRUE(regenerate_tiles(set, fs, BladeSettings{}, maps(), ground, area).ok());
+  ASSERT_TRUE(field->set_blades(set).ok());
+  auto full = GrassField::create(generate_blades(fs, BladeSettings{}, maps(), ground, origin).value(), {}, per_buffer);
+  ASSERT_TRUE(full.ok()) << full.error().message;
+  const std::vector<Blade> a = field->read_blades(), b = full->read_blades();
+  std::printf("%zu blades before the dab, %zu after; chunks %zu / %zu\n", before, a.size(), field->chunk_count(),
+              full->chunk_count());
+  EXPECT_LT(a.size(), before) << "the dab removed blades";
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(Blade)), 0);
+  EXPECT_EQ(field->chunk_count(), full->chunk_count());
+  EXPECT_GE(field->chunk_count(), 3u);
+  ASSERT_EQ(field->tiles().size(), full->tiles().size());
+  for (std::size_t i = 0; i < field->tiles().size(); ++i) {
+    EXPECT_EQ(field->tiles()[i].first, full->tiles()[i].first);
+    EXPECT_EQ(field->tiles()[i].count, full->tiles()[i].count);
+  }
+  EXPECT_EQ(field->max_height(), full->max_height());
+}
+
 }  // namespace
 }  // namespace sylva::grass

@@ -12,10 +12,12 @@
 // A slot's own file (maps.density, maps.tint_r, ..., what saving an edited map writes) wins over
 // the channel of control/tint. Without a tint map (all three 1 everywhere) the field has none.
 //
-// Edits: a changed map or ground area marks the field dirty; it is regenerated once at the next
-// frame (sync_settings), so a brush stroke of many dabs costs one regeneration per frame. Blade
-// placement is world-anchored per tile (grass/generator.hpp), so blades outside the edited area
-// come back bit-identical; only their physics state restarts.
+// Edits (issue 16): the map edits of a frame are gathered (their union) and, at the next frame
+// (sync_settings), only the tiles they reach are regenerated (grass::regenerate_tiles, equal to a
+// full regeneration bit for bit because placement is world-anchored per tile) and the blades are
+// re-uploaded without rebuilding the programs (GrassField::set_blades); physics restarts. The far
+// field is rebuilt whole on the first frame without a new edit, so a stroke pays it once, at its
+// end. A ground edit that moves the field's origin (under its centre) rebuilds everything.
 
 #include "modules/module_factories.hpp"
 
@@ -32,6 +34,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace sylva::scene::detail {
 namespace {
@@ -209,10 +212,17 @@ class GrassInstance final : public ModuleInstance {
   }
 
   void sync_settings() override {
-    if (dirty_) {
-      dirty_ = false;
-      Status s = build();
-      if (!s.ok()) log_warn("grass: regeneration after an edit failed: {}", s.error().message);
+    if (!edits_.empty()) {
+      // Dabs since the last frame: only the tiles they reach (issue 16); the far field follows on
+      // the first frame without a new edit, so a stroke pays its full rebuild once, at its end.
+      const std::vector<grass::Rect> areas = std::move(edits_);
+      edits_.clear();
+      Status st = regenerate(areas);
+      if (!st.ok()) log_warn("grass: regeneration after an edit failed: {}", st.error().message);
+    } else if (far_stale_) {
+      far_stale_ = false;
+      Status st = rebuild_far();
+      if (!st.ok()) log_warn("grass.far: regeneration after an edit failed: {}", st.error().message);
     }
     const GrassSectionSettings& s = settings();
     field_->settings() = s.render;
@@ -237,8 +247,12 @@ class GrassInstance final : public ModuleInstance {
     if (area.max.x < s.area_min.x || area.min.x > s.area_max.x || area.max.y < s.area_min.y || area.min.y > s.area_max.y) {
       return {};  // the edit is outside the field
     }
-    dirty_ = true;
-    ++regenerations_requested_;
+    const grass::Rect r{glm::max(area.min, s.area_min), glm::min(area.max, s.area_max)};
+    if (edits_.size() < kMaxEditsPerFrame) {
+      edits_.push_back(r);
+    } else {  // a flood of edits in one frame: their union
+      edits_.back() = {glm::min(edits_.back().min, r.min), glm::max(edits_.back().max, r.max)};
+    }
     return {};
   }
 
@@ -249,6 +263,8 @@ class GrassInstance final : public ModuleInstance {
     nlohmann::json j = {{"blades", field_->blade_count()},
                         {"tiles", field_->tiles().size()},
                         {"regenerations", regenerations_},
+                        {"tile_regenerations", tile_regenerations_},
+                        {"last_tiles_regenerated", last_tiles_regenerated_},
                         {"max_blade_height", field_->max_height()},
                         {"blade_triangles", blades_.last_primitives()}};
     if (far_) {
@@ -344,7 +360,14 @@ class GrassInstance final : public ModuleInstance {
     return std::optional<Image>(std::move(image));
   }
 
-  Status build() {
+  // What blades are made from: the maps as they are now, the ground and the blade-set origin.
+  struct Inputs {
+    grass::GrassMaps maps;
+    const HeightField* ground = nullptr;
+    glm::dvec3 origin{0.0};
+  };
+
+  Result<Inputs> inputs() {
     const GrassSectionSettings& s = settings();
     SYLVA_TRY(fill_from_files());
     const SceneMap* tints[3];
@@ -366,31 +389,81 @@ class GrassInstance final : public ModuleInstance {
     auto maps = grass::GrassMaps::from_images(rect, &density_image, &height_image, tint);
     if (!maps.ok()) return make_error(maps.error().code, "grass.maps: " + maps.error().message);
 
-    const HeightField* ground = ctx_.ground;
-    if (!ground) {
+    Inputs in;
+    in.maps = std::move(*maps);
+    in.ground = ctx_.ground;
+    if (!in.ground) {
       // No ground in the scene: a flat one at y = 0 under the area (a few metres beyond it).
       const glm::dvec2 lo = s.area_min - 4.0, hi = s.area_max + 4.0;
       const double spacing = std::max((hi.x - lo.x), (hi.y - lo.y)) / 64.0;
       flat_ = HeightField(static_cast<int>((hi.x - lo.x) / spacing) + 2, static_cast<int>((hi.y - lo.y) / spacing) + 2,
                           spacing, lo);
-      ground = &*flat_;
+      in.ground = &*flat_;
     }
     const glm::dvec2 c = 0.5 * (s.area_min + s.area_max);
-    const glm::dvec3 origin(c.x, ground->height(c.x, c.y), c.y);
-    auto blades = grass::generate_blades(s.field, s.blade, *maps, *ground, origin);
+    in.origin = glm::dvec3(c.x, in.ground->height(c.x, c.y), c.y);
+    return in;
+  }
+
+  Result<std::optional<grass::FarField>> make_far(const Inputs& in) const {
+    const GrassSectionSettings& s = settings();
+    if (!s.far_field) return std::optional<grass::FarField>();
+    auto f = grass::FarField::create(s.field, s.blade, in.maps, *in.ground, in.origin, s.far);
+    if (!f.ok()) return make_error(f.error().code, "grass.far: " + f.error().message);
+    return std::optional<grass::FarField>(std::move(*f));
+  }
+
+  Status build() {
+    const GrassSectionSettings& s = settings();
+    auto in = inputs();
+    if (!in.ok()) return in.error();
+    auto blades = grass::generate_blades(s.field, s.blade, in->maps, *in->ground, in->origin);
     if (!blades.ok()) return make_error(blades.error().code, "grass: " + blades.error().message);
-    auto field = grass::GrassField::create(std::move(*blades), s.render);
+    auto field = grass::GrassField::create(*blades, s.render);
     if (!field.ok()) return make_error(field.error().code, "grass: " + field.error().message);
-    std::optional<grass::FarField> far;
-    if (s.far_field) {
-      auto f = grass::FarField::create(s.field, s.blade, *maps, *ground, origin, s.far);
-      if (!f.ok()) return make_error(f.error().code, "grass.far: " + f.error().message);
-      far = std::move(*f);
-    }
+    auto far = make_far(*in);
+    if (!far.ok()) return far.error();
+    set_ = std::move(*blades);
     field_ = std::move(*field);
     blades_.set(&*field_);
-    far_ = std::move(far);
+    far_ = std::move(*far);
+    edits_.clear();
+    far_stale_ = false;
     ++regenerations_;
+    return {};
+  }
+
+  // Tile-local regeneration (grass::regenerate_tiles): equal to build()'s blades bit for bit
+  // (grass_tile_edit_gl_test); a full build when the origin moved (a ground edit under the
+  // field's centre), since every blade is stored relative to it.
+  Status regenerate(const std::vector<grass::Rect>& areas) {
+    const GrassSectionSettings& s = settings();
+    auto in = inputs();
+    if (!in.ok()) return in.error();
+    if (in->origin != set_.origin) return build();
+    // Each area with the final maps: a tile two dabs reach is made twice, identically.
+    last_tiles_regenerated_ = 0;
+    for (const grass::Rect& area : areas) {
+      auto first = grass::regenerate_tiles(set_, s.field, s.blade, in->maps, *in->ground, area);  // set_ kept on error
+      if (!first.ok()) return make_error(first.error().code, "grass: " + first.error().message);
+      const auto reached = grass::tiles_overlapping(area.intersect(in->maps.rect()), s.field.tile_size);
+      if (reached.ok() && !area.intersect(in->maps.rect()).empty()) {
+        last_tiles_regenerated_ += static_cast<std::uint64_t>((reached->x1 - reached->x0) * (reached->z1 - reached->z0));
+      }
+    }
+    if (!field_->set_blades(set_).ok()) return build();  // a tile over the storage limit: as before
+    far_stale_ = far_.has_value();
+    ++regenerations_;
+    ++tile_regenerations_;
+    return {};
+  }
+
+  Status rebuild_far() {
+    auto in = inputs();
+    if (!in.ok()) return in.error();
+    auto far = make_far(*in);
+    if (!far.ok()) return far.error();
+    far_ = std::move(*far);
     return {};
   }
 
@@ -399,9 +472,13 @@ class GrassInstance final : public ModuleInstance {
   std::optional<grass::GrassField> field_;
   std::optional<grass::FarField> far_;
   CountedBlades blades_;
-  bool dirty_ = false;
-  std::uint64_t regenerations_ = 0;
-  std::uint64_t regenerations_requested_ = 0;
+  grass::BladeSet set_;                 // the blades as generated (the GPU copy moves with physics)
+  static constexpr std::size_t kMaxEditsPerFrame = 64;
+  std::vector<grass::Rect> edits_;      // the map edits since the last frame
+  bool far_stale_ = false;              // the far field still shows the maps before an edit
+  std::uint64_t regenerations_ = 0;     // full builds and tile-local regenerations
+  std::uint64_t tile_regenerations_ = 0;
+  std::uint64_t last_tiles_regenerated_ = 0;
 };
 
 }  // namespace

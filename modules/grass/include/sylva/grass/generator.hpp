@@ -98,6 +98,16 @@ void generate_tile(const GrassFieldSettings& field, const BladeSettings& blade, 
 Result<BladeSet> generate_blades(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                                  const HeightField& ground, const glm::dvec3& origin);
 
+// Tile-local regeneration after a map edit: regenerates, in place, the tiles of `set` that
+// overlap `area` (world x/z, clipped to maps.rect()) from `maps`. `set` must come from
+// generate_blades (or this function) with the same settings, ground and origin, and the maps
+// may differ from the ones it was made with only inside `area`; then the result equals
+// generate_blades(field, blade, maps, ground, set.origin) bit for bit (blades are a function of
+// their tile alone, see the header comment). Returns the index of the first blade that may
+// differ (blades before it are untouched). Errors as generate_blades.
+Result<std::uint32_t> regenerate_tiles(BladeSet& set, const GrassFieldSettings& field, const BladeSettings& blade,
+                                       const GrassMaps& maps, const HeightField& ground, const Rect& area);
+
 // A triangle mesh to grow grass on, positions relative to the BladeSet origin [m]. normals and
 // density (per vertex, [0, 1]) may be empty: face normals and density 1 are used then.
 struct GroundMesh {

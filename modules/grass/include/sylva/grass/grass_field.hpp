@@ -125,6 +125,11 @@ class GrassField : public render::Drawable {
   static Result<GrassField> create(BladeSet blades, const GrassRenderSettings& settings = {},
                                    std::size_t max_blades_per_buffer = 0);
 
+  // Replaces the blades (a regenerated set, e.g. after regenerate_tiles) without rebuilding the
+  // programs: what a map edit costs on the GPU side is one upload. Physics state restarts.
+  // Errors as create() (the field is unchanged on error).
+  Status set_blades(const BladeSet& blades);
+
   GrassField(GrassField&&) noexcept = default;
   GrassField& operator=(GrassField&&) noexcept = default;
 
@@ -226,6 +231,7 @@ class GrassField : public render::Drawable {
   glm::dvec3 origin_{0.0};
   std::vector<GrassTile> tiles_;
   std::vector<std::uint32_t> tile_chunk_;  // chunk of each tile
+  std::size_t max_blades_per_buffer_ = 0;  // create()'s limit (0 = the GL limit)
   double time_ = 0.0;                  // simulation time of the last update() [s] (colour motion)
   std::vector<double> tile_sim_time_;  // last time each tile was simulated; < 0: never
   std::size_t blade_count_ = 0;
