@@ -12,6 +12,8 @@
 //    field's clumps and ground layer) and leaves the right half's pixels as they were;
 //  - painting the tint or the density map through the scene API and writing the old texels back
 //    (what the editor's undo does) gives the first picture and blade count back bit for bit;
+//  - a painted map filled from the control texture is saved to its own file, which wins over the
+//    channel when the saved scene is opened again;
 //  - errors (too few channels, a 1 x 1 image, a missing file, a bad channels string) name the key
 //    and the file.
 #include <sylva/core/image.hpp>
@@ -265,6 +267,43 @@ TEST_F(GrassControlMapsGl, PaintingThenUndoRestoresThePictureBitForBit) {
     EXPECT_EQ(undone.blades, before.blades);
     EXPECT_TRUE(same_pixels(undone.image, before.image)) << "undo gives the first picture back bit for bit";
   }
+}
+
+// A painted map filled from the control texture is saved to its own file, which wins over the
+// control texture's channel when the saved scene is opened again (16-bit PNG: within 1/65535).
+TEST_F(GrassControlMapsGl, APaintedControlMapIsSavedAndWinsOverTheChannel) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  TempDir dir;
+  write_png(dir.path / "control.png", 16, 16, 3, [](int i, int, int c) { return c == 0 ? (i < 8 ? 0.0f : 1.0f) : 0.6f; });
+  auto made = open_scene(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  Scene& scene = **made;
+  SceneMap* density = scene.map("grass.density");
+  ASSERT_NE(density, nullptr);
+  EXPECT_FALSE(density->unsaved()) << "filled from the control texture, not edited";
+  for (int j = 2; j < 6; ++j)
+    for (int i = 2; i < 6; ++i) density->grid.at(i, j) = 0.25f;
+  ASSERT_TRUE(scene.map_changed("grass.density", {2, 2, 6, 6}).ok());
+  ASSERT_TRUE(scene.save(dir.path / "saved.json").ok());
+  const ModuleSection* grass = scene.document().module("grass");
+  ASSERT_NE(grass, nullptr);
+  EXPECT_EQ(grass->maps.count("control"), 1u);
+  ASSERT_EQ(grass->maps.count("density"), 1u) << "the painted map got its own file";
+  EXPECT_EQ(grass->maps.count("height"), 0u) << "the unedited height map stays the control's G";
+
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(dir.path / "saved.json", warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto again = Scene::create(std::move(*doc));
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  const SceneMap* loaded = (*again)->map("grass.density");
+  const SceneMap* height = (*again)->map("grass.height");
+  ASSERT_NE(loaded, nullptr);
+  ASSERT_NE(height, nullptr);
+  EXPECT_NEAR(loaded->grid.at(3, 3), 0.25f, 1.0f / 65535.0f) << "the painted texels, from the saved file";
+  EXPECT_EQ(loaded->grid.at(1, 9), 0.0f);
+  EXPECT_EQ(loaded->grid.at(12, 9), 1.0f);
+  EXPECT_NEAR(height->grid.at(5, 5), 0.6f, 1.0f / 255.0f) << "G of the control texture";
 }
 
 TEST_F(GrassControlMapsGl, BadControlAndTintFilesNameTheKeyAndTheFile) {
