@@ -230,6 +230,7 @@ void TerrainRenderer::update(const render::FrameContext& frame) {
   if (streamer_) residency = streamer_->residency();
   selection_ = &selector_->select(view, settings_.lod, streamer_ ? &residency : nullptr);
   stats_.selection = selection_->stats;
+  if (streamer_) streamer_->count_misses(selection_->stats.substituted);
   frame_ = make_vertex_frame(*tree_, view, settings_.lod);
 
   assemble_batch(*selection_, batch_);

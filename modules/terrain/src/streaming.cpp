@@ -21,13 +21,13 @@ ChunkStreamer::ChunkStreamer(std::shared_ptr<const ChunkFile> file, const Stream
 
 Result<std::unique_ptr<ChunkStreamer>> ChunkStreamer::create(std::shared_ptr<const ChunkFile> file,
                                                              const StreamingSettings& settings) {
-  SYLVA_TRY(validate_params(settings, "terrain.streaming"));
+  SYLVA_TRY(validate_params(settings, "terrain.stream"));
   std::unique_ptr<ChunkStreamer> s(new ChunkStreamer(std::move(file), settings));
   auto root = s->file_->read_chunk(0);
   if (!root.ok()) return root.error();
   const std::size_t bytes = bytes_of(*root);
   if (bytes > s->budget_) {
-    return make_error(ErrorCode::kLimit, fmt::format("terrain.streaming.memory_budget_mb: {:.3f} MiB cannot hold "
+    return make_error(ErrorCode::kLimit, fmt::format("terrain.stream.budget_mb: {:.3f} MiB cannot hold "
                                                      "even the root chunk ({:.3f} MiB)",
                                                      settings.memory_budget_mb, bytes / 1048576.0));
   }
@@ -136,7 +136,9 @@ Residency ChunkStreamer::residency() {
     if (failed_[chunk] || resident_.count(chunk)) return;
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      Request& q = requests_[chunk];
+      auto [it, fresh] = requests_.try_emplace(chunk);
+      if (fresh) ++stats_.requests;
+      Request& q = it->second;
       q.priority = std::max(q.frame == frame_ ? q.priority : 0.0, priority);
       q.frame = frame_;
     }

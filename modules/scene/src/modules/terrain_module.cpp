@@ -19,22 +19,39 @@
 // live tree in place and writes nothing; a later full rebuild of a painted field (a tree setting
 // changed in the editor) is cached under that field's own key. stats(): "tree_cache" = hit, miss
 // or off, of the last full build.
+//
+// Baked terrain (issue 15, "bake once, stream always"): "terrain.baked_file" names a chunk file
+// (`sylva-bake terrain`, relative to the scene file). The section then opens it (header and
+// directory only) and draws it through the ChunkStreamer within "terrain.stream.budget_mb": a
+// loader thread reads chunks requested by projected error, a chunk whose children are not resident
+// is drawn instead of them (never a hole), and the frame never waits on disk. The chunk file holds
+// meshes, not a height field, so the scene's ground (grass, trees, the camera's above-ground
+// height, Scene::ground_height) still comes from the section's height-source keys: a baked scene
+// names the same source the bake was made from. The section checks this on the root chunk's
+// vertices (exact field samples): when the ground's grid and those heights match the file, the
+// ground also shades the terrain (normals, materials); otherwise it warns that ground queries do
+// not follow the baked terrain and shades from the triangles. Painting does not change a baked
+// terrain. Streaming numbers are in stats() ("stream_*").
 
 #include "modules/module_factories.hpp"
 
 #include <sylva/core/log.hpp>
 #include <sylva/core/timer.hpp>
 #include <sylva/scene/module_instance.hpp>
+#include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
 #include <sylva/terrain/renderer.hpp>
 #include <sylva/terrain/settings.hpp>
+#include <sylva/terrain/streaming.hpp>
 #include <sylva/terrain/tree_cache.hpp>
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <filesystem>
+#include <string>
 
 namespace sylva::scene::detail {
 namespace {
@@ -44,6 +61,8 @@ struct TerrainSectionSettings {
   terrain::ChunkTreeSettings tree;
   terrain::TreeCacheSettings tree_cache;
   terrain::TerrainRenderSettings render;
+  std::string baked_file;              // a chunk file to stream instead of building the tree
+  terrain::StreamingSettings stream;   // its memory budget
 
   template <class V>
   void visit(V& v) {
@@ -51,6 +70,9 @@ struct TerrainSectionSettings {
     v(tree, "tree");
     v(tree_cache, "tree_cache");
     v(render, "render");
+    v(baked_file, "baked_file", {.max = 4096.0, .help = "Baked chunk file (sylva-bake terrain) to stream, relative to "
+                                 "the scene file; empty = build the tree from the ground", .rebuild = Rebuild::kOffline});
+    v(stream, "stream");
   }
 };
 
@@ -118,6 +140,7 @@ class TerrainInstance final : public ModuleInstance {
 
   Status on_map_changed(const std::string& map_id, const WorldArea& area) override {
     (void)map_id;
+    if (renderer_->streamer() != nullptr) return {};  // a baked terrain is not painted (header)
     // The changed samples, grown by one sample each way so rounding never leaves one out.
     const HeightField& f = *ctx_.ground;
     const auto lo = glm::floor((area.min - f.origin()) / f.spacing()) - 1.0;
@@ -142,7 +165,7 @@ class TerrainInstance final : public ModuleInstance {
     for (std::size_t l = 0; l < s.selection.chunks_per_level.size(); ++l) {
       per_level[fmt::format("level{}", l)] = s.selection.chunks_per_level[l];
     }
-    return {{"chunks_drawn", s.selection.chunks},
+    nlohmann::json out = {{"chunks_drawn", s.selection.chunks},
             {"chunks_culled", s.selection.culled},
             {"chunks_visited", s.selection.visited},
             {"triangles", s.selection.triangles},
@@ -165,6 +188,22 @@ class TerrainInstance final : public ModuleInstance {
             {"tree_cache_hit", tree_cache_ == terrain::TreeCacheOutcome::kHit ? 1 : 0},
             {"tree_cache_load_ms", cache_load_ms_},
             {"tree_cache_save_ms", cache_save_ms_}};
+    if (terrain::ChunkStreamer* streamer = renderer_->streamer()) {
+      const terrain::StreamingStats st = streamer->stats();
+      out["stream_resident_bytes"] = st.resident_bytes;
+      out["stream_budget_bytes"] = st.budget_bytes;
+      out["stream_resident_chunks"] = st.resident_chunks;
+      out["stream_requests"] = st.requests;
+      out["stream_pending"] = st.pending_requests;
+      out["stream_loads"] = st.loads;
+      out["stream_misses"] = st.misses;
+      out["stream_misses_frame"] = s.selection.substituted;
+      out["stream_evictions"] = st.evictions;
+      out["stream_dropped"] = st.dropped;
+      out["stream_failures"] = st.failures;
+      out["baked_file_bytes"] = baked_bytes_;
+    }
+    return out;
   }
 
   std::vector<render::Aabb> debug_bounds() const override {
@@ -178,6 +217,7 @@ class TerrainInstance final : public ModuleInstance {
   const TerrainSectionSettings& settings() const { return static_cast<const Settings&>(*ctx_.section->settings).value; }
 
   Status build() {
+    if (!settings().baked_file.empty()) return open_baked();
     Stopwatch watch;
     const TerrainSectionSettings& s = settings();
     const std::filesystem::path base = ctx_.document != nullptr ? ctx_.document->directory() : std::filesystem::path();
@@ -193,6 +233,56 @@ class TerrainInstance final : public ModuleInstance {
     ++rebuilds_;
     last_build_ms_ = watch.elapsed_ms();
     return {};
+  }
+
+  // The baked chunk file, streamed (header). Errors name the key and the file.
+  Status open_baked() {
+    Stopwatch watch;
+    const TerrainSectionSettings& s = settings();
+    const std::filesystem::path path =
+        ctx_.document != nullptr ? ctx_.document->resolve(s.baked_file) : std::filesystem::path(s.baked_file);
+    const auto fail = [&](const Error& e) {
+      // ChunkFile's messages name the file; the key says where it came from.
+      return make_error(e.code, fmt::format("terrain.baked_file: {}", e.message));
+    };
+    auto file = terrain::ChunkFile::open(path);
+    if (!file.ok()) return fail(file.error());
+    std::error_code ec;
+    baked_bytes_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
+    auto streamer = terrain::ChunkStreamer::create(*file, s.stream);
+    if (!streamer.ok()) return fail(Error{streamer.error().code, fmt::format("{}: {}", path.string(), streamer.error().message)});
+    const HeightField* field = ground_matches(**streamer) ? ctx_.ground : nullptr;
+    if (field == nullptr) {
+      log_warn("terrain: the scene's ground (grass, trees, camera height) does not match the baked file {}: name the "
+               "source it was baked from in the terrain section's height keys", path.string());
+    }
+    auto renderer = terrain::TerrainRenderer::create(std::move(*streamer), field, s.render);
+    if (!renderer.ok()) return make_error(renderer.error().code, "terrain: " + renderer.error().message);
+    renderer_ = std::move(*renderer);
+    tree_cache_ = terrain::TreeCacheOutcome::kOff;
+    cache_load_ms_ = cache_save_ms_ = 0.0;
+    ++rebuilds_;
+    last_build_ms_ = watch.elapsed_ms();
+    return {};
+  }
+
+  // Whether the scene's ground is the field the file was baked from: same grid, and the root
+  // chunk's vertices (exact samples of that field) at the ground's heights.
+  bool ground_matches(const terrain::ChunkStreamer& streamer) const {
+    const HeightField& f = *ctx_.ground;
+    const terrain::ChunkTree& t = streamer.tree();
+    if (f.columns() != t.field_columns() || f.rows() != t.field_rows() || f.spacing() != t.spacing() ||
+        f.origin() != t.origin()) {
+      return false;
+    }
+    const terrain::ChunkMesh* root = streamer.mesh(0);
+    if (root == nullptr) return false;
+    for (const terrain::ChunkVertex& v : root->vertices) {
+      if (v.outside || v.centre) continue;
+      const float h = f.sample_clamped(static_cast<int>(v.gx), static_cast<int>(v.gz));
+      if (std::abs(h - v.height) > 1e-3f * std::max(1.0f, std::abs(v.height))) return false;
+    }
+    return true;
   }
 
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
@@ -231,6 +321,7 @@ class TerrainInstance final : public ModuleInstance {
   double last_build_ms_ = 0.0;
   terrain::TreeCacheOutcome tree_cache_ = terrain::TreeCacheOutcome::kOff;  // of the last full build
   double cache_load_ms_ = 0.0, cache_save_ms_ = 0.0;  // hashing + reading / writing, last full build
+  std::uint64_t baked_bytes_ = 0;                      // size of the baked chunk file streamed
 };
 
 }  // namespace

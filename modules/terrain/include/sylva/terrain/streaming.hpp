@@ -31,7 +31,7 @@ struct StreamingSettings {
 
   template <class V>
   void visit(V& v) {
-    v(memory_budget_mb, "memory_budget_mb", {.min = 0.01, .max = 1e6, .unit = "MiB",
+    v(memory_budget_mb, "budget_mb", {.min = 0.01, .max = 1e6, .unit = "MiB",
       .help = "Memory for resident chunk meshes", .log_scale = true});
   }
 };
@@ -45,6 +45,8 @@ struct StreamingStats {
   std::uint64_t evictions = 0;
   std::uint64_t dropped = 0;     // loads that did not fit the budget
   std::uint64_t failures = 0;    // chunks that could not be read
+  std::uint64_t requests = 0;    // chunks newly asked for (a request repeated while pending counts once)
+  std::uint64_t misses = 0;      // chunks drawn in place of non-resident children, summed over frames
   std::string last_error;
 };
 
@@ -70,6 +72,9 @@ class ChunkStreamer {
   // Blocks until no request is pending or loading, then integrates (tests, warm-up).
   void wait_idle();
   StreamingStats stats() const;
+  // Adds a frame's substituted chunks (SelectionStats::substituted) to stats().misses; the
+  // renderer calls it after each selection.
+  void count_misses(std::uint32_t substituted) { stats_.misses += substituted; }
 
  private:
   ChunkStreamer(std::shared_ptr<const ChunkFile> file, const StreamingSettings& settings);
