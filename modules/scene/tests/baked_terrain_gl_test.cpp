@@ -39,9 +39,9 @@ namespace {
 using BakedTerrainGl = render::GlTest;
 
 // A 1024 m field of 513^2 samples, 33-sample leaves (5 levels, 341 chunks).
-std::string scene_text(const std::string& baked_file, double budget_mb) {
+std::string scene_text(const std::string& baked_file, double budget_mb, int seed = 11) {
   std::string terrain = R"("size": 1024, "resolution": 513, "height": 140, "generator": "fbm",
-      "noise": {"frequency": 0.004, "octaves": 6, "seed": 11}, "tree": {"leaf_dimension": 33})";
+      "noise": {"frequency": 0.004, "octaves": 6, "seed": )" + std::to_string(seed) + R"(}, "tree": {"leaf_dimension": 33})";
   if (!baked_file.empty()) {
     terrain += R"(, "baked_file": ")" + baked_file + R"(", "stream": {"budget_mb": )" + std::to_string(budget_mb) + "}";
   }
@@ -149,6 +149,7 @@ TEST_F(BakedTerrainGl, StreamsWithinTheBudgetWithoutHolesAndCatchesUpToTheInMemo
   ASSERT_NE(streamed, nullptr);
   ASSERT_NE(streamed->streamer(), nullptr) << "baked_file streams";
   EXPECT_NE(streamed->height_texture(), nullptr) << "the scene's ground is the baked field: it shades too";
+  EXPECT_EQ(stat(scene->module_stats()["terrain"], "baked_ground_matches"), 1u);
 
   GlTarget target = GlTarget::create(256, 144);
   const int frames = 90;
@@ -254,6 +255,27 @@ TEST_F(BakedTerrainGl, MissingCorruptAndForeignFilesAreSceneErrorsNamingTheFile)
   EXPECT_FALSE(open_scene(baked.dir.path / "short.json", scene_text("short.sylvaterrain", 64.0), &error));
   EXPECT_NE(error.find("short.sylvaterrain"), std::string::npos) << error;
   std::printf("errors: %s\n", error.c_str());
+}
+
+// The scene's ground still comes from the section's height keys: another field is named in a
+// warning (what differs and what to set), and the terrain then shades from its triangles.
+TEST_F(BakedTerrainGl, AGroundOtherThanTheBakedFieldIsNamedInAWarning) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  Baked baked;
+  ASSERT_TRUE(baked.reference);
+  std::vector<std::string> warnings;
+  set_log_sink([&](LogLevel level, std::string_view m) {
+    if (level >= LogLevel::kWarn) warnings.emplace_back(m);
+  });
+  auto other = open_scene(baked.dir.path / "other.json", scene_text("valley.sylvaterrain", 64.0, 12));
+  set_log_sink(nullptr);
+  ASSERT_TRUE(other);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("valley.sylvaterrain"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("m high, the file"), std::string::npos) << warnings[0];
+  EXPECT_EQ(stat((*other).module_stats()["terrain"], "baked_ground_matches"), 0u);
+  EXPECT_EQ(terrain_of(*other)->height_texture(), nullptr);
+  std::printf("warning: %s\n", warnings[0].c_str());
 }
 
 }  // namespace

@@ -27,10 +27,11 @@
 // is drawn instead of them (never a hole), and the frame never waits on disk. The chunk file holds
 // meshes, not a height field, so the scene's ground (grass, trees, the camera's above-ground
 // height, Scene::ground_height) still comes from the section's height-source keys: a baked scene
-// names the same source the bake was made from. The section checks this on the root chunk's
-// vertices (exact field samples): when the ground's grid and those heights match the file, the
-// ground also shades the terrain (normals, materials); otherwise it warns that ground queries do
-// not follow the baked terrain and shades from the triangles. Painting does not change a baked
+// names the same source the bake was made from (and, as sylva-bake keeps a raster's origin at
+// (0, 0), terrain.center at the middle of the baked field). The section checks this on the grid and
+// the root chunk's vertices (exact field samples): when they match, the ground also shades the
+// terrain (normals, materials); otherwise it warns why (the key to set, or the first sample that
+// differs) and shades from the triangles. Painting does not change a baked
 // terrain. Streaming numbers are in stats() ("stream_*").
 
 #include "modules/module_factories.hpp"
@@ -202,6 +203,7 @@ class TerrainInstance final : public ModuleInstance {
       out["stream_dropped"] = st.dropped;
       out["stream_failures"] = st.failures;
       out["baked_file_bytes"] = baked_bytes_;
+      out["baked_ground_matches"] = ground_matches_ ? 1 : 0;
     }
     return out;
   }
@@ -251,10 +253,14 @@ class TerrainInstance final : public ModuleInstance {
     baked_bytes_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
     auto streamer = terrain::ChunkStreamer::create(*file, s.stream);
     if (!streamer.ok()) return fail(Error{streamer.error().code, fmt::format("{}: {}", path.string(), streamer.error().message)});
-    const HeightField* field = ground_matches(**streamer) ? ctx_.ground : nullptr;
-    if (field == nullptr) {
-      log_warn("terrain: the scene's ground (grass, trees, camera height) does not match the baked file {}: name the "
-               "source it was baked from in the terrain section's height keys", path.string());
+    const std::string mismatch = ground_mismatch(**streamer);
+    const HeightField* field = mismatch.empty() ? ctx_.ground : nullptr;
+    if (field != nullptr) {
+      ground_matches_ = true;
+    } else {
+      ground_matches_ = false;
+      log_warn("terrain: the scene's ground (grass, trees, camera height) is not the field baked into {}: {}",
+               path.string(), mismatch);
     }
     auto renderer = terrain::TerrainRenderer::create(std::move(*streamer), field, s.render);
     if (!renderer.ok()) return make_error(renderer.error().code, "terrain: " + renderer.error().message);
@@ -266,23 +272,32 @@ class TerrainInstance final : public ModuleInstance {
     return {};
   }
 
-  // Whether the scene's ground is the field the file was baked from: same grid, and the root
-  // chunk's vertices (exact samples of that field) at the ground's heights.
-  bool ground_matches(const terrain::ChunkStreamer& streamer) const {
+  // Why the scene's ground is not the field the file was baked from ("" when it is): same grid,
+  // and the root chunk's vertices (exact samples of that field) at the ground's heights.
+  std::string ground_mismatch(const terrain::ChunkStreamer& streamer) const {
     const HeightField& f = *ctx_.ground;
     const terrain::ChunkTree& t = streamer.tree();
-    if (f.columns() != t.field_columns() || f.rows() != t.field_rows() || f.spacing() != t.spacing() ||
-        f.origin() != t.origin()) {
-      return false;
+    if (f.columns() != t.field_columns() || f.rows() != t.field_rows() || f.spacing() != t.spacing()) {
+      return fmt::format("the ground has {} x {} samples {} m apart, the file {} x {} samples {} m apart", f.columns(),
+                         f.rows(), f.spacing(), t.field_columns(), t.field_rows(), t.spacing());
+    }
+    if (f.origin() != t.origin()) {
+      // sylva-bake keeps a raster's origin at (0, 0); the scene centres its ground on terrain.center.
+      const glm::dvec2 centre = t.origin() + 0.5 * glm::dvec2(t.field_columns() - 1, t.field_rows() - 1) * t.spacing();
+      return fmt::format("the ground starts at ({}, {}), the file at ({}, {}): set terrain.center to [{}, {}]",
+                         f.origin().x, f.origin().y, t.origin().x, t.origin().y, centre.x, centre.y);
     }
     const terrain::ChunkMesh* root = streamer.mesh(0);
-    if (root == nullptr) return false;
+    if (root == nullptr) return "the file's root chunk is not resident";
     for (const terrain::ChunkVertex& v : root->vertices) {
       if (v.outside || v.centre) continue;
       const float h = f.sample_clamped(static_cast<int>(v.gx), static_cast<int>(v.gz));
-      if (std::abs(h - v.height) > 1e-3f * std::max(1.0f, std::abs(v.height))) return false;
+      if (std::abs(h - v.height) > 1e-3f * std::max(1.0f, std::abs(v.height))) {
+        return fmt::format("at sample ({}, {}) the ground is {} m high, the file {} m: name the source it was baked "
+                           "from in the section's height keys", v.gx, v.gz, h, v.height);
+      }
     }
-    return true;
+    return {};
   }
 
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
@@ -322,6 +337,7 @@ class TerrainInstance final : public ModuleInstance {
   terrain::TreeCacheOutcome tree_cache_ = terrain::TreeCacheOutcome::kOff;  // of the last full build
   double cache_load_ms_ = 0.0, cache_save_ms_ = 0.0;  // hashing + reading / writing, last full build
   std::uint64_t baked_bytes_ = 0;                      // size of the baked chunk file streamed
+  bool ground_matches_ = false;                        // the scene's ground is the baked field
 };
 
 }  // namespace
