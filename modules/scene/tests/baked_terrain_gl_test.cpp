@@ -257,6 +257,26 @@ TEST_F(BakedTerrainGl, MissingCorruptAndForeignFilesAreSceneErrorsNamingTheFile)
   std::printf("errors: %s\n", error.c_str());
 }
 
+// Save as into another folder: terrain.baked_file is rebased (it names a user's file, never
+// copied), and the saved scene streams the same file.
+TEST_F(BakedTerrainGl, SaveAsRebasesTheBakedFile) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  Baked baked;
+  ASSERT_TRUE(baked.reference);
+  auto scene = open_scene(baked.dir.path / "baked.json", scene_text("valley.sylvaterrain", 64.0));
+  ASSERT_TRUE(scene);
+  fs::create_directories(baked.dir.path / "elsewhere");
+  const fs::path saved = baked.dir.path / "elsewhere" / "saved.json";
+  ASSERT_TRUE(scene->save(saved).ok());
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(saved, warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  EXPECT_EQ(doc->to_json()["terrain"]["baked_file"].get<std::string>(), "../valley.sylvaterrain");
+  auto reopened = Scene::create(std::move(*doc));
+  ASSERT_TRUE(reopened.ok()) << reopened.error().message;
+  EXPECT_EQ(stat((*reopened)->module_stats()["terrain"], "baked_file_bytes"), fs::file_size(baked.file));
+}
+
 // The scene's ground still comes from the section's height keys: another field is named in a
 // warning (what differs and what to set), and the terrain then shades from its triangles.
 TEST_F(BakedTerrainGl, AGroundOtherThanTheBakedFieldIsNamedInAWarning) {
