@@ -18,6 +18,9 @@
 // re-uploaded without rebuilding the programs (GrassField::set_blades); physics restarts. The far
 // field is rebuilt whole on the first frame without a new edit, so a stroke pays it once, at its
 // end. A ground edit that moves the field's origin (under its centre) rebuilds everything.
+//
+// surface = "mesh" (issue 16, grass on any mesh): the blades grow on every triangle of
+// mesh.file instead (see mesh_blades), with no far field; a map edit rebuilds them whole.
 
 #include "modules/module_factories.hpp"
 
@@ -28,10 +31,16 @@
 #include <sylva/grass/settings.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/scene/module_instance.hpp>
+#ifdef SYLVA_HAS_TERRAIN
+#include <sylva/terrain/mesh.hpp>
+#endif
 
 #include <fmt/format.h>
 
 #include <array>
+#include <cmath>
+#include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -52,7 +61,31 @@ struct GrassControlSettings {
   }
 };
 
+// What the blades grow on: the scene's ground height field, or a triangle mesh from a file.
+enum class GrassSurface { kGround, kMesh };
+constexpr std::array<EnumName<GrassSurface>, 2> enum_names(GrassSurface) {
+  return {{{GrassSurface::kGround, "ground"}, {GrassSurface::kMesh, "mesh"}}};
+}
+
+// grass.mesh: the mesh of grass.surface = "mesh" (issue 16, grass on any mesh).
+struct GrassMeshSettings {
+  std::string file;          // OBJ, IV, glTF or GLB, relative to the scene file
+  glm::dvec3 offset{0.0};    // added to every vertex [m]
+
+  template <class V>
+  void visit(V& v) {
+    v(file, "file", {.max = 4096.0,
+      .help = "Mesh the grass grows on when surface is \"mesh\", relative to the scene file: Wavefront .obj, Open "
+              "Inventor ASCII .iv, glTF .gltf or .glb",
+      .rebuild = Rebuild::kOffline});
+    v(offset, "offset", {.min = -1.0e9, .max = 1.0e9, .unit = "m", .help = "Added to every vertex of grass.mesh.file",
+      .rebuild = Rebuild::kOffline});
+  }
+};
+
 struct GrassSectionSettings {
+  GrassSurface surface = GrassSurface::kGround;
+  GrassMeshSettings mesh;
   glm::dvec2 area_min{-10.0, -10.0};  // world x/z rectangle of the field [m]
   glm::dvec2 area_max{10.0, 10.0};
   int map_resolution = 128;           // texels along the longer side of a new density/height map
@@ -66,6 +99,10 @@ struct GrassSectionSettings {
 
   template <class V>
   void visit(V& v) {
+    v(surface, "surface", {.help = "What the blades grow on: \"ground\" (the scene's ground over the area) or \"mesh\" "
+      "(every triangle of mesh.file, along its normal, density map sampled at the vertices' x/z; no far field)",
+      .rebuild = Rebuild::kOffline});
+    v(mesh, "mesh");
     v(area_min, "area_min", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
     v(area_max, "area_max", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Opposite corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
     v(map_resolution, "map_resolution", {.min = 1, .max = 8192, .help = "Texels of a new density/height map along the longer side", .rebuild = Rebuild::kOffline});
@@ -92,6 +129,11 @@ Status check_grass(const GrassSectionSettings& s, std::string_view prefix) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}.blade.{}: {} is above {}.blade.{} ({})", prefix, lo_name, lo, prefix, hi_name, hi));
   };
+  if (s.surface == GrassSurface::kMesh && s.mesh.file.empty()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}.mesh.file: {}.surface is \"mesh\" but no mesh is given (an .obj, .iv, .gltf or .glb "
+                                  "file relative to the scene file)", prefix, prefix));
+  }
   SYLVA_TRY(ordered(s.blade.height_min, s.blade.height_max, "height_min", "height_max"));
   SYLVA_TRY(ordered(s.blade.width_min, s.blade.width_max, "width_min", "width_max"));
   SYLVA_TRY(ordered(s.blade.stiffness_min, s.blade.stiffness_max, "stiffness_min", "stiffness_max"));
@@ -267,6 +309,11 @@ class GrassInstance final : public ModuleInstance {
                         {"last_tiles_regenerated", last_tiles_regenerated_},
                         {"max_blade_height", field_->max_height()},
                         {"blade_triangles", blades_.last_primitives()}};
+    if (settings().surface == GrassSurface::kMesh) {
+      j["surface"] = "mesh";
+      j["mesh_triangles"] = mesh_triangles_;
+      j["up_axes"] = up_axes_;
+    }
     if (far_) {
       j["clumps"] = far_->clump_count();
       j["clumps_drawn"] = far_->last_clumps_drawn();
@@ -405,9 +452,11 @@ class GrassInstance final : public ModuleInstance {
     return in;
   }
 
+  // The far field stands on a height field, so it is off on a mesh surface (a mesh that is a
+  // height field is grown as surface "ground" through a terrain section instead).
   Result<std::optional<grass::FarField>> make_far(const Inputs& in) const {
     const GrassSectionSettings& s = settings();
-    if (!s.far_field) return std::optional<grass::FarField>();
+    if (!s.far_field || s.surface == GrassSurface::kMesh) return std::optional<grass::FarField>();
     auto f = grass::FarField::create(s.field, s.blade, in.maps, *in.ground, in.origin, s.far);
     if (!f.ok()) return make_error(f.error().code, "grass.far: " + f.error().message);
     return std::optional<grass::FarField>(std::move(*f));
@@ -417,8 +466,10 @@ class GrassInstance final : public ModuleInstance {
     const GrassSectionSettings& s = settings();
     auto in = inputs();
     if (!in.ok()) return in.error();
-    auto blades = grass::generate_blades(s.field, s.blade, in->maps, *in->ground, in->origin);
+    auto blades = s.surface == GrassSurface::kMesh ? mesh_blades(in->maps)
+                                                   : grass::generate_blades(s.field, s.blade, in->maps, *in->ground, in->origin);
     if (!blades.ok()) return make_error(blades.error().code, "grass: " + blades.error().message);
+    up_axes_ = s.surface == GrassSurface::kMesh ? count_up_axes(*blades) : nlohmann::json();
     auto field = grass::GrassField::create(*blades, s.render);
     if (!field.ok()) return make_error(field.error().code, "grass: " + field.error().message);
     auto far = make_far(*in);
@@ -438,6 +489,7 @@ class GrassInstance final : public ModuleInstance {
   // field's centre), since every blade is stored relative to it.
   Status regenerate(const std::vector<grass::Rect>& areas) {
     const GrassSectionSettings& s = settings();
+    if (s.surface == GrassSurface::kMesh) return build();  // mesh blades are not tiled by x/z
     auto in = inputs();
     if (!in.ok()) return in.error();
     if (in->origin != set_.origin) return build();
@@ -456,6 +508,70 @@ class GrassInstance final : public ModuleInstance {
     ++regenerations_;
     ++tile_regenerations_;
     return {};
+  }
+
+  // grass.surface = "mesh": every triangle of grass.mesh.file (terrain's load_mesh: OBJ, IV,
+  // glTF, GLB; moved by grass.mesh.offset) grows blades along its face normal (sharp edges keep
+  // their walls' normals), Jahrmann & Wimmer 2017 (grass::generate_blades_on_mesh). Density per
+  // vertex is the density map at the vertex's world x/z (0 outside area_min..area_max, as on the
+  // ground), so the map painted from above thins grass on walls and overhangs below it too.
+  Result<grass::BladeSet> mesh_blades(const grass::GrassMaps& maps) {
+    const std::string key = ctx_.section->name + ".mesh.file";
+#ifdef SYLVA_HAS_TERRAIN
+    const GrassSectionSettings& s = settings();
+    const std::filesystem::path path =
+        ctx_.document != nullptr ? ctx_.document->resolve(s.mesh.file) : std::filesystem::path(s.mesh.file);
+    auto polygons = terrain::load_mesh(path);
+    if (!polygons.ok()) {
+      const std::string& m = polygons.error().message;
+      return make_error(polygons.error().code, m.find(path.filename().string()) != std::string::npos
+                                                   ? fmt::format("{}: {}", key, m)
+                                                   : fmt::format("{}: {}: {}", key, path.string(), m));
+    }
+    const terrain::TriangleMesh mesh = terrain::triangulate(*polygons);
+    glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+    for (const glm::vec3& p : mesh.positions) {
+      lo = glm::min(lo, glm::dvec3(p) + s.mesh.offset);
+      hi = glm::max(hi, glm::dvec3(p) + s.mesh.offset);
+    }
+    const glm::dvec3 origin = 0.5 * (lo + hi);
+    std::vector<glm::vec3> positions;
+    std::vector<float> density;
+    positions.reserve(mesh.positions.size());
+    density.reserve(mesh.positions.size());
+    for (const glm::vec3& p : mesh.positions) {
+      const glm::dvec3 world = glm::dvec3(p) + s.mesh.offset;
+      positions.push_back(glm::vec3(world - origin));
+      density.push_back(maps.density(world.x, world.z));
+    }
+    mesh_triangles_ = mesh.triangle_count();
+    auto set = grass::generate_blades_on_mesh(s.field, s.blade, {positions, {}, mesh.indices, density}, origin);
+    if (!set.ok()) return make_error(set.error().code, fmt::format("{} ({}): {}", key, path.string(), set.error().message));
+    return set;
+#else
+    (void)maps;
+    return make_error(ErrorCode::kUnsupported,
+                      fmt::format("{}: {}.surface \"mesh\" needs the terrain module's mesh loaders, which this build leaves out",
+                                  key, ctx_.section->name));
+#endif
+  }
+
+  // Blades of a mesh surface by the axis their up vector is within 0.1 rad of (stats "up_axes").
+  static nlohmann::json count_up_axes(const grass::BladeSet& set) {
+    static constexpr const char* kNames[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
+    std::array<std::uint64_t, 6> n{};
+    std::uint64_t other = 0;
+    for (const grass::Blade& b : set.blades) {
+      const glm::vec3 u = b.up_dir();
+      int axis = -1;
+      for (int a = 0; a < 3 && axis < 0; ++a) {
+        if (std::abs(u[a]) > std::cos(0.1f)) axis = 2 * a + (u[a] < 0.0f ? 1 : 0);
+      }
+      if (axis < 0) ++other; else ++n[static_cast<std::size_t>(axis)];
+    }
+    nlohmann::json j = {{"other", other}};
+    for (int a = 0; a < 6; ++a) j[kNames[a]] = n[static_cast<std::size_t>(a)];
+    return j;
   }
 
   Status rebuild_far() {
@@ -479,6 +595,8 @@ class GrassInstance final : public ModuleInstance {
   std::uint64_t regenerations_ = 0;     // full builds and tile-local regenerations
   std::uint64_t tile_regenerations_ = 0;
   std::uint64_t last_tiles_regenerated_ = 0;
+  std::uint64_t mesh_triangles_ = 0;    // of grass.mesh.file (surface "mesh")
+  nlohmann::json up_axes_;              // count_up_axes of the mesh blades
 };
 
 }  // namespace

@@ -1,0 +1,256 @@
+// Grass on any mesh through scene files (issue #16, "Grass": grass.surface = "mesh").
+//
+// The mesh is a box written as OBJ by the test: x, z in [-2, 2], y in [0, 3], lifted by
+// grass.mesh.offset (0, 2, 0) to y in [2, 5], so it has four vertical walls and an overhang (its
+// bottom face, normal -y). Each face is an 8 x 8 grid of quads with outward winding. Checked:
+//  - every blade root lies on the box (signed distance under 1 mm), blades grow on all six faces
+//    along their normals (the stats' up_axes: walls' up vectors horizontal, the bottom face's
+//    pointing down, none in between) in numbers within 10 % of face area x density;
+//  - a density map of 0 over x < 0 leaves the -x wall bare and no root left of x = -0.5 m (the
+//    vertices' grid step: triangles touching x = 0 see 0.5 there), while the +x wall keeps its
+//    blades;
+//  - the rendered picture, seen from below the box, has grass-green pixels above the horizon,
+//    where the same section on the ground surface (the default) has none;
+//  - a missing file, a broken OBJ and "mesh" without a file give errors naming grass.mesh.file
+//    and the file.
+#include <sylva/core/image.hpp>
+#include <sylva/render/framebuffer.hpp>
+#include <sylva/render/readback.hpp>
+#include <sylva/render/testing.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/scene.hpp>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+using namespace sylva;
+using namespace sylva::scene;
+namespace fs = std::filesystem;
+
+namespace {
+
+using GrassMeshGl = render::GlTest;
+
+constexpr glm::ivec2 kSize(192, 128);
+constexpr double kDensity = 150.0;  // grass.field.density [blades / m^2]
+const glm::dvec3 kBoxCentre(0.0, 3.5, 0.0), kBoxHalf(2.0, 1.5, 2.0);  // after the offset
+
+// Camera 10 m in front of the box's +z wall at y = 1.2, below the box, looking along -z
+// (yaw 0) level: the box and its overhang fill the upper half of the picture.
+nlohmann::json stage(const nlohmann::json& grass_extra) {
+  nlohmann::json j = nlohmann::json::parse(R"json({
+    "sylva_scene": 1,
+    "name": "grass mesh stage",
+    "camera": {"position": [0.0, 1.2, 12.0], "height_mode": "absolute", "yaw_deg": 0.0, "pitch_deg": 0.0, "fov_deg": 60.0},
+    "sun": {"follow_clock": false, "azimuth_deg": 200.0, "elevation_deg": 35.0, "fog_density": 0.0},
+    "wind": {"direction_deg": 20.0, "strength": 0.0, "gust_amplitude": 0.0},
+    "ground": {"size": 128.0, "resolution": 33, "generator": "flat"},
+    "grass": {"area_min": [-4.0, -4.0], "area_max": [4.0, 4.0], "far_field": false,
+              "field": {"density": 150.0, "tile_size": 2.0},
+              "blade": {"height_min": 0.2, "height_max": 0.4},
+              "render": {"simulate": false}},
+    "render": {"shadows": {"enabled": false}, "msaa_samples": 1, "tone_map": false}
+  })json");
+  j["grass"].merge_patch(grass_extra);
+  return j;
+}
+
+nlohmann::json on_mesh(const std::string& file) {
+  return {{"surface", "mesh"}, {"mesh", {{"file", file}, {"offset", {0.0, 2.0, 0.0}}}}};
+}
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("sylva_grass_mesh_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+// The box (before the offset) as OBJ: six faces of n x n quads, corner c, edges u and v with
+// u x v along the outward normal, so every triangle's winding faces out.
+void write_box_obj(const fs::path& file, int n) {
+  struct Face {
+    glm::dvec3 c, u, v;
+  };
+  const Face faces[6] = {
+      {{2, 0, -2}, {0, 3, 0}, {0, 0, 4}},   // +x
+      {{-2, 0, -2}, {0, 0, 4}, {0, 3, 0}},  // -x
+      {{-2, 3, -2}, {0, 0, 4}, {4, 0, 0}},  // +y
+      {{-2, 0, -2}, {4, 0, 0}, {0, 0, 4}},  // -y: the overhang
+      {{-2, 0, 2}, {4, 0, 0}, {0, 3, 0}},   // +z
+      {{-2, 0, -2}, {0, 3, 0}, {4, 0, 0}},  // -z
+  };
+  std::ofstream out(file);
+  int base = 1;
+  for (const Face& f : faces) {
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const glm::dvec3 p = f.c + f.u * (double(i) / n) + f.v * (double(j) / n);
+        out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+      }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = base + j * (n + 1) + i, b = a + 1, c = b + (n + 1), d = a + (n + 1);
+        out << "f " << a << ' ' << b << ' ' << c << '\n' << "f " << a << ' ' << c << ' ' << d << '\n';
+      }
+    base += (n + 1) * (n + 1);
+  }
+}
+
+Result<std::unique_ptr<Scene>> open_scene(const nlohmann::json& json, const fs::path& dir) {
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::from_json(json, "grass mesh stage", warnings);
+  if (!doc.ok()) return doc.error();
+  doc->set_directory(dir);
+  return Scene::create(std::move(*doc));
+}
+
+struct Frame {
+  Image image;
+  nlohmann::json stats;
+  std::vector<glm::dvec3> roots;
+};
+
+Frame render_frame(Scene& scene) {
+  const render::Camera camera = scene.make_camera(scene.document().camera, kSize);
+  auto fb = render::Framebuffer::create({.width = kSize.x, .height = kSize.y, .color_formats = {GL_RGBA16F}}).value();
+  render::FrameProfiler profiler;
+  for (int i = 0; i < 2; ++i) {
+    scene.update(camera, 1.0 + i / 30.0, 1.0f / 30.0f, kSize);
+    scene.render(fb, profiler);
+  }
+  Frame f{render::read_color(fb).value(), scene.module_stats()["grass"], {}};
+  f.roots = scene.module("grass")->placed_positions(f.stats["blades"].get<std::size_t>());
+  return f;
+}
+
+// Signed distance of p to the lifted box.
+double box_distance(const glm::dvec3& p) {
+  const glm::dvec3 q = glm::abs(p - kBoxCentre) - kBoxHalf;
+  return glm::length(glm::max(q, 0.0)) + std::min(std::max(q.x, std::max(q.y, q.z)), 0.0);
+}
+
+// Pixels of rows [0, rows) where green clearly leads red and blue (blades; the sky is blue).
+std::size_t green_pixels(const Image& im, int rows) {
+  std::size_t n = 0;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < im.width(); ++x) {
+      const float r = im.at(x, y, 0), g = im.at(x, y, 1), b = im.at(x, y, 2);
+      n += (g > r + 0.03f && g > b + 0.03f) ? 1 : 0;
+    }
+  return n;
+}
+
+std::uint64_t axis(const Frame& f, const char* name) { return f.stats["up_axes"][name].get<std::uint64_t>(); }
+
+}  // namespace
+
+TEST_F(GrassMeshGl, BladesCoverWallsAndOverhangAlongTheirNormals) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  write_box_obj(dir.path / "box.obj", 8);
+  auto made = open_scene(stage(on_mesh("box.obj")), dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  const Frame f = render_frame(**made);
+  std::printf("mesh: %s\n", f.stats.dump().c_str());
+  EXPECT_EQ(f.stats["surface"], "mesh");
+  EXPECT_EQ(f.stats["mesh_triangles"].get<int>(), 6 * 8 * 8 * 2);
+  ASSERT_EQ(f.roots.size(), f.stats["blades"].get<std::size_t>());
+  double worst = 0.0;
+  for (const glm::dvec3& p : f.roots) worst = std::max(worst, std::abs(box_distance(p)));
+  std::printf("%zu roots, farthest %.2e m from the box\n", f.roots.size(), worst);
+  EXPECT_LT(worst, 1e-3);
+  // Up vectors along the faces' normals: walls horizontal, the overhang's blades hanging down.
+  EXPECT_EQ(axis(f, "other"), 0u);
+  const double wall = 12.0 * kDensity, cap = 16.0 * kDensity;  // face area x density
+  for (const char* a : {"+x", "-x", "+z", "-z"}) EXPECT_NEAR(axis(f, a), wall, 0.1 * wall) << a;
+  for (const char* a : {"+y", "-y"}) EXPECT_NEAR(axis(f, a), cap, 0.1 * cap) << a;
+}
+
+TEST_F(GrassMeshGl, DensityMapZeroOnHalfTheMeshLeavesItBare) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  write_box_obj(dir.path / "box.obj", 8);
+  Image map(64, 64, 1);
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i) map.at(i, j, 0) = i < 32 ? 0.0f : 1.0f;  // 0 over x < 0
+  ASSERT_TRUE(write_image(dir.path / "half.png", map, PixelFormat::kU8).ok());
+  nlohmann::json extra = on_mesh("box.obj");
+  extra["maps"] = {{"density", "half.png"}};
+  auto made = open_scene(stage(extra), dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  const Frame f = render_frame(**made);
+  double min_x = 1e9;
+  for (const glm::dvec3& p : f.roots) min_x = std::min(min_x, p.x);
+  std::printf("half: %s, leftmost root x %.3f\n", f.stats.dump().c_str(), min_x);
+  EXPECT_EQ(axis(f, "-x"), 0u) << "the wall at x = -2 has density 0 at every vertex";
+  EXPECT_GT(min_x, -0.5 - 1e-3) << "no root beyond the triangles touching x = 0";
+  EXPECT_NEAR(axis(f, "+x"), 12.0 * kDensity, 0.1 * 12.0 * kDensity);
+  EXPECT_GT(f.roots.size(), 0u);
+}
+
+TEST_F(GrassMeshGl, PictureShowsGrassOnTheMeshNotOnTheGroundOnlyScene) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  write_box_obj(dir.path / "box.obj", 8);
+  auto mesh = open_scene(stage(on_mesh("box.obj")), dir.path);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().message;
+  auto ground = open_scene(stage(nlohmann::json::object()), dir.path);
+  ASSERT_TRUE(ground.ok()) << ground.error().message;
+  const Frame fm = render_frame(**mesh), fg = render_frame(**ground);
+  // Rows above the horizon (the camera is level at y = 1.2; ground blades are at most 0.4 m).
+  const int rows = kSize.y / 2 - 2;
+  const std::size_t gm = green_pixels(fm.image, rows), gg = green_pixels(fg.image, rows);
+  const std::size_t ground_below = green_pixels(fg.image, kSize.y) - gg;
+  std::printf("green pixels above the horizon: mesh %zu, ground %zu (ground scene below it: %zu; %llu ground blades)\n", gm,
+              gg, ground_below, static_cast<unsigned long long>(fg.stats["blades"].get<std::uint64_t>()));
+  EXPECT_GT(gm, 200u);
+  EXPECT_EQ(gg, 0u);
+  EXPECT_GT(ground_below, 0u) << "the ground-surface grass is drawn, below the horizon";
+}
+
+TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  std::ofstream(dir.path / "broken.obj") << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 7\n";
+  struct Case {
+    nlohmann::json grass;
+    std::vector<std::string> expected;
+  };
+  const std::vector<Case> cases = {
+      {on_mesh("missing.obj"), {"grass.mesh.file", "missing.obj"}},
+      {on_mesh("broken.obj"), {"grass.mesh.file", "broken.obj:4"}},
+      {on_mesh("box.stl"), {"grass.mesh.file", "box.stl"}},
+      {{{"surface", "mesh"}}, {"grass.mesh.file", "no mesh"}},
+  };
+  for (const Case& c : cases) {
+    auto made = open_scene(stage(c.grass), dir.path);
+    ASSERT_FALSE(made.ok()) << c.grass.dump();
+    std::printf("%s\n", made.error().message.c_str());
+    for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;
+  }
+}
