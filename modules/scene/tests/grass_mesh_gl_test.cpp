@@ -6,13 +6,14 @@
 //  - every blade root lies on the box (signed distance under 1 mm), blades grow on all six faces
 //    along their normals (the stats' up_axes: walls' up vectors horizontal, the bottom face's
 //    pointing down, none in between) in numbers within 10 % of face area x density;
-//  - a density map of 0 over x < 0 leaves the -x wall bare and no root left of x = -0.5 m (the
-//    vertices' grid step: triangles touching x = 0 see 0.5 there), while the +x wall keeps its
-//    blades;
+//  - a density map of 0 over x < 0, or vertex colours (OBJ `v x y z r g b`) whose red is 0 there,
+//    leave the -x wall bare and no root left of x = -0.5 m (the vertices' grid step: triangles
+//    touching x = 0 see density above 0 there), while the +x wall keeps its blades;
 //  - the rendered picture, seen from below the box, has grass-green pixels above the horizon,
 //    where the same section on the ground surface (the default) has none;
-//  - a missing file, a broken OBJ and "mesh" without a file give errors naming grass.mesh.file
-//    and the file.
+//  - a missing file, a broken OBJ, an unknown extension, a colour above 1, a vertex without a
+//    colour among coloured ones and "mesh" without a file give errors naming grass.mesh.file and
+//    the file (and line).
 #include <sylva/core/image.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
@@ -83,8 +84,9 @@ struct TempDir {
 };
 
 // The box (before the offset) as OBJ: six faces of n x n quads, corner c, edges u and v with
-// u x v along the outward normal, so every triangle's winding faces out.
-void write_box_obj(const fs::path& file, int n) {
+// u x v along the outward normal, so every triangle's winding faces out. `colored`: every
+// vertex gets a colour (OBJ `v x y z r g b`) whose red, the density, is 0 where x < 0.
+void write_box_obj(const fs::path& file, int n, bool colored = false) {
   struct Face {
     glm::dvec3 c, u, v;
   };
@@ -102,7 +104,9 @@ void write_box_obj(const fs::path& file, int n) {
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
         const glm::dvec3 p = f.c + f.u * (double(i) / n) + f.v * (double(j) / n);
-        out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+        out << "v " << p.x << ' ' << p.y << ' ' << p.z;
+        if (colored) out << ' ' << (p.x < 0.0 ? 0 : 1) << " 0.5 0.2";
+        out << '\n';
       }
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
@@ -159,6 +163,18 @@ std::size_t green_pixels(const Image& im, int rows) {
 
 std::uint64_t axis(const Frame& f, const char* name) { return f.stats["up_axes"][name].get<std::uint64_t>(); }
 
+// Density 0 over x < 0 (vertices at x = 0 have 1 from colours, 0.5 from the bilinear map): the
+// -x wall is bare, no root lies left of the triangles touching x = 0, the +x wall is full.
+void expect_left_half_bare(const Frame& f, const char* how) {
+  double min_x = 1e9;
+  for (const glm::dvec3& p : f.roots) min_x = std::min(min_x, p.x);
+  std::printf("%s: %s, leftmost root x %.3f\n", how, f.stats.dump().c_str(), min_x);
+  EXPECT_EQ(axis(f, "-x"), 0u) << how << ": the wall at x = -2 has density 0 at every vertex";
+  EXPECT_GT(min_x, -0.5 - 1e-3) << how << ": no root beyond the triangles touching x = 0";
+  EXPECT_NEAR(axis(f, "+x"), 12.0 * kDensity, 0.1 * 12.0 * kDensity) << how;
+  EXPECT_GT(f.roots.size(), 0u);
+}
+
 }  // namespace
 
 TEST_F(GrassMeshGl, BladesCoverWallsAndOverhangAlongTheirNormals) {
@@ -199,14 +215,18 @@ TEST_F(GrassMeshGl, DensityMapZeroOnHalfTheMeshLeavesItBare) {
   extra["maps"] = {{"density", "half.png"}};
   auto made = open_scene(stage(extra), dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
-  const Frame f = render_frame(**made);
-  double min_x = 1e9;
-  for (const glm::dvec3& p : f.roots) min_x = std::min(min_x, p.x);
-  std::printf("half: %s, leftmost root x %.3f\n", f.stats.dump().c_str(), min_x);
-  EXPECT_EQ(axis(f, "-x"), 0u) << "the wall at x = -2 has density 0 at every vertex";
-  EXPECT_GT(min_x, -0.5 - 1e-3) << "no root beyond the triangles touching x = 0";
-  EXPECT_NEAR(axis(f, "+x"), 12.0 * kDensity, 0.1 * 12.0 * kDensity);
-  EXPECT_GT(f.roots.size(), 0u);
+  expect_left_half_bare(render_frame(**made), "density map");
+}
+
+TEST_F(GrassMeshGl, VertexColourZeroOnHalfTheMeshLeavesItBare) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  write_box_obj(dir.path / "colored.obj", 8, true);
+  auto made = open_scene(stage(on_mesh("colored.obj")), dir.path);  // the density map is 1 everywhere
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  expect_left_half_bare(render_frame(**made), "vertex colour");
 }
 
 TEST_F(GrassMeshGl, PictureShowsGrassOnTheMeshNotOnTheGroundOnlyScene) {
@@ -237,6 +257,8 @@ TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
   }
   TempDir dir;
   std::ofstream(dir.path / "broken.obj") << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 7\n";
+  std::ofstream(dir.path / "bright.obj") << "v 0 0 0 1 1 1\nv 1 0 0 2 1 1\nv 0 0 1 1 1 1\nf 1 2 3\n";
+  std::ofstream(dir.path / "mixed.obj") << "v 0 0 0 1 1 1\nv 1 0 0\nv 0 0 1 1 1 1\nf 1 2 3\n";
   struct Case {
     nlohmann::json grass;
     std::vector<std::string> expected;
@@ -245,6 +267,8 @@ TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
       {on_mesh("missing.obj"), {"grass.mesh.file", "missing.obj"}},
       {on_mesh("broken.obj"), {"grass.mesh.file", "broken.obj:4"}},
       {on_mesh("box.stl"), {"grass.mesh.file", "box.stl"}},
+      {on_mesh("bright.obj"), {"grass.mesh.file", "bright.obj:2", "colour '2' is outside [0, 1]"}},
+      {on_mesh("mixed.obj"), {"grass.mesh.file", "mixed.obj:2", "without a colour"}},
       {{{"surface", "mesh"}}, {"grass.mesh.file", "no mesh"}},
   };
   for (const Case& c : cases) {

@@ -75,15 +75,22 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
     const std::vector<std::string_view> t = tokens(line);
     const std::string_view kw = t[0];
     if (kw == "v") {
-      if (t.size() < 4 || t.size() > 5) return fail(fmt::format("a vertex needs 3 coordinates, got {}", t.size() - 1));
-      glm::vec3 p;
-      for (int k = 0; k < 3; ++k) {
-        if (!parse_float(t[static_cast<std::size_t>(k + 1)], p[k])) {
-          return fail(fmt::format("'{}' is not a number", t[static_cast<std::size_t>(k + 1)]));
-        }
-        if (!std::isfinite(p[k])) return fail(fmt::format("coordinate '{}' is not finite", t[static_cast<std::size_t>(k + 1)]));
+      if (t.size() < 4 || t.size() == 6 || t.size() > 7) {
+        return fail(fmt::format("a vertex needs 3 coordinates (and optionally w, or r g b), got {}", t.size() - 1));
       }
-      mesh.positions.push_back(p);
+      const bool colored = t.size() == 7;
+      if (!mesh.positions.empty() && colored != (mesh.colors.size() == mesh.positions.size())) {
+        return fail(colored ? fmt::format("a vertex colour after {} vertices without one", mesh.positions.size())
+                            : "a vertex without a colour after vertices with one");
+      }
+      float v[6];
+      for (std::size_t k = 0; k + 1 < std::min<std::size_t>(t.size(), colored ? 7 : 4); ++k) {
+        if (!parse_float(t[k + 1], v[k])) return fail(fmt::format("'{}' is not a number", t[k + 1]));
+        if (!std::isfinite(v[k])) return fail(fmt::format("coordinate '{}' is not finite", t[k + 1]));
+        if (k >= 3 && (v[k] < 0.0f || v[k] > 1.0f)) return fail(fmt::format("colour '{}' is outside [0, 1]", t[k + 1]));
+      }
+      mesh.positions.emplace_back(v[0], v[1], v[2]);
+      if (colored) mesh.colors.emplace_back(v[3], v[4], v[5]);
     } else if (kw == "f") {
       if (t.size() < 4) return fail(fmt::format("a face needs at least 3 vertices, got {}", t.size() - 1));
       for (std::size_t k = 1; k < t.size(); ++k) {

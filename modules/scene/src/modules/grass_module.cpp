@@ -100,7 +100,8 @@ struct GrassSectionSettings {
   template <class V>
   void visit(V& v) {
     v(surface, "surface", {.help = "What the blades grow on: \"ground\" (the scene's ground over the area) or \"mesh\" "
-      "(every triangle of mesh.file, along its normal, density map sampled at the vertices' x/z; no far field)",
+      "(every triangle of mesh.file, along its normal; density from the red of the file's vertex colours, else the "
+      "density map at the vertices' x/z; no far field)",
       .rebuild = Rebuild::kOffline});
     v(mesh, "mesh");
     v(area_min, "area_min", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
@@ -513,8 +514,9 @@ class GrassInstance final : public ModuleInstance {
   // grass.surface = "mesh": every triangle of grass.mesh.file (terrain's load_mesh: OBJ, IV,
   // glTF, GLB; moved by grass.mesh.offset) grows blades along its face normal (sharp edges keep
   // their walls' normals), Jahrmann & Wimmer 2017 (grass::generate_blades_on_mesh). Density per
-  // vertex is the density map at the vertex's world x/z (0 outside area_min..area_max, as on the
-  // ground), so the map painted from above thins grass on walls and overhangs below it too.
+  // vertex is the red of the vertex colour when the file has colours (OBJ `v x y z r g b`), else
+  // the density map at the vertex's world x/z (0 outside area_min..area_max, as on the ground),
+  // so the map painted from above thins grass on walls and overhangs below it too.
   Result<grass::BladeSet> mesh_blades(const grass::GrassMaps& maps) {
     const std::string key = ctx_.section->name + ".mesh.file";
 #ifdef SYLVA_HAS_TERRAIN
@@ -543,6 +545,9 @@ class GrassInstance final : public ModuleInstance {
       const glm::dvec3 world = glm::dvec3(p) + s.mesh.offset;
       positions.push_back(glm::vec3(world - origin));
       density.push_back(maps.density(world.x, world.z));
+    }
+    if (!polygons->colors.empty()) {  // vertex colours win: R is the density (seed 001's control layout)
+      for (std::size_t i = 0; i < density.size(); ++i) density[i] = polygons->colors[i].r;
     }
     mesh_triangles_ = mesh.triangle_count();
     auto set = grass::generate_blades_on_mesh(s.field, s.blade, {positions, {}, mesh.indices, density}, origin);

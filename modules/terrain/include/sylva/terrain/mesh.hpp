@@ -26,15 +26,18 @@ struct PolygonMesh {
   std::vector<glm::vec3> positions;
   std::vector<std::uint32_t> face_sizes;    // vertices per face, >= 3
   std::vector<std::uint32_t> face_indices;  // concatenated
+  std::vector<glm::vec3> colors;            // per position, when the file gives them (OBJ `v x y z r g b`), else empty
   std::size_t face_count() const { return face_sizes.size(); }
   bool all_triangles() const;
 };
 
-// Parses Wavefront OBJ text: `v x y z [w]` and `f a b c ...` with a, a/t, a/t/n or a//n
-// (1-based or negative relative indices); comments, vt, vn, o, g, s, usemtl and mtllib are
+// Parses Wavefront OBJ text: `v x y z [w]` or `v x y z r g b` (the common vertex-colour
+// extension: colours in [0, 1], on every vertex or none) and `f a b c ...` with a, a/t, a/t/n
+// or a//n (1-based or negative relative indices); comments, vt, vn, o, g, s, usemtl and mtllib are
 // ignored; other statements are skipped with a warning naming the line. Errors (kParse) name
 // `source:line` and say what is wrong: a bad number, a face with fewer than 3 vertices, an
-// index of 0 or outside the vertices, a non-finite coordinate, no faces at all.
+// index of 0 or outside the vertices, a non-finite coordinate, a colour outside [0, 1], a
+// vertex without a colour among coloured ones (or the reverse), no faces at all.
 Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source = "<obj>");
 Result<PolygonMesh> load_obj(const std::filesystem::path& path);
 // The Open Inventor ASCII subset of the seed's general-model files (cilaos.iv): the first line
