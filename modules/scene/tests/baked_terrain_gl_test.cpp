@@ -17,6 +17,9 @@
 #include <sylva/terrain/renderer.hpp>
 
 #include "support/gl_support.hpp"
+#ifdef SYLVA_PLAYER_EXE
+#include "run_command.hpp"
+#endif
 
 #include <gtest/gtest.h>
 
@@ -276,6 +279,47 @@ TEST_F(BakedTerrainGl, SaveAsRebasesTheBakedFile) {
   ASSERT_TRUE(reopened.ok()) << reopened.error().message;
   EXPECT_EQ(stat((*reopened)->module_stats()["terrain"], "baked_file_bytes"), fs::file_size(baked.file));
 }
+
+#ifdef SYLVA_PLAYER_EXE
+// The shipped player flies a camera path over the baked file (headless, 1/30 s a frame) with the
+// same small budget, and its --stats carry the streaming numbers.
+TEST_F(BakedTerrainGl, PlayerStatsReportStreaming) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  Baked baked;
+  ASSERT_TRUE(baked.reference);
+  const double budget_mb = static_cast<double>(baked.decoded_bytes) / 6.0 / 1048576.0;
+  std::string text = scene_text("valley.sylvaterrain", budget_mb);
+  text.pop_back();  // the closing brace: add a camera and a path
+  text += R"(, "camera": {"position": [250, 200, 0], "yaw_deg": 90, "pitch_deg": -55},
+    "camera_paths": {"flight": {"keys": [
+      {"time_s": 0, "position": [250, 200, 0], "yaw_deg": 90, "pitch_deg": -55},
+      {"time_s": 1, "position": [0, 200, 250], "yaw_deg": 0, "pitch_deg": -55},
+      {"time_s": 2, "position": [-250, 200, 0], "yaw_deg": -90, "pitch_deg": -55}]}}})";
+  const fs::path file = baked.dir.path / "flight.json";
+  {
+    std::ofstream out(file);
+    out << text;
+  }
+  const fs::path stats_file = baked.dir.path / "flight.stats.json";
+  const auto run = test::run_command(SYLVA_PLAYER_EXE, file.string() + " --headless --size 128x72 --frames 60 "
+                                                       "--camera-path flight --stats " + stats_file.string());
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  std::ifstream in(stats_file);
+  const nlohmann::json stats = nlohmann::json::parse(in, nullptr, false);
+  ASSERT_FALSE(stats.is_discarded());
+  const nlohmann::json& t = stats["modules"]["terrain"];
+  EXPECT_GT(stat(t, "stream_loads"), 1u) << t.dump();
+  EXPECT_GT(stat(t, "stream_misses"), 0u) << t.dump();
+  EXPECT_GT(stat(t, "stream_requests"), 0u);
+  EXPECT_LE(stat(t, "stream_resident_bytes"), stat(t, "stream_budget_bytes"));
+  EXPECT_EQ(stat(t, "stream_failures"), 0u);
+  EXPECT_GT(stats["longest_frame_ms"].get<double>(), 0.0);
+  std::printf("player: loads %s, misses %s, evictions %s, resident %s of %s B, longest frame %.1f ms\n",
+              t["stream_loads"].dump().c_str(), t["stream_misses"].dump().c_str(), t["stream_evictions"].dump().c_str(),
+              t["stream_resident_bytes"].dump().c_str(), t["stream_budget_bytes"].dump().c_str(),
+              stats["longest_frame_ms"].get<double>());
+}
+#endif
 
 // The scene's ground still comes from the section's height keys: another field is named in a
 // warning (what differs and what to set), and the terrain then shades from its triangles.
