@@ -11,6 +11,8 @@
 //    touching x = 0 see density above 0 there), while the +x wall keeps its blades;
 //  - the rendered picture, seen from below the box, has grass-green pixels above the horizon,
 //    where the same section on the ground surface (the default) has none;
+//  - saving the scene into another folder rebases grass.mesh.file ("../box.obj"), and the saved
+//    scene grows the same blades;
 //  - a missing file, a broken OBJ, an unknown extension, a colour above 1, a vertex without a
 //    colour among coloured ones and "mesh" without a file give errors naming grass.mesh.file and
 //    the file (and line).
@@ -249,6 +251,27 @@ TEST_F(GrassMeshGl, PictureShowsGrassOnTheMeshNotOnTheGroundOnlyScene) {
   EXPECT_GT(gm, 200u);
   EXPECT_EQ(gg, 0u);
   EXPECT_GT(ground_below, 0u) << "the ground-surface grass is drawn, below the horizon";
+}
+
+TEST_F(GrassMeshGl, SaveAsElsewhereRebasesTheMeshFile) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  write_box_obj(dir.path / "box.obj", 8);
+  auto made = open_scene(stage(on_mesh("box.obj")), dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  fs::create_directories(dir.path / "elsewhere");
+  ASSERT_TRUE((*made)->save(dir.path / "elsewhere" / "saved.json").ok());
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(dir.path / "elsewhere" / "saved.json", warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  const nlohmann::json saved = nlohmann::json::parse(std::ifstream(dir.path / "elsewhere" / "saved.json"));
+  std::printf("saved grass.mesh: %s\n", saved["grass"]["mesh"].dump().c_str());
+  EXPECT_EQ(saved["grass"]["mesh"]["file"], "../box.obj");
+  auto again = Scene::create(std::move(*doc));
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_EQ(render_frame(**again).stats["blades"], render_frame(**made).stats["blades"]);
 }
 
 TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
