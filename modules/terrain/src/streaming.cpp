@@ -136,6 +136,11 @@ Residency ChunkStreamer::residency() {
     if (failed_[chunk] || resident_.count(chunk)) return;
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      // Being read or read and not yet integrated: asking again would read it twice.
+      if (chunk == loading_ ||
+          std::any_of(done_.begin(), done_.end(), [chunk](const auto& d) { return d.first == chunk; })) {
+        return;
+      }
       auto [it, fresh] = requests_.try_emplace(chunk);
       if (fresh) ++stats_.requests;
       Request& q = it->second;

@@ -45,7 +45,7 @@ struct StreamingStats {
   std::uint64_t evictions = 0;
   std::uint64_t dropped = 0;     // loads that did not fit the budget
   std::uint64_t failures = 0;    // chunks that could not be read
-  std::uint64_t requests = 0;    // chunks newly asked for (a request repeated while pending counts once)
+  std::uint64_t requests = 0;    // chunks newly asked for (once until loaded, however often repeated)
   std::uint64_t misses = 0;      // chunks drawn in place of non-resident children, summed over frames
   std::string last_error;
 };
