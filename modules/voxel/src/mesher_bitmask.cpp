@@ -170,6 +170,9 @@ class BitmaskMesher final : public Mesher {
       flags_[i] = static_cast<std::uint8_t>((alpha ? kFlagAlpha : 0) | (sides_only[i] ? kFlagSidesOnly : 0) |
                                             (alpha && palette.culls_same(id) ? kFlagCullSame : 0));
     }
+    // One plain block id in the chunk (air aside): its faces need no ids to find their slot.
+    single_ = spread_.single();
+    if (single_ != kAir && (single_ >= palette.size() || flags_[single_] != 0)) single_ = kAir;
     const BlockId* ids = blocks.ids.data();
     count_[0] = count_[1] = 0;
     // Faces on the chunk's edge rows read their padding neighbours straight from the ids.
@@ -224,6 +227,7 @@ class BitmaskMesher final : public Mesher {
     const std::uint64_t* am = kAxis == 0 ? ay_.data() : kAxis == 1 ? ax_.data() : az_.data();
     const std::uint64_t* lm = kAxis == 0 ? oy_.data() : kAxis == 1 ? ox_.data() : oz_.data();
     const std::uint8_t* flags = flags_.data();
+    const BlockId single = single_;  // the chunk's one plain block id, or kAir
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
     // AO neighbourhood table for this orientation, and the opaque masks of the layer's rows.
@@ -344,8 +348,12 @@ class BitmaskMesher final : public Mesher {
           // update per run instead of per face.
           // (A single face is a run of one: no need to compare the row's ids.)
           std::uint64_t uni = occluded ? 0 : faces & ~alone;
-          const std::uint64_t same_next = (uni & (uni - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           faces &= ~uni;
+          if (single != kAir) {  // one block id: the row's open faces are one run set
+            if (uni) add(pack_word1(single, F, 0xffu), uni);
+            uni = 0;
+          }
+          const std::uint64_t same_next = (uni & (uni - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           while (uni) {
             const int b = std::countr_zero(uni);
             const BlockId self = ids[row_base + b];
@@ -360,6 +368,12 @@ class BitmaskMesher final : public Mesher {
             uni &= ~run;
             add(pack_word1(self, F, aob), run);
           }
+        } else if (single != kAir && !occluded) {
+          // Bits along y, one block id: the open faces that may merge go to the slot at once
+          // (else one add() per face below).
+          const std::uint64_t uni = faces & ~alone;
+          faces &= ~uni;
+          if (uni) add(pack_word1(single, F, 0xffu), uni);
         }
         if (occluded) {
           while (faces) {
@@ -469,9 +483,9 @@ class BitmaskMesher final : public Mesher {
     // sizes with two 32-id groups per row.
     const RowMasks masks{ax, ox, az, oz, lo_end, hi_end};
     if (avx2_ && n >= 32) {
-      row_pass_avx2(ids, opaque, first_special, n, masks);
+      spread_ = row_pass_avx2(ids, opaque, first_special, n, masks);
     } else {
-      row_pass<kN, kChunks>(ids, opaque, first_special, n, masks);
+      spread_ = row_pass<kN, kChunks>(ids, opaque, first_special, n, masks);
     }
     // Columns along y for interior x: transpose each z-slab of the x rows (rows y in [0, n)).
     // For n <= 32 two slabs share one transpose: slab zz in the low and zz + 1 in the high 32
@@ -681,6 +695,8 @@ class BitmaskMesher final : public Mesher {
   int n_ = 0;
   int p_ = 0;
   std::uint64_t full_ = 0;
+  IdSpread spread_;        // ids of the chunk proper, from the mask pass
+  BlockId single_ = kAir;  // the chunk's one plain (opaque, all-sides) block id, or kAir
   // Non-air / opaque masks over the padded P x P rows: bits along x indexed (y, z) (ax_, ox_)
   // and the same indexed (z, y) (az_, oz_); bits along y indexed (x, z) (ay_, oy_).
   std::vector<std::uint64_t> ax_, ox_, az_, oz_, ay_, oy_;

@@ -31,6 +31,53 @@ struct RowMasks {
   std::uint8_t* hi_end;  // same for x = n
 };
 
+// Spread of the ids of the chunk proper (the ring aside): the OR of every id and the AND of the
+// non-air ones (air counted as all ones). The two are equal exactly when the chunk holds one block
+// id besides air (an underground stone chunk, a one-type terrain): the face loop then groups
+// faces by block without reading ids (issue #18).
+struct IdSpread {
+  std::uint16_t any = 0;
+  std::uint16_t all = 0xffff;
+  void add(BlockId id) {
+    any = static_cast<std::uint16_t>(any | id);
+    all = static_cast<std::uint16_t>(all & (id == kAir ? 0xffffu : id));
+  }
+  void add(const IdSpread& o) {
+    any = static_cast<std::uint16_t>(any | o.any);
+    all = static_cast<std::uint16_t>(all & o.all);
+  }
+  // The one non-air id of the chunk, or kAir when it holds none or several.
+  BlockId single() const { return any == all ? any : kAir; }
+};
+
+#if defined(__SSE2__)
+// IdSpread of the ids seen, eight lanes at a time.
+struct SpreadAcc {
+  __m128i any = _mm_setzero_si128();
+  __m128i all = _mm_set1_epi32(-1);
+  IdSpread scalar;  // ids classified one by one
+  // v: eight ids; is_air: their compare with zero.
+  void add(__m128i v, __m128i is_air) {
+    any = _mm_or_si128(any, v);
+    all = _mm_and_si128(all, _mm_or_si128(v, is_air));
+  }
+  IdSpread reduce() const {
+    alignas(16) std::uint16_t a[8];
+    alignas(16) std::uint16_t b[8];
+    _mm_store_si128(reinterpret_cast<__m128i*>(a), any);
+    _mm_store_si128(reinterpret_cast<__m128i*>(b), all);
+    IdSpread r = scalar;
+    for (int i = 0; i < 8; ++i) r.add(IdSpread{a[i], b[i]});
+    return r;
+  }
+};
+#else
+struct SpreadAcc {
+  IdSpread scalar;
+  IdSpread reduce() const { return scalar; }
+};
+#endif
+
 // The AVX2 pass may be used: the CPU has AVX2 and SYLVA_VOXEL_NO_AVX2 is unset (the variable
 // lets the tests and benchmarks run the SSE2 pass on any machine).
 inline bool use_avx2() {
@@ -45,9 +92,10 @@ inline bool use_avx2() {
 // the last one ending at row[n - 1] and overlapping the one before (the bits they share are
 // equal, so OR-ing them is harmless). A fixed count unrolls like the specialised sizes: with a
 // run-time loop and a scalar tail, 62^3 chunks cost 1.4x a 64^3 one per voxel (issue #18).
+// With acc, the ids also go into its spread.
 template <int kN, int kChunks>
 inline void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
-                         std::uint64_t& special) {
+                         std::uint64_t& special, SpreadAcc* acc) {
   const int n = kN > 0 ? kN : n_run;
   int x = 0;
 #if defined(__SSE2__)
@@ -59,7 +107,13 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
     auto classify16 = [&](int i, std::uint32_t& air, std::uint32_t& ordinary) {
       const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
       const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
-      air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero))));
+      const __m128i a0 = _mm_cmpeq_epi16(v0, zero);
+      const __m128i a1 = _mm_cmpeq_epi16(v1, zero);
+      air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a0, a1)));
+      if (acc) {
+        acc->add(v0, a0);
+        acc->add(v1, a1);
+      }
       const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
       const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
       ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1)));
@@ -81,10 +135,18 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
       const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
       const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 16));
       const __m128i v3 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 24));
-      const auto air =
-          static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, zero), _mm_cmpeq_epi16(v1, zero)))) |
-          static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v2, zero), _mm_cmpeq_epi16(v3, zero))))
-              << 16;
+      const __m128i a0 = _mm_cmpeq_epi16(v0, zero);
+      const __m128i a1 = _mm_cmpeq_epi16(v1, zero);
+      const __m128i a2 = _mm_cmpeq_epi16(v2, zero);
+      const __m128i a3 = _mm_cmpeq_epi16(v3, zero);
+      const auto air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a0, a1))) |
+                       static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a2, a3))) << 16;
+      if (acc) {
+        acc->add(v0, a0);
+        acc->add(v1, a1);
+        acc->add(v2, a2);
+        acc->add(v3, a3);
+      }
       const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
       const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
       const __m128i s2 = _mm_cmpeq_epi16(_mm_subs_epu16(v2, limit), zero);
@@ -105,13 +167,16 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
   for (; x < n; ++x) {
     nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
     special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
+    if (acc) acc->scalar.add(row[x]);
   }
 }
 
-// The pass itself, with the row classification as a parameter.
+// The pass itself, with the row classification as a parameter: classify(row, n, first_special,
+// nonair, special, interior) classifies a row and, for the rows of the chunk proper (interior),
+// adds its ids to the spread that classify.spread() returns, which the pass returns.
 template <int kN, class Classify>
-inline void row_pass_with(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n_run,
-                          const RowMasks& m, Classify classify) {
+inline IdSpread row_pass_with(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n_run,
+                              const RowMasks& m, Classify& classify) {
   const int n = kN > 0 ? kN : n_run;
   const int p = n + 2;
   for (int yy = 0; yy < p; ++yy) {
@@ -120,7 +185,9 @@ inline void row_pass_with(const BlockId* ids, const std::uint8_t* opaque, BlockI
       const auto k = static_cast<std::size_t>(yy * p + zz);
       std::uint64_t nonair = 0;
       std::uint64_t special = 0;  // ids >= first alpha-cut id: classified by table below
-      classify(row + 1, n, first_special, nonair, special);
+      const bool interior = static_cast<unsigned>(yy - 1) < static_cast<unsigned>(n) &&
+                            static_cast<unsigned>(zz - 1) < static_cast<unsigned>(n);
+      classify(row + 1, n, first_special, nonair, special, interior);
       std::uint64_t alpha = 0;
       for (std::uint64_t s = special; s;) {
         const int b = std::countr_zero(s);
@@ -138,27 +205,44 @@ inline void row_pass_with(const BlockId* ids, const std::uint8_t* opaque, BlockI
       m.hi_end[kz] = opaque[row[n + 1]];
     }
   }
+  return classify.spread();
 }
 
 template <int kN, int kChunks>
-inline void row_pass(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n,
-                     const RowMasks& m) {
-  row_pass_with<kN>(ids, opaque, first_special, n, m,
-                   [](const BlockId* row, int nr, BlockId fs, std::uint64_t& na, std::uint64_t& sp) {
-                     classify_row<kN, kChunks>(row, nr, fs, na, sp);
-                   });
+struct ClassifySse2 {
+  SpreadAcc acc;
+  void operator()(const BlockId* row, int n, BlockId first_special, std::uint64_t& nonair, std::uint64_t& special,
+                  bool interior) {
+    classify_row<kN, kChunks>(row, n, first_special, nonair, special, interior ? &acc : nullptr);
+  }
+  IdSpread spread() const { return acc.reduce(); }
+};
+
+template <int kN, int kChunks>
+inline IdSpread row_pass(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n,
+                         const RowMasks& m) {
+  ClassifySse2<kN, kChunks> classify;
+  return row_pass_with<kN>(ids, opaque, first_special, n, m, classify);
 }
 
 #if defined(SYLVA_VOXEL_AVX2)
 // 32 ids at row + i: bit j of air / ordinary (below first_special) for row[i + j]. packs works
 // within 128-bit lanes, so the bytes come out as ids 0-7, 16-23, 8-15, 24-31: one 64-bit lane
 // permute puts them in order before the movemask.
+// With track, the ids also go into any / all (IdSpread lanes).
 __attribute__((target("avx2"))) inline void classify32_avx2(const BlockId* row, __m256i limit, std::uint32_t& air,
-                                                            std::uint32_t& ordinary) {
+                                                            std::uint32_t& ordinary, bool track, __m256i& any,
+                                                            __m256i& all) {
   const __m256i zero = _mm256_setzero_si256();
   const __m256i v0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row));
   const __m256i v1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row + 16));
-  const __m256i a = _mm256_packs_epi16(_mm256_cmpeq_epi16(v0, zero), _mm256_cmpeq_epi16(v1, zero));
+  const __m256i a0 = _mm256_cmpeq_epi16(v0, zero);
+  const __m256i a1 = _mm256_cmpeq_epi16(v1, zero);
+  if (track) {
+    any = _mm256_or_si256(any, _mm256_or_si256(v0, v1));
+    all = _mm256_and_si256(all, _mm256_and_si256(_mm256_or_si256(v0, a0), _mm256_or_si256(v1, a1)));
+  }
+  const __m256i a = _mm256_packs_epi16(a0, a1);
   air = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_permute4x64_epi64(a, 0xd8)));
   const __m256i s = _mm256_packs_epi16(_mm256_cmpeq_epi16(_mm256_subs_epu16(v0, limit), zero),
                                        _mm256_cmpeq_epi16(_mm256_subs_epu16(v1, limit), zero));
@@ -168,26 +252,40 @@ __attribute__((target("avx2"))) inline void classify32_avx2(const BlockId* row, 
 // Rows of 32 to 64 ids: two groups of 32, the second ending at row[n - 1] (overlapping the first
 // for n < 64; shared bits are equal).
 struct ClassifyAvx2 {
+  __m256i any;  // IdSpread lanes, set by start()
+  __m256i all;
+  __attribute__((target("avx2"))) void start() {
+    any = _mm256_setzero_si256();
+    all = _mm256_set1_epi32(-1);
+  }
   __attribute__((target("avx2"))) void operator()(const BlockId* row, int n, BlockId first_special,
-                                                  std::uint64_t& nonair, std::uint64_t& special) const {
+                                                  std::uint64_t& nonair, std::uint64_t& special, bool interior) {
     const __m256i limit = _mm256_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
     std::uint32_t air0, ord0, air1, ord1;
-    classify32_avx2(row, limit, air0, ord0);
-    classify32_avx2(row + n - 32, limit, air1, ord1);
+    classify32_avx2(row, limit, air0, ord0, interior, any, all);
+    classify32_avx2(row + n - 32, limit, air1, ord1, interior, any, all);
     nonair = static_cast<std::uint64_t>(~air0) | static_cast<std::uint64_t>(~air1) << (n - 32);
     special = static_cast<std::uint64_t>(~ord0) | static_cast<std::uint64_t>(~ord1) << (n - 32);
+  }
+  __attribute__((target("avx2"))) IdSpread spread() const {
+    SpreadAcc acc;
+    acc.any = _mm_or_si128(_mm256_castsi256_si128(any), _mm256_extracti128_si256(any, 1));
+    acc.all = _mm_and_si128(_mm256_castsi256_si128(all), _mm256_extracti128_si256(all, 1));
+    return acc.reduce();
   }
 };
 
 // flatten: the row loop and the classification are inlined here, compiled for AVX2.
-__attribute__((target("avx2"), flatten)) inline void row_pass_avx2(const BlockId* ids, const std::uint8_t* opaque,
-                                                                    BlockId first_special, int n, const RowMasks& m) {
-  row_pass_with<0>(ids, opaque, first_special, n, m, ClassifyAvx2{});
+__attribute__((target("avx2"), flatten)) inline IdSpread row_pass_avx2(const BlockId* ids, const std::uint8_t* opaque,
+                                                                        BlockId first_special, int n, const RowMasks& m) {
+  ClassifyAvx2 classify;
+  classify.start();
+  return row_pass_with<0>(ids, opaque, first_special, n, m, classify);
 }
 #else
-inline void row_pass_avx2(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n,
-                          const RowMasks& m) {
-  row_pass<0, 0>(ids, opaque, first_special, n, m);
+inline IdSpread row_pass_avx2(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n,
+                              const RowMasks& m) {
+  return row_pass<0, 0>(ids, opaque, first_special, n, m);
 }
 #endif
 

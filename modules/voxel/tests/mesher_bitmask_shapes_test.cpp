@@ -161,6 +161,44 @@ TEST(MesherBitmaskShapes, WithoutAoEveryWidthCoversLikeTheCulledMesher) {
   }
 }
 
+TEST(MesherBitmaskShapes, OneBlockIdChunksGiveTheQuadsOfTheGeneralPath) {
+  // A chunk holding one plain block id (air aside) groups its faces without reading ids. The
+  // same hills with one stone block of another id buried under them (no face of its own, AO
+  // unchanged) take the general path: the quads must be the same, in the same order, with AO
+  // on and off, on both row passes. One alpha-cut or sides-only id keeps the general path.
+  const auto& palette = testing::test_palette();
+  for (bool avx2 : {true, false}) {
+    if (!avx2) {
+      ASSERT_EQ(setenv("SYLVA_VOXEL_NO_AVX2", "1", 1), 0);
+    }
+    for (bool ao : {true, false}) {
+      MesherOptions options;
+      options.ambient_occlusion = ao;
+      for (int n : {9, 17, 33, 62, 64}) {
+        auto height = [n](int x, int z) { return 2 + ((x + 1) * 7 + (z + 1) * 5 + (x + 1) * (z + 1)) % (n - 2); };
+        const PaddedBlocks one = fill(n, [&](int x, int y, int z) -> BlockId { return y < height(x, z) ? 1 : kAir; });
+        PaddedBlocks two = one;
+        two.set(n / 2, 0, n / 2, 2);
+        ChunkMesh single, general;
+        make_mesher(MesherKind::kBitmask, options)->mesh(one, palette, single);
+        make_mesher(MesherKind::kBitmask, options)->mesh(two, palette, general);
+        const std::string what = "avx2 " + std::to_string(avx2) + " ao " + std::to_string(ao) + " n=" + std::to_string(n);
+        EXPECT_FALSE(single.empty()) << what;
+        EXPECT_EQ(single.opaque, general.opaque) << what;
+        EXPECT_EQ(single.alpha_cut, general.alpha_cut) << what;
+        if (ao) {
+          expect_reference(one, "one id " + what);
+          for (BlockId id : {BlockId{4}, BlockId{7}}) {
+            expect_reference(fill(n, [&](int x, int y, int z) -> BlockId { return y < height(x, z) ? id : kAir; }),
+                             "one id " + std::to_string(id) + " " + what);
+          }
+        }
+      }
+    }
+    unsetenv("SYLVA_VOXEL_NO_AVX2");
+  }
+}
+
 TEST(MesherBitmaskShapes, Avx2AndSse2RowPassesGiveTheSameMesh) {
   // The row pass runs AVX2 where the CPU has it (dispatch when the mesher is made) and SSE2
   // with SYLVA_VOXEL_NO_AVX2 set: both must give the same quads, in the same order.
