@@ -6,9 +6,10 @@
 //  - every blade root lies on the box (signed distance under 1 mm), blades grow on all six faces
 //    along their normals (the stats' up_axes: walls' up vectors horizontal, the bottom face's
 //    pointing down, none in between) in numbers within 10 % of face area x density;
-//  - a density map of 0 over x < 0, or vertex colours (OBJ `v x y z r g b`) whose red is 0 there,
-//    leave the -x wall bare and no root left of x = -0.5 m (the vertices' grid step: triangles
-//    touching x = 0 see density above 0 there), while the +x wall keeps its blades;
+//  - a density map of 0 over x < 0, or vertex colours (OBJ `v x y z r g b`, glTF COLOR_0) whose
+//    red is 0 there, leave the -x wall bare and no root left of x = -0.5 m (the vertices' grid
+//    step: triangles touching x = 0 see density above 0 there), while the +x wall keeps its
+//    blades (the glTF box grows exactly the OBJ box's blades);
 //  - the rendered picture, seen from below the box, has grass-green pixels above the horizon,
 //    where the same section on the ground surface (the default) has none;
 //  - saving the scene into another folder rebases grass.mesh.file ("../box.obj"), and the saved
@@ -85,10 +86,14 @@ struct TempDir {
   }
 };
 
-// The box (before the offset) as OBJ: six faces of n x n quads, corner c, edges u and v with
-// u x v along the outward normal, so every triangle's winding faces out. `colored`: every
-// vertex gets a colour (OBJ `v x y z r g b`) whose red, the density, is 0 where x < 0.
-void write_box_obj(const fs::path& file, int n, bool colored = false) {
+// The box (before the offset): six faces of n x n quads, corner c, edges u and v with u x v
+// along the outward normal, so every triangle's winding faces out. Colours: red (the density)
+// 0 where x < 0, else 1.
+struct BoxMesh {
+  std::vector<glm::vec3> positions, colors;
+  std::vector<std::uint32_t> indices;
+};
+BoxMesh make_box(int n) {
   struct Face {
     glm::dvec3 c, u, v;
   };
@@ -100,23 +105,79 @@ void write_box_obj(const fs::path& file, int n, bool colored = false) {
       {{-2, 0, 2}, {4, 0, 0}, {0, 3, 0}},   // +z
       {{-2, 0, -2}, {0, 3, 0}, {4, 0, 0}},  // -z
   };
-  std::ofstream out(file);
-  int base = 1;
+  BoxMesh box;
   for (const Face& f : faces) {
+    const auto base = static_cast<std::uint32_t>(box.positions.size());
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        const glm::dvec3 p = f.c + f.u * (double(i) / n) + f.v * (double(j) / n);
-        out << "v " << p.x << ' ' << p.y << ' ' << p.z;
-        if (colored) out << ' ' << (p.x < 0.0 ? 0 : 1) << " 0.5 0.2";
-        out << '\n';
+        const glm::vec3 p(f.c + f.u * (double(i) / n) + f.v * (double(j) / n));
+        box.positions.push_back(p);
+        box.colors.emplace_back(p.x < 0.0f ? 0.0f : 1.0f, 0.5f, 0.2f);
       }
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const int a = base + j * (n + 1) + i, b = a + 1, c = b + (n + 1), d = a + (n + 1);
-        out << "f " << a << ' ' << b << ' ' << c << '\n' << "f " << a << ' ' << c << ' ' << d << '\n';
+        const std::uint32_t a = base + static_cast<std::uint32_t>(j * (n + 1) + i), b = a + 1,
+                            c = b + static_cast<std::uint32_t>(n + 1), d = a + static_cast<std::uint32_t>(n + 1);
+        box.indices.insert(box.indices.end(), {a, b, c, a, c, d});
       }
-    base += (n + 1) * (n + 1);
   }
+  return box;
+}
+
+// As OBJ; `colored`: every vertex with its colour (`v x y z r g b`).
+void write_box_obj(const fs::path& file, int n, bool colored = false) {
+  const BoxMesh box = make_box(n);
+  std::ofstream out(file);
+  for (std::size_t i = 0; i < box.positions.size(); ++i) {
+    const glm::vec3 p = box.positions[i], c = box.colors[i];
+    out << "v " << p.x << ' ' << p.y << ' ' << p.z;
+    if (colored) out << ' ' << c.r << ' ' << c.g << ' ' << c.b;
+    out << '\n';
+  }
+  for (std::size_t t = 0; t < box.indices.size(); t += 3) {
+    out << "f " << box.indices[t] + 1 << ' ' << box.indices[t + 1] + 1 << ' ' << box.indices[t + 2] + 1 << '\n';
+  }
+}
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::uint32_t v = (std::uint32_t{bytes[i]} << 16) | (i + 1 < bytes.size() ? std::uint32_t{bytes[i + 1]} << 8 : 0u) |
+                            (i + 2 < bytes.size() ? std::uint32_t{bytes[i + 2]} : 0u);
+    for (std::size_t k = 0; k < 4; ++k) out += i + k <= bytes.size() ? kDigits[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+// As glTF with one data-URI buffer: POSITION and COLOR_0 (VEC3 FLOAT) and uint32 indices.
+void write_box_gltf(const fs::path& file, int n) {
+  const BoxMesh box = make_box(n);
+  std::vector<unsigned char> bytes;
+  auto put = [&](const void* data, std::size_t size) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), b, b + size);
+  };
+  put(box.positions.data(), box.positions.size() * 12);
+  put(box.colors.data(), box.colors.size() * 12);
+  put(box.indices.data(), box.indices.size() * 4);
+  const std::size_t vsize = box.positions.size() * 12, isize = box.indices.size() * 4;
+  const nlohmann::json j = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"COLOR_0", 1}}}, {"indices", 2}, {"mode", 4}}}}}}},
+      {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", vsize}},
+                       {{"buffer", 0}, {"byteOffset", vsize}, {"byteLength", vsize}},
+                       {{"buffer", 0}, {"byteOffset", 2 * vsize}, {"byteLength", isize}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", box.positions.size()}, {"type", "VEC3"},
+                      {"min", {-2.0, 0.0, -2.0}}, {"max", {2.0, 3.0, 2.0}}},
+                     {{"bufferView", 1}, {"componentType", 5126}, {"count", box.colors.size()}, {"type", "VEC3"}},
+                     {{"bufferView", 2}, {"componentType", 5125}, {"count", box.indices.size()}, {"type", "SCALAR"}}}},
+  };
+  std::ofstream(file) << j.dump();
 }
 
 Result<std::unique_ptr<Scene>> open_scene(const nlohmann::json& json, const fs::path& dir) {
@@ -229,6 +290,18 @@ TEST_F(GrassMeshGl, VertexColourZeroOnHalfTheMeshLeavesItBare) {
   auto made = open_scene(stage(on_mesh("colored.obj")), dir.path);  // the density map is 1 everywhere
   ASSERT_TRUE(made.ok()) << made.error().message;
   expect_left_half_bare(render_frame(**made), "vertex colour");
+}
+
+TEST_F(GrassMeshGl, GltfColourZeroOnHalfTheMeshLeavesItBare) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  TempDir dir;
+  write_box_gltf(dir.path / "colored.gltf", 8);
+  auto made = open_scene(stage(on_mesh("colored.gltf")), dir.path);
+  if (!made.ok() && made.error().code == ErrorCode::kUnsupported) GTEST_SKIP() << made.error().message;
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  expect_left_half_bare(render_frame(**made), "glTF COLOR_0");
 }
 
 TEST_F(GrassMeshGl, PictureShowsGrassOnTheMeshNotOnTheGroundOnlyScene) {

@@ -49,6 +49,7 @@ class GltfReader {
     }
     for (int r : roots) SYLVA_TRY(node(r, glm::dmat4(1.0), 0));
     if (mesh_.face_sizes.empty()) return fail("meshes", "no triangle primitives in the scene");
+    if (!mesh_.colors.empty()) mesh_.colors.resize(mesh_.positions.size(), glm::vec3(1.0f));
     return std::move(mesh_);
   }
 
@@ -90,6 +91,9 @@ class GltfReader {
       const std::size_t base = mesh_.positions.size();
       SYLVA_TRY(positions(pos->second, path + ".attributes.POSITION", world));
       const std::size_t count = mesh_.positions.size() - base;
+      if (const auto col = prim.attributes.find("COLOR_0"); col != prim.attributes.end()) {
+        SYLVA_TRY(colors(col->second, path + ".attributes.COLOR_0", base, count));
+      }
       std::vector<std::uint32_t> idx;
       if (prim.indices >= 0) {
         SYLVA_TRY(indices(prim.indices, path + ".indices", idx));
@@ -160,6 +164,48 @@ class GltfReader {
         return fail(fmt::format("accessors[{}]", index), fmt::format("vertex {} is not finite", i));
       }
       mesh_.positions.emplace_back(p);
+    }
+    return {};
+  }
+
+  // COLOR_0 of the primitive whose vertices start at `base` into PolygonMesh::colors (RGB, alpha
+  // dropped); vertices of primitives without one are white once any primitive has colours.
+  Status colors(int index, const std::string& path, std::size_t base, std::size_t vertices) {
+    std::size_t comps = 0, size = 0;
+    if (index >= 0 && static_cast<std::size_t>(index) < model_.accessors.size()) {
+      const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(index)];
+      comps = a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC4 ? 4 : 0;
+      if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) size = 4;
+      if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.normalized) size = 1;
+      if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && a.normalized) size = 2;
+      if (comps == 0 || size == 0) {
+        return fail(fmt::format("accessors[{}]", index),
+                    "COLOR_0 must be VEC3 or VEC4 of FLOAT or of normalized unsigned byte or short");
+      }
+    }
+    std::size_t count = 0;
+    auto src = bytes(index, path, comps * size, count);
+    if (!src.ok()) return src.error();
+    if (count != vertices) return fail(path, fmt::format("{} colours for {} vertices", count, vertices));
+    mesh_.colors.resize(base, glm::vec3(1.0f));
+    for (std::size_t i = 0; i < count; ++i) {
+      const unsigned char* at = src->first + i * src->second;
+      glm::vec3 c;
+      for (std::size_t k = 0; k < 3; ++k) {
+        if (size == 4) {
+          std::memcpy(&c[static_cast<int>(k)], at + 4 * k, 4);
+        } else if (size == 2) {
+          std::uint16_t v;
+          std::memcpy(&v, at + 2 * k, 2);
+          c[static_cast<int>(k)] = static_cast<float>(v) / 65535.0f;
+        } else {
+          c[static_cast<int>(k)] = static_cast<float>(at[k]) / 255.0f;
+        }
+        if (!(c[static_cast<int>(k)] >= 0.0f && c[static_cast<int>(k)] <= 1.0f)) {
+          return fail(path, fmt::format("colour {} of vertex {} is {}, outside [0, 1]", k, i, c[static_cast<int>(k)]));
+        }
+      }
+      mesh_.colors.push_back(c);
     }
     return {};
   }

@@ -26,7 +26,8 @@ struct PolygonMesh {
   std::vector<glm::vec3> positions;
   std::vector<std::uint32_t> face_sizes;    // vertices per face, >= 3
   std::vector<std::uint32_t> face_indices;  // concatenated
-  std::vector<glm::vec3> colors;            // per position, when the file gives them (OBJ `v x y z r g b`), else empty
+  // Per position when the file has vertex colours (OBJ `v x y z r g b`, glTF COLOR_0), else empty.
+  std::vector<glm::vec3> colors;
   std::size_t face_count() const { return face_sizes.size(); }
   bool all_triangles() const;
 };
@@ -54,9 +55,11 @@ Result<PolygonMesh> load_iv(const std::filesystem::path& path);
 // glTF 2.0 (.gltf with external or data-URI buffers, .glb) through Debian's libtinygltf: every
 // triangle primitive (mode 4) of every mesh reached from the default scene's nodes (or from every
 // root node when there is no scene), transformed by the node's world matrix; other modes are
-// skipped. Errors name the file and the glTF JSON path (`meshes[0].primitives[1].indices`,
-// `bufferViews[2]`): a missing buffer file, an accessor past its view or buffer, POSITION not
-// VEC3 FLOAT, an index outside the primitive's vertices. gltf_supported() is false when the build
+// skipped. COLOR_0 (VEC3/VEC4 of FLOAT or normalized unsigned byte/short) fills colors (white for
+// primitives without it). Errors name the file and the glTF JSON path
+// (`meshes[0].primitives[1].indices`, `bufferViews[2]`): a missing buffer file, an accessor past
+// its view or buffer, POSITION not VEC3 FLOAT, an index outside the primitive's vertices, a
+// COLOR_0 of another type, count or outside [0, 1]. gltf_supported() is false when the build
 // has no tinygltf; load_gltf then returns kUnsupported.
 bool gltf_supported();
 Result<PolygonMesh> load_gltf(const std::filesystem::path& path);
