@@ -278,6 +278,9 @@ TEST_F(BakedTerrainGl, SaveAsRebasesTheBakedFile) {
   auto reopened = Scene::create(std::move(*doc));
   ASSERT_TRUE(reopened.ok()) << reopened.error().message;
   EXPECT_EQ(stat((*reopened)->module_stats()["terrain"], "baked_file_bytes"), fs::file_size(baked.file));
+  // A new budget (the editor's slider) reopens the streamer with it.
+  ASSERT_TRUE((*reopened)->set_param("terrain.stream.budget_mb", "2").ok());
+  EXPECT_EQ(stat((*reopened)->module_stats()["terrain"], "stream_budget_bytes"), 2u << 20);
 }
 
 #ifdef SYLVA_PLAYER_EXE

@@ -32,7 +32,7 @@ struct StreamingSettings {
   template <class V>
   void visit(V& v) {
     v(memory_budget_mb, "budget_mb", {.min = 0.01, .max = 1e6, .unit = "MiB",
-      .help = "Memory for resident chunk meshes", .log_scale = true});
+      .help = "Memory for resident chunk meshes", .rebuild = Rebuild::kGpu, .log_scale = true});
   }
 };
 
