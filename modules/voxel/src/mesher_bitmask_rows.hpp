@@ -92,10 +92,10 @@ inline bool use_avx2() {
 // the last one ending at row[n - 1] and overlapping the one before (the bits they share are
 // equal, so OR-ing them is harmless). A fixed count unrolls like the specialised sizes: with a
 // run-time loop and a scalar tail, 62^3 chunks cost 1.4x a 64^3 one per voxel (issue #18).
-// With acc, the ids also go into its spread.
+// With track, the ids also go into acc.
 template <int kN, int kChunks>
 inline void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
-                         std::uint64_t& special, SpreadAcc* acc) {
+                         std::uint64_t& special, SpreadAcc& acc, bool track) {
   const int n = kN > 0 ? kN : n_run;
   int x = 0;
 #if defined(__SSE2__)
@@ -110,9 +110,9 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
       const __m128i a0 = _mm_cmpeq_epi16(v0, zero);
       const __m128i a1 = _mm_cmpeq_epi16(v1, zero);
       air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a0, a1)));
-      if (acc) {
-        acc->add(v0, a0);
-        acc->add(v1, a1);
+      if (track) {
+        acc.add(v0, a0);
+        acc.add(v1, a1);
       }
       const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
       const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
@@ -141,11 +141,11 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
       const __m128i a3 = _mm_cmpeq_epi16(v3, zero);
       const auto air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a0, a1))) |
                        static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a2, a3))) << 16;
-      if (acc) {
-        acc->add(v0, a0);
-        acc->add(v1, a1);
-        acc->add(v2, a2);
-        acc->add(v3, a3);
+      if (track) {
+        acc.add(v0, a0);
+        acc.add(v1, a1);
+        acc.add(v2, a2);
+        acc.add(v3, a3);
       }
       const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
       const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
@@ -167,16 +167,17 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
   for (; x < n; ++x) {
     nonair |= static_cast<std::uint64_t>(row[x] != kAir) << x;
     special |= static_cast<std::uint64_t>(row[x] >= first_special) << x;
-    if (acc) acc->scalar.add(row[x]);
+    if (track) acc.scalar.add(row[x]);
   }
 }
 
 // The pass itself, with the row classification as a parameter: classify(row, n, first_special,
 // nonair, special, interior) classifies a row and, for the rows of the chunk proper (interior),
-// adds its ids to the spread that classify.spread() returns, which the pass returns.
+// adds its ids to the spread that classify.spread() returns, which the pass returns. (classify
+// is a local copy, so that its accumulators can stay in registers.)
 template <int kN, class Classify>
 inline IdSpread row_pass_with(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n_run,
-                              const RowMasks& m, Classify& classify) {
+                              const RowMasks& m, Classify classify) {
   const int n = kN > 0 ? kN : n_run;
   const int p = n + 2;
   for (int yy = 0; yy < p; ++yy) {
@@ -211,9 +212,9 @@ inline IdSpread row_pass_with(const BlockId* ids, const std::uint8_t* opaque, Bl
 template <int kN, int kChunks>
 struct ClassifySse2 {
   SpreadAcc acc;
-  void operator()(const BlockId* row, int n, BlockId first_special, std::uint64_t& nonair, std::uint64_t& special,
-                  bool interior) {
-    classify_row<kN, kChunks>(row, n, first_special, nonair, special, interior ? &acc : nullptr);
+  __attribute__((always_inline)) void operator()(const BlockId* row, int n, BlockId first_special,
+                                                 std::uint64_t& nonair, std::uint64_t& special, bool interior) {
+    classify_row<kN, kChunks>(row, n, first_special, nonair, special, acc, interior);
   }
   IdSpread spread() const { return acc.reduce(); }
 };
@@ -221,8 +222,7 @@ struct ClassifySse2 {
 template <int kN, int kChunks>
 inline IdSpread row_pass(const BlockId* ids, const std::uint8_t* opaque, BlockId first_special, int n,
                          const RowMasks& m) {
-  ClassifySse2<kN, kChunks> classify;
-  return row_pass_with<kN>(ids, opaque, first_special, n, m, classify);
+  return row_pass_with<kN>(ids, opaque, first_special, n, m, ClassifySse2<kN, kChunks>{});
 }
 
 #if defined(SYLVA_VOXEL_AVX2)
