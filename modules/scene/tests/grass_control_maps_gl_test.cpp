@@ -24,6 +24,8 @@
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include "scene_test_files.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -64,19 +66,6 @@ nlohmann::json stage(const nlohmann::json& grass_extra) {
   return j;
 }
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("sylva_grass_maps_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 // A w x h image of `channels` whose texel (i, j) is f(i, j, c), written as 8-bit PNG.
 void write_png(const fs::path& file, int w, int h, int channels, const std::function<float(int, int, int)>& f) {
@@ -87,13 +76,6 @@ void write_png(const fs::path& file, int w, int h, int channels, const std::func
   ASSERT_TRUE(write_image(file, im, PixelFormat::kU8).ok());
 }
 
-Result<std::unique_ptr<Scene>> open_scene(const nlohmann::json& json, const fs::path& dir) {
-  std::vector<std::string> warnings;
-  auto doc = SceneDocument::from_json(json, "grass control maps stage", warnings);
-  if (!doc.ok()) return doc.error();
-  doc->set_directory(dir);
-  return Scene::create(std::move(*doc));
-}
 
 struct Frame {
   Image image;
@@ -145,7 +127,7 @@ bool same_pixels(const Image& a, const Image& b) {
 
 TEST_F(GrassControlMapsGl, ControlTextureFeedsDensityAndHeightThroughItsChannels) {
   if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_maps");
   // R: 0 on the left half (world x < 0), 1 on the right; G: 0.5; B: 0.3 (terrain, not read).
   write_png(dir.path / "control.png", 64, 64, 3, [](int i, int, int c) {
     return c == 0 ? (i < 32 ? 0.0f : 1.0f) : c == 1 ? 0.5f : 0.3f;
@@ -162,19 +144,19 @@ TEST_F(GrassControlMapsGl, ControlTextureFeedsDensityAndHeightThroughItsChannels
     return min_x;
   };
 
-  auto rg = open_scene(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
+  auto rg = scene::testing::scene_from_json(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
   ASSERT_TRUE(rg.ok()) << rg.error().message;
   const Frame f_rg = render_frame(**rg);
   double left_rg = 0.0;
   const double min_x_rg = roots_left(**rg, f_rg.blades, left_rg);
 
-  auto gr = open_scene(stage({{"maps", {{"control", "control.png"}}}, {"control", {{"channels", "gr"}}}}), dir.path);
+  auto gr = scene::testing::scene_from_json(stage({{"maps", {{"control", "control.png"}}}, {"control", {{"channels", "gr"}}}}), dir.path);
   ASSERT_TRUE(gr.ok()) << gr.error().message;
   const Frame f_gr = render_frame(**gr);
   double left_gr = 0.0;
   roots_left(**gr, f_gr.blades, left_gr);
 
-  auto plain = open_scene(stage(nlohmann::json::object()), dir.path);
+  auto plain = scene::testing::scene_from_json(stage(nlohmann::json::object()), dir.path);
   ASSERT_TRUE(plain.ok()) << plain.error().message;
   const Frame f_plain = render_frame(**plain);
 
@@ -203,7 +185,7 @@ TEST_F(GrassControlMapsGl, ControlTextureFeedsDensityAndHeightThroughItsChannels
 
 TEST_F(GrassControlMapsGl, RedTintOnTheLeftHalfReddensItsBladesAndFarField) {
   if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_maps");
   write_png(dir.path / "tint.png", 32, 32, 3, [](int i, int, int c) { return i < 16 && c > 0 ? 0.0f : 1.0f; });
   // Blades only, then the far field only (blades end at 0.5 m: clumps and the ground layer).
   const nlohmann::json far_only = {{"far_field", true},
@@ -214,11 +196,11 @@ TEST_F(GrassControlMapsGl, RedTintOnTheLeftHalfReddensItsBladesAndFarField) {
   const std::pair<nlohmann::json, double> cases[] = {{nlohmann::json::object(), 0.1}, {far_only, 0.6}};
   for (const auto& [extra, min_share] : cases) {
     SCOPED_TRACE(extra.dump());
-    auto plain = open_scene(stage(extra), dir.path);
+    auto plain = scene::testing::scene_from_json(stage(extra), dir.path);
     ASSERT_TRUE(plain.ok()) << plain.error().message;
     nlohmann::json tinted_extra = extra;
     tinted_extra["maps"] = {{"tint", "tint.png"}};
-    auto tinted = open_scene(stage(tinted_extra), dir.path);
+    auto tinted = scene::testing::scene_from_json(stage(tinted_extra), dir.path);
     ASSERT_TRUE(tinted.ok()) << tinted.error().message;
     const Frame a = render_frame(**plain), b = render_frame(**tinted);
     EXPECT_EQ(a.blades, b.blades) << "tint changes colour only";
@@ -240,9 +222,9 @@ TEST_F(GrassControlMapsGl, RedTintOnTheLeftHalfReddensItsBladesAndFarField) {
 
 TEST_F(GrassControlMapsGl, PaintingThenUndoRestoresThePictureBitForBit) {
   if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_maps");
   write_png(dir.path / "control.png", 40, 40, 3, [](int i, int j, int c) { return c == 0 ? 0.5f + 0.5f * ((i + j) % 2) : 0.8f; });
-  auto made = open_scene(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
+  auto made = scene::testing::scene_from_json(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   Scene& scene = **made;
   const Frame before = render_frame(scene);
@@ -273,9 +255,9 @@ TEST_F(GrassControlMapsGl, PaintingThenUndoRestoresThePictureBitForBit) {
 // control texture's channel when the saved scene is opened again (16-bit PNG: within 1/65535).
 TEST_F(GrassControlMapsGl, APaintedControlMapIsSavedAndWinsOverTheChannel) {
   if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_maps");
   write_png(dir.path / "control.png", 16, 16, 3, [](int i, int, int c) { return c == 0 ? (i < 8 ? 0.0f : 1.0f) : 0.6f; });
-  auto made = open_scene(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
+  auto made = scene::testing::scene_from_json(stage({{"maps", {{"control", "control.png"}}}}), dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   Scene& scene = **made;
   SceneMap* density = scene.map("grass.density");
@@ -308,7 +290,7 @@ TEST_F(GrassControlMapsGl, APaintedControlMapIsSavedAndWinsOverTheChannel) {
 
 TEST_F(GrassControlMapsGl, BadControlAndTintFilesNameTheKeyAndTheFile) {
   if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_maps");
   write_png(dir.path / "gray.png", 8, 8, 1, [](int, int, int) { return 0.5f; });
   write_png(dir.path / "dot.png", 1, 1, 3, [](int, int, int) { return 0.5f; });
   write_png(dir.path / "good.png", 8, 8, 3, [](int, int, int) { return 0.5f; });
@@ -324,7 +306,7 @@ TEST_F(GrassControlMapsGl, BadControlAndTintFilesNameTheKeyAndTheFile) {
       {{{"maps", {{"control", "good.png"}}}, {"control", {{"channels", "rx"}}}}, {"grass.control.channels", "rx"}},
   };
   for (const Case& c : cases) {
-    auto made = open_scene(stage(c.grass), dir.path);
+    auto made = scene::testing::scene_from_json(stage(c.grass), dir.path);
     ASSERT_FALSE(made.ok()) << c.grass.dump();
     std::printf("%s\n", made.error().message.c_str());
     for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;

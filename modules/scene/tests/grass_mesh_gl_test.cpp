@@ -24,6 +24,8 @@
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include "scene_test_files.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -72,19 +74,6 @@ nlohmann::json on_mesh(const std::string& file) {
   return {{"surface", "mesh"}, {"mesh", {{"file", file}, {"offset", {0.0, 2.0, 0.0}}}}};
 }
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    path = fs::temp_directory_path() / ("sylva_grass_mesh_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 // The box (before the offset): six faces of n x n quads, corner c, edges u and v with u x v
 // along the outward normal, so every triangle's winding faces out. Colours: red (the density)
@@ -180,13 +169,6 @@ void write_box_gltf(const fs::path& file, int n) {
   std::ofstream(file) << j.dump();
 }
 
-Result<std::unique_ptr<Scene>> open_scene(const nlohmann::json& json, const fs::path& dir) {
-  std::vector<std::string> warnings;
-  auto doc = SceneDocument::from_json(json, "grass mesh stage", warnings);
-  if (!doc.ok()) return doc.error();
-  doc->set_directory(dir);
-  return Scene::create(std::move(*doc));
-}
 
 struct Frame {
   Image image;
@@ -244,9 +226,9 @@ TEST_F(GrassMeshGl, BladesCoverWallsAndOverhangAlongTheirNormals) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   write_box_obj(dir.path / "box.obj", 8);
-  auto made = open_scene(stage(on_mesh("box.obj")), dir.path);
+  auto made = scene::testing::scene_from_json(stage(on_mesh("box.obj")), dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   const Frame f = render_frame(**made);
   std::printf("mesh: %s\n", f.stats.dump().c_str());
@@ -268,7 +250,7 @@ TEST_F(GrassMeshGl, DensityMapZeroOnHalfTheMeshLeavesItBare) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   write_box_obj(dir.path / "box.obj", 8);
   Image map(64, 64, 1);
   for (int j = 0; j < 64; ++j)
@@ -276,7 +258,7 @@ TEST_F(GrassMeshGl, DensityMapZeroOnHalfTheMeshLeavesItBare) {
   ASSERT_TRUE(write_image(dir.path / "half.png", map, PixelFormat::kU8).ok());
   nlohmann::json extra = on_mesh("box.obj");
   extra["maps"] = {{"density", "half.png"}};
-  auto made = open_scene(stage(extra), dir.path);
+  auto made = scene::testing::scene_from_json(stage(extra), dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   expect_left_half_bare(render_frame(**made), "density map");
 }
@@ -285,9 +267,9 @@ TEST_F(GrassMeshGl, VertexColourZeroOnHalfTheMeshLeavesItBare) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   write_box_obj(dir.path / "colored.obj", 8, true);
-  auto made = open_scene(stage(on_mesh("colored.obj")), dir.path);  // the density map is 1 everywhere
+  auto made = scene::testing::scene_from_json(stage(on_mesh("colored.obj")), dir.path);  // the density map is 1 everywhere
   ASSERT_TRUE(made.ok()) << made.error().message;
   expect_left_half_bare(render_frame(**made), "vertex colour");
 }
@@ -296,9 +278,9 @@ TEST_F(GrassMeshGl, GltfColourZeroOnHalfTheMeshLeavesItBare) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   write_box_gltf(dir.path / "colored.gltf", 8);
-  auto made = open_scene(stage(on_mesh("colored.gltf")), dir.path);
+  auto made = scene::testing::scene_from_json(stage(on_mesh("colored.gltf")), dir.path);
   if (!made.ok() && made.error().code == ErrorCode::kUnsupported) GTEST_SKIP() << made.error().message;
   ASSERT_TRUE(made.ok()) << made.error().message;
   expect_left_half_bare(render_frame(**made), "glTF COLOR_0");
@@ -308,11 +290,11 @@ TEST_F(GrassMeshGl, PictureShowsGrassOnTheMeshNotOnTheGroundOnlyScene) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   write_box_obj(dir.path / "box.obj", 8);
-  auto mesh = open_scene(stage(on_mesh("box.obj")), dir.path);
+  auto mesh = scene::testing::scene_from_json(stage(on_mesh("box.obj")), dir.path);
   ASSERT_TRUE(mesh.ok()) << mesh.error().message;
-  auto ground = open_scene(stage(nlohmann::json::object()), dir.path);
+  auto ground = scene::testing::scene_from_json(stage(nlohmann::json::object()), dir.path);
   ASSERT_TRUE(ground.ok()) << ground.error().message;
   const Frame fm = render_frame(**mesh), fg = render_frame(**ground);
   // Rows above the horizon (the camera is level at y = 1.2; ground blades are at most 0.4 m).
@@ -330,9 +312,9 @@ TEST_F(GrassMeshGl, SaveAsElsewhereRebasesTheMeshFile) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   write_box_obj(dir.path / "box.obj", 8);
-  auto made = open_scene(stage(on_mesh("box.obj")), dir.path);
+  auto made = scene::testing::scene_from_json(stage(on_mesh("box.obj")), dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   fs::create_directories(dir.path / "elsewhere");
   ASSERT_TRUE((*made)->save(dir.path / "elsewhere" / "saved.json").ok());
@@ -351,7 +333,7 @@ TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
   if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
     GTEST_SKIP() << "needs the grass, ground and terrain modules";
   }
-  TempDir dir;
+  scene::testing::TestDir dir("sylva_grass_mesh");
   std::ofstream(dir.path / "broken.obj") << "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 7\n";
   std::ofstream(dir.path / "bright.obj") << "v 0 0 0 1 1 1\nv 1 0 0 2 1 1\nv 0 0 1 1 1 1\nf 1 2 3\n";
   std::ofstream(dir.path / "mixed.obj") << "v 0 0 0 1 1 1\nv 1 0 0\nv 0 0 1 1 1 1\nf 1 2 3\n";
@@ -368,7 +350,7 @@ TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
       {{{"surface", "mesh"}}, {"grass.mesh.file", "no mesh"}},
   };
   for (const Case& c : cases) {
-    auto made = open_scene(stage(c.grass), dir.path);
+    auto made = scene::testing::scene_from_json(stage(c.grass), dir.path);
     ASSERT_FALSE(made.ok()) << c.grass.dump();
     std::printf("%s\n", made.error().message.c_str());
     for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;

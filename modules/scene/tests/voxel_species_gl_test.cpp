@@ -14,6 +14,8 @@
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include "scene_test_files.hpp"
+
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -70,13 +72,7 @@ class VoxelSpeciesGl : public render::GlTest {
                    "blocks": {}}}}})",
                                          variants, flora, blocks);
     EXPECT_TRUE(write_file_atomic(dir_ / "scene.json", text).ok());
-    std::vector<std::string> warnings;
-    auto doc = SceneDocument::load(dir_ / "scene.json", warnings);
-    EXPECT_TRUE(doc.ok()) << doc.error().message;
-    if (!doc.ok()) return nullptr;
-    auto scene = Scene::create(std::move(*doc));
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    return scene.ok() ? std::move(*scene) : nullptr;
+    return sylva::scene::testing::open_scene_file(dir_ / "scene.json");
   }
 
   static nlohmann::json stats(Scene& scene) { return scene.module_stats()["voxel"]; }
