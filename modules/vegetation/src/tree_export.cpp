@@ -4,6 +4,7 @@
 #include <sylva/core/file_transaction.hpp>
 #include <sylva/core/image.hpp>
 #include <sylva/core/params.hpp>
+#include <sylva/render/tone_mapping.hpp>
 #include <sylva/vegetation/objt.hpp>
 #include <sylva/vegetation/species_file.hpp>
 #include <sylva/vegetation/textures.hpp>
@@ -36,12 +37,8 @@ constexpr int kLinearMipmapLinear = 9987;
 constexpr int kRepeat = 10497;
 constexpr int kClampToEdge = 33071;
 
-// Linear -> sRGB transfer (IEC 61966-2-1), the inverse of species files' decoding: glTF base
-// colour textures are sRGB-encoded.
-float linear_to_srgb(float c) {
-  c = std::clamp(std::isfinite(c) ? c : 0.0f, 0.0f, 1.0f);
-  return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1.0f / 2.4f) - 0.055f;
-}
+// glTF base colour textures are sRGB-encoded: render's exact OETF (IEC 61966-2-1), NaN as 0.
+float srgb_texel(float linear) { return render::linear_to_srgb_exact(std::isfinite(linear) ? linear : 0.0f); }
 
 // One exported primitive: flat attribute arrays in glTF's conventions.
 struct Primitive {
@@ -172,7 +169,7 @@ Image srgb_rgb(const Image& linear, bool keep_alpha) {
   Image out(linear.width(), linear.height(), keep_alpha ? 4 : 3);
   for (int y = 0; y < linear.height(); ++y)
     for (int x = 0; x < linear.width(); ++x) {
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = linear_to_srgb(linear.at(x, y, std::min(c, linear.channels() - 1)));
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = srgb_texel(linear.at(x, y, std::min(c, linear.channels() - 1)));
       if (keep_alpha) out.at(x, y, 3) = linear.channels() == 4 ? linear.at(x, y, 3) : 1.0f;
     }
   return out;
@@ -225,7 +222,7 @@ void slice_images(const SliceImages& im, int k, const glm::vec3& season_rgb, Ima
       for (int c = 0; c < 3; ++c) {
         float v = static_cast<float>(im.color[t + static_cast<std::size_t>(c)]) / 255.0f;
         if (leaf) v = v - 0.5f + season_rgb[c];
-        color.at(x, y, c) = linear_to_srgb(v);
+        color.at(x, y, c) = srgb_texel(v);
       }
       color.at(x, y, 3) = static_cast<float>(im.color[t + 3]) / 255.0f;
       for (int c = 0; c < 4; ++c) normal.at(x, y, c) = static_cast<float>(im.normal[t + static_cast<std::size_t>(c)]) / 255.0f;
