@@ -1,8 +1,8 @@
 // Species files reach a scene (issue #16): a scene file on disk names species JSON files
 // (`vegetation.species_files.N.file`, relative to the scene), which name an OBJT tree written as
 // seed 000 §4.3.1 shows it. Checked on pixels: the loaded tree stands where it is placed with its
-// model's height (its units applied), a forest of two species from files shows both, its slices
-// are baked for LOD1, and a species file that fails is left out with a warning.
+// model's height (its units applied), a forest of two species from files shows both, one of three
+// species with leaf images shows each leaf colour at LOD0 and LOD1, its slices are baked for LOD1, and a species file that fails is left out with a warning.
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/image.hpp>
 #include <sylva/core/log.hpp>
@@ -19,6 +19,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -232,6 +233,51 @@ TEST_F(SpeciesFilesGl, AForestOfTwoSpeciesFromFilesShowsBoth) {
   std::printf("two species: %d red, %d blue pixels\n", red, blue);
   EXPECT_GT(red, 30) << "red trunks";
   EXPECT_GT(blue, 30) << "blue trunks";
+}
+
+// Issue #16's test list: "a forest of three species from files with image textures". Three
+// species files, each a generated broadleaf with its own leaf image (pure red, green, blue), share
+// one stand; the near rows are drawn at LOD0 and the far rows from the slices baked per species,
+// and each species' leaf colour reaches the screen.
+TEST_F(SpeciesFilesGl, AForestOfThreeSpeciesWithLeafImagesShowsEachColour) {
+  if (!find_module("vegetation")) GTEST_SKIP() << "vegetation is built out";
+  const std::array<std::pair<const char*, glm::vec3>, 3> kinds = {
+      {{"reds", {1, 0, 0}}, {"greens", {0, 1, 0}}, {"blues", {0, 0, 1}}}};
+  for (std::size_t i = 0; i < kinds.size(); ++i) {
+    const std::string name = kinds[i].first;
+    write_leaf_png(name + ".png", kinds[i].second);
+    ASSERT_TRUE(write_file_atomic(dir_ / "species" / (name + ".json"),
+                                  fmt::format(R"({{"name": "{}", "leaf": {{"color": "{}.png"}},
+                                                 "model": {{"preset": "broadleaf", "seed": {}, "parameters": {{"trunk_length": 5}}}}}})",
+                                              name, name, i + 2))
+                    .ok());
+  }
+  const std::string camera = R"({"position": [0, 10, 60], "yaw_deg": 0, "pitch_deg": -6, "fov_deg": 50})";
+  const std::string stand = R"({"area_min": [-30, -30], "area_max": [30, 30], "layout": "grid", "trees_per_hectare": 60,
+      "leaf_texture_size": 32, "forest": {"lod": {"v1": 55, "v2": 400, "cache_directory": ""}},
+      "species_files": {"0": {"file": "species/reds.json"}, "1": {"file": "species/greens.json"},
+                        "2": {"file": "species/blues.json"}}})";
+  auto scene = open(camera, stand);
+  ASSERT_TRUE(scene);
+  auto bare = open(camera, "");
+  ASSERT_TRUE(bare);
+  const nlohmann::json stats = scene->module_stats()["vegetation"];
+  ASSERT_EQ(stats["trees_per_species"].size(), 3u) << stats.dump();
+  for (const auto& [name, colour] : kinds) EXPECT_GT(stats["trees_per_species"][name].get<int>(), 3) << stats.dump();
+
+  const glm::ivec2 size(192, 108);
+  const Image with = frame(*scene, size), without = frame(*bare, size);
+  const nlohmann::json lods = scene->module_stats()["vegetation"]["instances_per_lod"];
+  EXPECT_GT(lods["lod0"].get<int>(), 0) << lods.dump();
+  EXPECT_GT(lods["lod1"].get<int>(), 0) << lods.dump();
+  const std::vector<std::uint8_t> mask = tree_mask(with, without);
+  const int red = dominant(with, mask, 0), green = dominant(with, mask, 1), blue = dominant(with, mask, 2);
+  std::printf("three species with leaf images: %d red, %d green, %d blue of %d tree pixels (lods %s)\n", red, green, blue,
+              count(mask), lods.dump().c_str());
+  ASSERT_GT(count(mask), 1000) << "the stand is drawn";
+  EXPECT_GT(red, count(mask) / 12) << "the red species' leaf image";
+  EXPECT_GT(green, count(mask) / 12) << "the green species' leaf image";
+  EXPECT_GT(blue, count(mask) / 12) << "the blue species' leaf image";
 }
 
 // Slices (LOD1/LOD2) are baked for a loaded model as for a generated one: the same tree 80 m away
