@@ -2,7 +2,8 @@
 // (`vegetation.species_files.N.file`, relative to the scene), which name an OBJT tree written as
 // seed 000 §4.3.1 shows it. Checked on pixels: the loaded tree stands where it is placed with its
 // model's height (its units applied), a forest of two species from files shows both, one of three
-// species with leaf images shows each leaf colour at LOD0 and LOD1, its slices are baked for LOD1, and a species file that fails is left out with a warning.
+// species with leaf images shows each leaf colour at LOD0 and LOD1, its slices are baked for
+// LOD1, and a species file that fails is left out with a warning.
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/image.hpp>
 #include <sylva/core/log.hpp>
