@@ -1,6 +1,9 @@
 #include <sylva/scene/height_source.hpp>
 
+#include "baked_ground.hpp"
+
 #include <sylva/core/assert.hpp>
+#include <sylva/core/image.hpp>
 #include <sylva/core/log.hpp>
 
 #include <fmt/format.h>
@@ -37,14 +40,51 @@ Result<MapGrid> read_elevation_grid(const HeightSourceSettings& s, const std::fi
   return grid;
 }
 
+// Seed 001 §3.2: the terrain from one channel of the control texture, y = scale * (1 - B) + offset.
+Result<MapGrid> read_control_grid(const HeightSourceSettings& s, const std::filesystem::path& file) {
+  auto image = read_image(file, ImageReadOptions{.allow_non_finite = false});
+  if (!image.ok()) return image.error();
+  const int channel = static_cast<int>(s.control.channel);
+  if (image->channels() <= channel) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: control.channel \"{}\" needs {} channel(s), the image has {}", file.string(),
+                                  "rgba"[channel], channel + 1, image->channels()));
+  }
+  if (image->width() < 2 || image->height() < 2) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: a height map needs at least 2x2 samples, got {}x{}",
+                                                               file.string(), image->width(), image->height()));
+  }
+  MapGrid grid(image->width(), image->height(), 0.0f, {0.0, 0.0}, {1.0, 1.0});
+  for (int j = 0; j < grid.height; ++j) {
+    for (int i = 0; i < grid.width; ++i) {
+      const float v = image->at(i, j, channel);
+      grid.at(i, j) = (s.control.inverted ? 1.0f - v : v) * s.map_scale + s.map_offset;
+    }
+  }
+  place_height_grid(grid, s, height_spacing(s, grid.width));
+  return grid;
+}
+
 }  // namespace
 
 Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optional<std::filesystem::path>& map_file,
-                                 const std::optional<std::filesystem::path>& elevation_file) {
-  if (map_file && elevation_file) {
-    log_info("{}: the painted height map is used; the elevation raster {} is not read", map_file->string(),
+                                 const std::optional<std::filesystem::path>& elevation_file,
+                                 const std::optional<std::filesystem::path>& control_file) {
+  const std::optional<std::filesystem::path>& source_file = control_file ? control_file : elevation_file;
+  if (map_file && source_file) {
+    log_info("{}: the painted height map is used; {} is not read", map_file->string(), source_file->string());
+  } else if (control_file && elevation_file) {
+    log_info("{}: the control texture's heights are used; the elevation raster {} is not read", control_file->string(),
              elevation_file->string());
   }
+  if (elevation_file && is_chunk_file(*elevation_file)) {
+    // terrain.baked_file (terrain_module.cpp names it as the elevation source): the ground the
+    // chunks were baked from wins over every other height key.
+    auto grid = read_baked_ground(*elevation_file);
+    if (!grid.ok()) return make_error(grid.error().code, grid.error().message + " (the ground of terrain.baked_file)");
+    return grid;
+  }
+  if (!map_file && control_file) return read_control_grid(s, *control_file);
   if (!map_file && elevation_file) return read_elevation_grid(s, *elevation_file);
   if (map_file) {
     // Placement needs the sample count, known only after reading: read with a unit placement,

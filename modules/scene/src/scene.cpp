@@ -113,23 +113,25 @@ Status Scene::build_ground() {
       // Painted and not saved: keep the painted heights, only re-place them. Heights painted over
       // an elevation raster keep the raster's spacing unless elevation.spacing overrides it.
       MapGrid& grid = existing->second.grid;
-      const bool from_raster = existing->second.path.empty() && !source.elevation.file.empty();
+      const bool from_raster =
+          existing->second.path.empty() && source.control.file.empty() && !source.elevation.file.empty();
       const double spacing = !from_raster                         ? height_spacing(source, grid.width)
                              : source.elevation.read.spacing > 0.0 ? source.elevation.read.spacing
                                                                    : grid.texel_size.x;
       place_height_grid(grid, source, spacing);
     } else {
-      std::optional<std::filesystem::path> file, elevation;
+      std::optional<std::filesystem::path> file, elevation, control;
       std::string path;
       if (auto m = section.maps.find("height"); m != section.maps.end()) {
         path = m->second;
         file = document_->resolve(path);
       }
       if (!source.elevation.file.empty()) elevation = document_->resolve(source.elevation.file);
-      auto grid = make_height_grid(source, file, elevation);
+      if (!source.control.file.empty()) control = document_->resolve(source.control.file);
+      auto grid = make_height_grid(source, file, elevation, control);
       if (!grid.ok()) {
-        return make_error(grid.error().code, fmt::format("{}.{}: {}", section.name, file ? "maps.height" : "elevation.file",
-                                                         grid.error().message));
+        const char* key = file ? "maps.height" : control ? "control.file" : "elevation.file";
+        return make_error(grid.error().code, fmt::format("{}.{}: {}", section.name, key, grid.error().message));
       }
       SceneMap map;
       map.module = section.name;

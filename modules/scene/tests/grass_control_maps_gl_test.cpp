@@ -15,7 +15,11 @@
 //  - a painted map filled from the control texture is saved to its own file, which wins over the
 //    channel when the saved scene is opened again;
 //  - errors (too few channels, a 1 x 1 image, a missing file, a bad channels string) name the key
-//    and the file.
+//    and the file;
+//  - the ground's control.file reads the texture's B channel inverted as the terrain (seed 001
+//    §3.2), the blades stand on it, and painting the ground never writes the texture.
+#include <sylva/core/atomic_file.hpp>
+#include <sylva/core/height_field.hpp>
 #include <sylva/core/image.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
@@ -29,6 +33,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -311,4 +317,68 @@ TEST_F(GrassControlMapsGl, BadControlAndTintFilesNameTheKeyAndTheFile) {
     std::printf("%s\n", made.error().message.c_str());
     for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;
   }
+}
+
+// Seed 001 §3.2: the terrain comes from the control texture's blue channel, inverted (y =
+// max_height * (1 - B)). A ground section naming the same file in `control.file` (with
+// map_scale = max_height) gets those heights, the grass the texture's R and G stands on them, and
+// painting the ground saves its own height map: the control texture is never written.
+TEST_F(GrassControlMapsGl, TheControlTexturesBlueIsTheGroundAndIsNeverWritten) {
+  if (!find_module("grass") || !find_module("ground")) GTEST_SKIP() << "needs the grass and ground modules";
+  scene::testing::TestDir dir("sylva_grass_maps");
+  // B rises along x (dark in the west = high there), R and G full.
+  write_png(dir.path / "control.png", 64, 64, 3, [](int i, int, int c) { return c == 2 ? static_cast<float>(i) / 63.0f : 1.0f; });
+  nlohmann::json json = stage({{"maps", {{"control", "control.png"}}}});
+  json["ground"] = {{"size", 126.0}, {"map_scale", 20.0}, {"control", {{"file", "control.png"}}}};
+  auto made = scene::testing::scene_from_json(json, dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  Scene& scene = **made;
+  const SceneMap* height = scene.map("ground.height");
+  ASSERT_NE(height, nullptr);
+  ASSERT_EQ(height->grid.width, 64);
+  EXPECT_DOUBLE_EQ(height->grid.texel_size.x, 2.0) << "size 126 m over 63 intervals";
+  for (int i : {0, 17, 40, 63}) {
+    const float b = std::round(static_cast<float>(i) / 63.0f * 255.0f) / 255.0f;  // the 8-bit texel
+    EXPECT_NEAR(height->grid.at(i, 30), 20.0f * (1.0f - b), 1.0e-4f) << "texel " << i;
+  }
+  const HeightField* ground = scene.ground();
+  ASSERT_NE(ground, nullptr);
+  EXPECT_NEAR(ground->height(-63.0, 0.0), 20.0, 1.0e-3) << "west edge: B = 0, the highest";
+  EXPECT_NEAR(ground->height(63.0, 0.0), 0.0, 1.0e-3) << "east edge: B = 1, the lowest";
+
+  const Frame f = render_frame(scene);
+  const std::vector<glm::dvec3> roots = scene.module("grass")->placed_positions(f.blades);
+  ASSERT_GT(roots.size(), 1000u);
+  double worst = 0.0;
+  for (const glm::dvec3& p : roots) worst = std::max(worst, std::abs(p.y - ground->height(p.x, p.z)));
+  std::printf("control-texture ground: %zu roots, largest root-to-ground gap %.5f m\n", roots.size(), worst);
+  EXPECT_LT(worst, 1.0e-3) << "the blades stand on the blue channel's terrain";
+
+  // Painting the ground and saving writes a height map of its own, not the control texture.
+  const std::string before = read_file(dir.path / "control.png").value();
+  SceneMap* painted = scene.map("ground.height");
+  for (int j = 10; j < 14; ++j)
+    for (int i = 10; i < 14; ++i) painted->grid.at(i, j) = 7.0f;
+  ASSERT_TRUE(scene.map_changed("ground.height", {10, 10, 14, 14}).ok());
+  ASSERT_TRUE(scene.save(dir.path / "saved.json").ok());
+  EXPECT_EQ(read_file(dir.path / "control.png").value(), before) << "the control texture is only read";
+  const ModuleSection* section = scene.document().module("ground");
+  ASSERT_NE(section, nullptr);
+  ASSERT_EQ(section->maps.count("height"), 1u) << "the painted heights got their own file";
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(dir.path / "saved.json", warnings);
+  ASSERT_TRUE(doc.ok()) << doc.error().message;
+  auto again = Scene::create(std::move(*doc));
+  ASSERT_TRUE(again.ok()) << again.error().message;
+  EXPECT_NEAR((*again)->map("ground.height")->grid.at(11, 11), 7.0f, 1.0e-3f) << "the saved map wins over the channel";
+  EXPECT_NEAR((*again)->map("ground.height")->grid.at(40, 30), height->grid.at(40, 30), 1.0e-3f);
+
+  // A channel the image lacks names the key and the file.
+  write_png(dir.path / "rgb.png", 8, 8, 3, [](int, int, int) { return 0.5f; });
+  json["ground"]["control"] = {{"file", "rgb.png"}, {"channel", "a"}};
+  auto bad = scene::testing::scene_from_json(json, dir.path);
+  ASSERT_FALSE(bad.ok());
+  std::printf("%s\n", bad.error().message.c_str());
+  for (const char* s : {"ground.control.file", "rgb.png", "control.channel \"a\""})
+    EXPECT_NE(bad.error().message.find(s), std::string::npos) << bad.error().message;
 }

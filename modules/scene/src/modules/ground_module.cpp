@@ -301,7 +301,9 @@ class GroundInstance final : public ModuleInstance {
     if (bytes > kMaxGroundGpuBytes) {
       const auto map = ctx_.section->maps.find("height");
       const std::string& raster = settings().source.elevation.file;
+      const std::string& control = settings().source.control.file;
       const std::string source = map != ctx_.section->maps.end() ? "the height map " + map->second
+                                 : !control.empty() ? "the control texture " + control
                                  : !raster.empty() ? "the elevation raster " + raster
                                                    : fmt::format("the generated ground (ground.resolution = {})", field.columns());
       return make_error(ErrorCode::kLimit,

@@ -45,6 +45,34 @@ constexpr std::array<EnumName<HeightGenerator>, 5> enum_names(HeightGenerator) {
            {HeightGenerator::kValley, "valley"}}};
 }
 
+// A channel of an image (the seed-001 control texture's layout is R density, G blade height,
+// B terrain height).
+enum class ImageChannel { kRed, kGreen, kBlue, kAlpha };
+constexpr std::array<EnumName<ImageChannel>, 4> enum_names(ImageChannel) {
+  return {{{ImageChannel::kRed, "r"}, {ImageChannel::kGreen, "g"}, {ImageChannel::kBlue, "b"}, {ImageChannel::kAlpha, "a"}}};
+}
+
+// Heights from one channel of an image, as seed 001 §3.2 takes its terrain from the blue channel
+// of its RGB control texture, inverted (y = max_height * (1 - B), dark = high): "ground.control.
+// file" names the image (relative to the scene; the same file `grass.maps.control` may name),
+// `channel` and `inverted` say how to read it, and map_scale / map_offset give metres (the seed's
+// maxTerrainHeight is map_scale). The file is only read: painted heights are saved as the
+// section's own height map beside the scene, which then wins (precedence: maps.height, control,
+// elevation raster, generator).
+struct HeightControlSource {
+  std::string file;                            // "" = none
+  ImageChannel channel = ImageChannel::kBlue;  // seed 001 §3.3
+  bool inverted = true;                        // seed 001 §3.2: dark = high
+
+  template <class V>
+  void visit(V& v) {
+    v(file, "file", {.max = 4096.0, .help = "Image whose channel gives the heights (seed 001 control texture), relative to the scene file",
+                     .rebuild = Rebuild::kOffline});
+    v(channel, "channel", {.help = "Channel of control.file that holds the heights: r, g, b or a (seed 001: b)", .rebuild = Rebuild::kOffline});
+    v(inverted, "inverted", {.help = "Height = map_scale * (1 - value) + map_offset (seed 001: dark = high)", .rebuild = Rebuild::kOffline});
+  }
+};
+
 // The elevation raster of a ground and how to read it ("terrain.elevation.file", ...).
 struct ElevationSource {
   std::string file;           // relative to the scene file; "" = none
@@ -69,6 +97,7 @@ struct HeightSourceSettings {
   float map_scale = 1.0f;       // metres per file unit of a height map
   float map_offset = 0.0f;      // metres added to a height map
   ElevationSource elevation;    // an elevation raster instead of a generated field
+  HeightControlSource control;  // one channel of an image (seed 001's control texture)
 
   template <class V>
   void visit(V& v) {
@@ -81,14 +110,16 @@ struct HeightSourceSettings {
     v(map_scale, "map_scale", {.min = -1.0e5, .max = 1.0e5, .unit = "m", .help = "Metres per unit of the height map file", .rebuild = Rebuild::kOffline});
     v(map_offset, "map_offset", {.min = -1.0e6, .max = 1.0e6, .unit = "m", .help = "Metres added to the height map", .rebuild = Rebuild::kOffline});
     v(elevation, "elevation");
+    v(control, "control");
   }
 };
 
-// The height map grid: read from `map_file` when given, else from `elevation_file` (the resolved
-// elevation.file), else generated. Errors name the file. Heights in metres; texel centres are
-// the height samples.
+// The height map grid: read from `map_file` when given, else from `control_file` (the resolved
+// control.file), else from `elevation_file` (the resolved elevation.file), else generated.
+// Errors name the file. Heights in metres; texel centres are the height samples.
 Result<MapGrid> make_height_grid(const HeightSourceSettings& settings, const std::optional<std::filesystem::path>& map_file,
-                                 const std::optional<std::filesystem::path>& elevation_file = std::nullopt);
+                                 const std::optional<std::filesystem::path>& elevation_file = std::nullopt,
+                                 const std::optional<std::filesystem::path>& control_file = std::nullopt);
 
 // Sample spacing and origin for a grid of `columns` samples along x.
 double height_spacing(const HeightSourceSettings& settings, int columns);
