@@ -24,15 +24,14 @@
 // (`sylva-bake terrain`, relative to the scene file). The section then opens it (header and
 // directory only) and draws it through the ChunkStreamer within "terrain.stream.budget_mb": a
 // loader thread reads chunks requested by projected error, a chunk whose children are not resident
-// is drawn instead of them (never a hole), and the frame never waits on disk. The chunk file holds
-// meshes, not a height field, so the scene's ground (grass, trees, the camera's above-ground
-// height, Scene::ground_height) still comes from the section's height-source keys: a baked scene
-// names the same source the bake was made from (and, as sylva-bake keeps a raster's origin at
-// (0, 0), terrain.center at the middle of the baked field). The section checks this on the grid and
-// the root chunk's vertices (exact field samples): when they match, the ground also shades the
-// terrain (normals, materials); otherwise it warns why (the key to set, or the first sample that
-// differs) and shades from the triangles. Painting does not change a baked
-// terrain. Streaming numbers are in stats() ("stream_*").
+// is drawn instead of them (never a hole), and the frame never waits on disk. The file carries the
+// field's heights (chunk_file.hpp, version 2), and the descriptor names the baked file as the
+// section's elevation source, so the scene's ground (grass, trees, the camera's above-ground
+// height, Scene::ground_height) is the baked field, where its chunks are (../baked_ground.hpp;
+// every 2nd/4th... sample above 8193^2). The section checks the ground on the grid and the root
+// chunk's vertices (exact field samples): when they match, the ground also shades the terrain
+// (normals, materials); a coarser ground shades from the triangles. Painting does not change a
+// baked terrain. Streaming numbers are in stats() ("stream_*").
 
 #include "modules/module_factories.hpp"
 
@@ -45,6 +44,7 @@
 #include <sylva/terrain/settings.hpp>
 #include <sylva/terrain/streaming.hpp>
 #include <sylva/terrain/tree_cache.hpp>
+#include <sylva/terrain/water.hpp>
 
 #include <fmt/format.h>
 
@@ -64,6 +64,7 @@ struct TerrainSectionSettings {
   terrain::TerrainRenderSettings render;
   std::string baked_file;              // a chunk file to stream instead of building the tree
   terrain::StreamingSettings stream;   // its memory budget
+  terrain::WaterSettings water;        // a water plane (terrain/water.hpp), off by default
 
   template <class V>
   void visit(V& v) {
@@ -74,6 +75,7 @@ struct TerrainSectionSettings {
     v(baked_file, "baked_file", {.max = 4096.0, .help = "Baked chunk file (sylva-bake terrain) to stream, relative to "
                                  "the scene file; empty = build the tree from the ground", .rebuild = Rebuild::kOffline});
     v(stream, "stream");
+    v(water, "water");
   }
 };
 
@@ -115,7 +117,10 @@ class TerrainInstance final : public ModuleInstance {
     return std::unique_ptr<ModuleInstance>(std::move(inst));
   }
 
-  std::vector<render::Drawable*> drawables() override { return {renderer_.get()}; }
+  std::vector<render::Drawable*> drawables() override {
+    if (water_) return {renderer_.get(), water_.get()};
+    return {renderer_.get()};
+  }
 
   void sync_settings() override {
     if (stale_) {
@@ -132,6 +137,7 @@ class TerrainInstance final : public ModuleInstance {
     live.chunk_bounds = live.chunk_bounds || ctx_.debug->chunk_bounds;
     // The material's snow line follows the scene's latitude and season (terrain/material.hpp).
     if (ctx_.environment != nullptr) renderer_->set_climate({ctx_.environment->latitude_deg, ctx_.environment->season});
+    terrain::sync_water(water_, settings().water, "terrain.water");
   }
 
   Status rebuild(Rebuild what) override {
@@ -257,6 +263,8 @@ class TerrainInstance final : public ModuleInstance {
     const HeightField* field = mismatch.empty() ? ctx_.ground : nullptr;
     if (field != nullptr) {
       ground_matches_ = true;
+    } else if (coarse_baked_ground(**streamer)) {
+      ground_matches_ = false;  // the baked heights every n-th sample: shaded from the triangles
     } else {
       ground_matches_ = false;
       log_warn("terrain: the scene's ground (grass, trees, camera height) is not the field baked into {}: {}",
@@ -300,6 +308,15 @@ class TerrainInstance final : public ModuleInstance {
     return {};
   }
 
+  // Whether the ground is the file's heights every n-th sample (a field too big to read whole).
+  bool coarse_baked_ground(const terrain::ChunkStreamer& streamer) const {
+    const HeightField& f = *ctx_.ground;
+    const terrain::ChunkTree& t = streamer.tree();
+    const double n = f.spacing() / t.spacing();
+    return n > 1.0 && n == std::round(n) && f.origin() == t.origin() &&
+           f.columns() == (t.field_columns() - 1) / static_cast<int>(n) + 1;
+  }
+
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
   void apply_edit() {
     Stopwatch watch;
@@ -328,6 +345,7 @@ class TerrainInstance final : public ModuleInstance {
 
   ModuleBuildContext ctx_;
   std::unique_ptr<terrain::TerrainRenderer> renderer_;
+  std::unique_ptr<terrain::WaterRenderer> water_;  // created when terrain.water.enabled is first set
   bool stale_ = false;
   std::array<int, 4> dirty_{0, 0, 0, 0};  // edited samples x0, z0, x1, z1 (x1/z1 exclusive)
   std::uint64_t partial_rebuilds_ = 0;
@@ -350,7 +368,13 @@ ModuleDescriptor terrain_module() {
   d.make_settings = [] {
     return std::make_unique<Settings>(std::vector<MapSlot>{{"height", MapKind::kHeight, "Terrain height in metres"}});
   };
-  d.height_source = [](const ModuleSettings& s) { return static_cast<const Settings&>(s).value.source; };
+  d.height_source = [](const ModuleSettings& s) {
+    const TerrainSectionSettings& v = static_cast<const Settings&>(s).value;
+    HeightSourceSettings source = v.source;
+    // A baked file carries its ground (chunk_file.hpp); make_height_grid reads it by its magic.
+    if (!v.baked_file.empty()) source.elevation.file = v.baked_file;
+    return source;
+  };
   d.create = &TerrainInstance::create;
   return d;
 }
