@@ -34,6 +34,7 @@ enum Salt : std::uint32_t {
   kSaltShade = 10u,
   kSaltShape = 11u,
   kSaltRank = 12u,
+  kSaltUvKeep = 13u,
 };
 
 float unit(std::uint32_t blade_hash, std::uint32_t salt) { return hash_to_unit_float(hash_u32(salt, blade_hash)); }
@@ -347,7 +348,7 @@ Result<std::uint32_t> regenerate_tiles(BladeSet& set, const GrassFieldSettings& 
 }
 
 Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const BladeSettings& blade,
-                                         const GroundMesh& mesh, const glm::dvec3& origin) {
+                                         const GroundMesh& mesh, const glm::dvec3& origin, const MeshUvDensity* uv) {
   SYLVA_TRY(check_settings(field, blade));
   if (mesh.indices.size() % 3 != 0) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -374,8 +375,12 @@ Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const 
                         fmt::format("grass mesh: index {} (= {}) is out of range for {} vertices", i, mesh.indices[i], nv));
     }
   }
+  if (uv != nullptr && uv->corner_uvs.size() != mesh.indices.size()) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("grass mesh: {} corner UVs for {} indices",
+                                                               uv->corner_uvs.size(), mesh.indices.size()));
+  }
   auto vertex_density = [&](std::uint32_t v) {
-    if (mesh.density.empty()) return 1.0f;
+    if (mesh.density.empty() || uv != nullptr) return 1.0f;
     const float d = mesh.density[v];
     return std::isfinite(d) ? std::clamp(d, 0.0f, 1.0f) : 0.0f;
   };
@@ -422,10 +427,18 @@ Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const 
     const float face_len = glm::length(face);
     if (!(face_len > 0.0f)) continue;  // degenerate triangles have no area and got no blades
     const glm::vec3 face_n = face / face_len;
+    const std::size_t first_kept = keys.size();
+    double uv_expected = 0.0;  // with uv: the candidates' summed density
     for (std::uint32_t i = 0; i < count; ++i) {
       glm::dvec2 u = r2_point(i, th);
       if (u.x + u.y > 1.0) u = glm::dvec2(1.0) - u;
       const float fu = static_cast<float>(u.x), fv = static_cast<float>(u.y);
+      if (uv != nullptr) {
+        const glm::vec2* c = &uv->corner_uvs[3 * t];
+        const float d = uv->map.sample((1.0f - fu - fv) * c[0] + fu * c[1] + fv * c[2]);
+        uv_expected += d;
+        if (!(d > unit(hash_u32(i, th), kSaltUvKeep))) continue;
+      }
       const glm::vec3 root = pa + fu * (pb - pa) + fv * (pc - pa);
       glm::vec3 up = face_n;
       if (!mesh.normals.empty()) {
@@ -440,6 +453,11 @@ Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const 
                        static_cast<std::int32_t>(std::floor(world.z / ts))},
                       static_cast<std::uint32_t>(blades.size()), expected[t] / count});
       blades.push_back(b);
+    }
+    if (uv != nullptr && keys.size() > first_kept) {
+      // The triangle's ideal count spread over the blades it kept.
+      const double share = uv_expected * expected[t] / count / static_cast<double>(keys.size() - first_kept);
+      for (std::size_t k = first_kept; k < keys.size(); ++k) keys[k].expected_share = share;
     }
   }
 

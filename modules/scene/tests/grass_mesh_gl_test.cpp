@@ -31,6 +31,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -352,6 +353,120 @@ TEST_F(GrassMeshGl, BadMeshFilesNameTheKeyAndTheFile) {
   for (const Case& c : cases) {
     auto made = scene::testing::scene_from_json(stage(c.grass), dir.path);
     ASSERT_FALSE(made.ok()) << c.grass.dump();
+    std::printf("%s\n", made.error().message.c_str());
+    for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;
+  }
+}
+
+// --- grass.mesh.density_source "uv_map" (issue 16: density from a map over the mesh's UVs) ---
+// One quad x, z in [-2, 2] at y = 0.5, u = (x + 2) / 4, v (image rows) = (z + 2) / 4, as ONE
+// OBJ face fanned into two triangles whose diagonal crosses x = 0: a per-vertex density cannot
+// make a sharp edge there, a per-root one does. The image is black over u < 0.5 (x < 0), white
+// over the rest; its bilinear ramp between the two middle pixel centres is 4 m / 64 wide.
+namespace {
+
+constexpr double kUvRamp = 4.0 / 64.0;  // [m]: one pixel of the density image on the quad
+
+void write_uv_quad_obj(const fs::path& file, bool with_uvs) {
+  std::ofstream out(file);
+  out << "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n";
+  // vt v grows upwards in OBJ: the image row (z + 2) / 4 is 1 - vt.v.
+  out << "vt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\n";
+  out << (with_uvs ? "f 1/1 4/4 3/3 2/2\n" : "f 1 4 3 2\n");
+}
+
+Image half_black_half_white() {
+  Image map(64, 64, 3);
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i)
+      for (int c = 0; c < 3; ++c) map.at(i, j, c) = i < 32 ? 0.0f : 1.0f;
+  return map;
+}
+
+// Looking straight down on the quad from 6 m, without a ground section (flat ground at y = 0).
+nlohmann::json uv_stage(const std::string& mesh, const std::string& density_file) {
+  nlohmann::json j = stage({{"surface", "mesh"},
+                            {"mesh", {{"file", mesh}, {"offset", {0.0, 0.5, 0.0}}, {"density_source", "uv_map"},
+                                      {"density_file", density_file}}}});
+  j["camera"] = {{"position", {0.0, 6.5, 0.0}}, {"height_mode", "absolute"}, {"yaw_deg", 0.0}, {"pitch_deg", -89.0},
+                 {"fov_deg", 60.0}};
+  j.erase("ground");
+  return j;
+}
+
+// Pixels of columns [x0, x1) darker than the sky behind the quad (seen from above, a blade is a
+// small dark stroke against the bright sky: the scene has no ground section to draw).
+std::size_t blade_pixels(const Image& im, int x0, int x1) {
+  std::size_t n = 0;
+  for (int y = 0; y < im.height(); ++y)
+    for (int x = x0; x < x1; ++x) n += std::max({im.at(x, y, 0), im.at(x, y, 1), im.at(x, y, 2)}) < 0.25f ? 1 : 0;
+  return n;
+}
+
+}  // namespace
+
+TEST_F(GrassMeshGl, UvDensityMapGrowsBladesOnlyOnTheWhiteHalf) {
+  if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
+  scene::testing::TestDir dir("sylva_grass_mesh");
+  write_uv_quad_obj(dir.path / "quad.obj", true);
+  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
+  auto made = scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  const Frame f = render_frame(**made);
+  std::size_t black = 0, white = 0;
+  for (const glm::dvec3& p : f.roots) {
+    black += p.x < -kUvRamp ? 1 : 0;
+    white += p.x > kUvRamp ? 1 : 0;
+  }
+  const double white_expected = (2.0 - kUvRamp) * 4.0 * kDensity;
+  // Image columns: the camera looks down with yaw 0, so world +x is to the right.
+  const std::size_t left = blade_pixels(f.image, 0, kSize.x / 2 - 4), right = blade_pixels(f.image, kSize.x / 2 + 4, kSize.x);
+  std::printf("uv map: %s; roots black half %zu, white half %zu (expected %.0f); blade pixels left %zu, right %zu\n",
+              f.stats.dump().c_str(), black, white, white_expected, left, right);
+  if (const char* dump = std::getenv("SYLVA_TEST_DUMP")) (void)write_image(fs::path(dump) / "uv_map.png", f.image, PixelFormat::kU8);
+  ASSERT_EQ(f.roots.size(), f.stats["blades"].get<std::size_t>());
+  EXPECT_EQ(black, 0u);
+  EXPECT_NEAR(static_cast<double>(white), white_expected, 0.08 * white_expected);
+  EXPECT_GT(right, 50u);
+  EXPECT_LT(left * 20, right) << "the black half shows (almost) no grass";
+}
+
+TEST_F(GrassMeshGl, UvDensityMapFileIsRebasedBySaveAs) {
+  if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
+  scene::testing::TestDir dir("sylva_grass_mesh");
+  write_uv_quad_obj(dir.path / "quad.obj", true);
+  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
+  auto made = scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir.path);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  fs::create_directories(dir.path / "elsewhere");
+  ASSERT_TRUE((*made)->save(dir.path / "elsewhere" / "saved.json").ok());
+  const nlohmann::json saved = nlohmann::json::parse(std::ifstream(dir.path / "elsewhere" / "saved.json"));
+  EXPECT_EQ(saved["grass"]["mesh"]["density_file"], "../half.png");
+  auto again = scene::testing::open_scene_file(dir.path / "elsewhere" / "saved.json");
+  ASSERT_TRUE(again);
+  EXPECT_EQ(render_frame(*again).stats["blades"], render_frame(**made).stats["blades"]);
+}
+
+TEST_F(GrassMeshGl, UvDensityMapErrorsNameTheSettingAndTheFile) {
+  if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
+  scene::testing::TestDir dir("sylva_grass_mesh");
+  write_uv_quad_obj(dir.path / "bare.obj", false);
+  write_uv_quad_obj(dir.path / "quad.obj", true);
+  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
+  std::ofstream(dir.path / "text.png") << "not a picture";
+  struct Case {
+    nlohmann::json scene;
+    std::vector<std::string> expected;
+  };
+  const std::vector<Case> cases = {
+      {uv_stage("bare.obj", "half.png"), {"grass.mesh.density_source", "uv_map", "texture coordinates", "bare.obj"}},
+      {uv_stage("quad.obj", "missing.png"), {"grass.mesh.density_file", "missing.png"}},
+      {uv_stage("quad.obj", "text.png"), {"grass.mesh.density_file", "text.png"}},
+      {uv_stage("quad.obj", ""), {"grass.mesh.density_file", "no density image"}},
+  };
+  for (const Case& c : cases) {
+    auto made = scene::testing::scene_from_json(c.scene, dir.path);
+    ASSERT_FALSE(made.ok()) << c.scene["grass"].dump();
     std::printf("%s\n", made.error().message.c_str());
     for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;
   }

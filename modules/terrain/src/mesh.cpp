@@ -54,6 +54,8 @@ bool parse_int(std::string_view s, long long& out) {
 
 Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
   PolygonMesh mesh;
+  std::vector<glm::vec2> texcoords;  // vt, v already flipped to the image convention
+  bool uvs_complete = true;          // every face corner so far named a vt
   std::size_t line_no = 0;
   std::size_t pos = 0;
   std::size_t warned = 0;
@@ -94,8 +96,24 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
     } else if (kw == "f") {
       if (t.size() < 4) return fail(fmt::format("a face needs at least 3 vertices, got {}", t.size() - 1));
       for (std::size_t k = 1; k < t.size(); ++k) {
-        std::string_view ref = t[k];
-        if (const std::size_t slash = ref.find('/'); slash != std::string_view::npos) ref = ref.substr(0, slash);
+        std::string_view ref = t[k], tex;
+        if (const std::size_t slash = ref.find('/'); slash != std::string_view::npos) {
+          tex = ref.substr(slash + 1);
+          tex = tex.substr(0, tex.find('/'));
+          ref = ref.substr(0, slash);
+        }
+        if (tex.empty()) {
+          uvs_complete = false;
+        } else {
+          long long ti = 0;
+          if (!parse_int(tex, ti)) return fail(fmt::format("'{}' is not a texture index", t[k]));
+          const long long tcount = static_cast<long long>(texcoords.size());
+          if (ti < 0) ti = tcount + ti + 1;
+          if (ti < 1 || ti > tcount) {
+            return fail(fmt::format("texture index in {} is outside the {} vt defined so far", t[k], tcount));
+          }
+          mesh.corner_uvs.push_back(texcoords[static_cast<std::size_t>(ti - 1)]);
+        }
         long long idx = 0;
         if (!parse_int(ref, idx)) return fail(fmt::format("'{}' is not a vertex index", t[k]));
         const long long count = static_cast<long long>(mesh.positions.size());
@@ -106,7 +124,16 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
         mesh.face_indices.push_back(static_cast<std::uint32_t>(idx - 1));
       }
       mesh.face_sizes.push_back(static_cast<std::uint32_t>(t.size() - 1));
-    } else if (kw == "vt" || kw == "vn" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" ||
+    } else if (kw == "vt") {
+      if (t.size() < 2 || t.size() > 4) return fail(fmt::format("vt needs 1 to 3 numbers, got {}", t.size() - 1));
+      float uv[2] = {0.0f, 0.0f};
+      for (std::size_t k = 1; k < std::min<std::size_t>(t.size(), 3); ++k) {
+        if (!parse_float(t[k], uv[k - 1]) || !std::isfinite(uv[k - 1])) {
+          return fail(fmt::format("'{}' is not a finite number", t[k]));
+        }
+      }
+      texcoords.emplace_back(uv[0], 1.0f - uv[1]);  // OBJ's v grows upwards
+    } else if (kw == "vn" || kw == "o" || kw == "g" || kw == "s" || kw == "usemtl" ||
                kw == "mtllib" || kw == "l" || kw == "vp") {
       // Not needed for terrain geometry.
     } else {
@@ -114,6 +141,11 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
     }
     if (end == text.size()) break;
   }
+  if (!uvs_complete && !mesh.corner_uvs.empty()) {
+    log_warn("{}: {} of {} face corners name a texture coordinate: texture coordinates ignored", source,
+             mesh.corner_uvs.size(), mesh.face_indices.size());
+  }
+  if (!uvs_complete) mesh.corner_uvs.clear();
   if (mesh.face_sizes.empty()) {
     return make_error(ErrorCode::kParse, fmt::format("{}: no faces (read {} lines, {} vertices)", source, line_no,
                                                      mesh.positions.size()));
@@ -150,12 +182,14 @@ Status save_obj(const std::filesystem::path& path, const TriangleMesh& mesh) {
 TriangleMesh triangulate(const PolygonMesh& mesh) {
   TriangleMesh out;
   out.positions = mesh.positions;
+  const bool uvs = mesh.corner_uvs.size() == mesh.face_indices.size() && !mesh.corner_uvs.empty();
   std::size_t at = 0;
   for (std::uint32_t n : mesh.face_sizes) {
     for (std::uint32_t k = 1; k + 1 < n; ++k) {
-      out.indices.push_back(mesh.face_indices[at]);
-      out.indices.push_back(mesh.face_indices[at + k]);
-      out.indices.push_back(mesh.face_indices[at + k + 1]);
+      for (const std::size_t corner : {at, at + k, at + k + 1}) {
+        out.indices.push_back(mesh.face_indices[corner]);
+        if (uvs) out.corner_uvs.push_back(mesh.corner_uvs[corner]);
+      }
     }
     at += n;
   }

@@ -5,6 +5,8 @@
 // buffer views and buffers before anything is read: errors name the file and the JSON path.
 #include <sylva/terrain/mesh.hpp>
 
+#include <sylva/core/log.hpp>
+
 #include <fmt/format.h>
 
 #include <limits>
@@ -50,6 +52,10 @@ class GltfReader {
     for (int r : roots) SYLVA_TRY(node(r, glm::dmat4(1.0), 0));
     if (mesh_.face_sizes.empty()) return fail("meshes", "no triangle primitives in the scene");
     if (!mesh_.colors.empty()) mesh_.colors.resize(mesh_.positions.size(), glm::vec3(1.0f));
+    if (!uvs_complete_ && !mesh_.corner_uvs.empty()) {
+      log_warn("{}: only some triangle primitives have TEXCOORD_0: texture coordinates ignored", source_);
+    }
+    if (!uvs_complete_) mesh_.corner_uvs.clear();
     return std::move(mesh_);
   }
 
@@ -94,6 +100,12 @@ class GltfReader {
       if (const auto col = prim.attributes.find("COLOR_0"); col != prim.attributes.end()) {
         SYLVA_TRY(colors(col->second, path + ".attributes.COLOR_0", base, count));
       }
+      std::vector<glm::vec2> uv;
+      if (const auto tex = prim.attributes.find("TEXCOORD_0"); tex != prim.attributes.end()) {
+        SYLVA_TRY(texcoords(tex->second, path + ".attributes.TEXCOORD_0", count, uv));
+      } else {
+        uvs_complete_ = false;
+      }
       std::vector<std::uint32_t> idx;
       if (prim.indices >= 0) {
         SYLVA_TRY(indices(prim.indices, path + ".indices", idx));
@@ -105,6 +117,7 @@ class GltfReader {
       for (std::uint32_t i : idx) {
         if (i >= count) return fail(path + ".indices", fmt::format("index {} is outside the {} vertices", i, count));
         mesh_.face_indices.push_back(static_cast<std::uint32_t>(base + i));
+        if (!uv.empty()) mesh_.corner_uvs.push_back(uv[i]);
       }
       mesh_.face_sizes.insert(mesh_.face_sizes.end(), idx.size() / 3, 3u);
     }
@@ -210,6 +223,45 @@ class GltfReader {
     return {};
   }
 
+  // TEXCOORD_0 of a primitive of `vertices` vertices (glTF's convention is already the image's).
+  Status texcoords(int index, const std::string& path, std::size_t vertices, std::vector<glm::vec2>& out) {
+    std::size_t size = 0;
+    if (index >= 0 && static_cast<std::size_t>(index) < model_.accessors.size()) {
+      const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(index)];
+      if (a.type == TINYGLTF_TYPE_VEC2) {
+        if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT) size = 4;
+        if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && a.normalized) size = 1;
+        if (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && a.normalized) size = 2;
+      }
+      if (size == 0) {
+        return fail(fmt::format("accessors[{}]", index),
+                    "TEXCOORD_0 must be VEC2 of FLOAT or of normalized unsigned byte or short");
+      }
+    }
+    std::size_t count = 0;
+    auto src = bytes(index, path, 2 * (size == 0 ? 4 : size), count);
+    if (!src.ok()) return src.error();
+    if (count != vertices) return fail(path, fmt::format("{} texture coordinates for {} vertices", count, vertices));
+    out.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const unsigned char* at = src->first + i * src->second;
+      for (int k = 0; k < 2; ++k) {
+        float& c = out[i][k];
+        if (size == 4) {
+          std::memcpy(&c, at + 4 * k, 4);
+        } else if (size == 2) {
+          std::uint16_t v;
+          std::memcpy(&v, at + 2 * k, 2);
+          c = static_cast<float>(v) / 65535.0f;
+        } else {
+          c = static_cast<float>(at[k]) / 255.0f;
+        }
+        if (!std::isfinite(c)) return fail(path, fmt::format("texture coordinate {} of vertex {} is not finite", k, i));
+      }
+    }
+    return {};
+  }
+
   Status indices(int index, const std::string& path, std::vector<std::uint32_t>& out) {
     std::size_t elem = 0;
     if (index >= 0 && static_cast<std::size_t>(index) < model_.accessors.size()) {
@@ -243,6 +295,7 @@ class GltfReader {
   const tinygltf::Model& model_;
   std::string source_;
   PolygonMesh mesh_;
+  bool uvs_complete_ = true;  // every triangle primitive so far had TEXCOORD_0
 };
 
 // Images are not needed for geometry: accepted undecoded.

@@ -37,6 +37,28 @@ TEST(Obj, ParsesVerticesFacesAndIndexForms) {
   EXPECT_EQ(t.triangle_count(), 3u);
 }
 
+// Texture coordinates per face corner, v flipped to the image convention (grass density over
+// UVs, issue 16); kept through the fan triangulation; a mix of corners with and without drops them.
+TEST(Obj, TextureCoordinatesPerCorner) {
+  auto r = parse_obj("v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 1 0.25\nvt 0 1\nf 1/1 2/2/1 3/3 4/-1\n", "uv.obj");
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  ASSERT_EQ(r->corner_uvs.size(), 4u);
+  EXPECT_EQ(r->corner_uvs[0], glm::vec2(0.0f, 1.0f));
+  EXPECT_EQ(r->corner_uvs[2], glm::vec2(1.0f, 0.75f));
+  EXPECT_EQ(r->corner_uvs[3], glm::vec2(0.0f, 0.0f));
+  const TriangleMesh t = triangulate(*r);
+  ASSERT_EQ(t.corner_uvs.size(), t.indices.size());
+  EXPECT_EQ(t.corner_uvs[5], glm::vec2(0.0f, 0.0f));  // second triangle (1, 3, 4): vertex 4
+  auto mixed = parse_obj("v 0 0 0\nv 1 0 0\nv 1 0 1\nvt 0 0\nf 1/1 2 3\n", "mixed.obj");
+  ASSERT_TRUE(mixed.ok());
+  EXPECT_TRUE(mixed->corner_uvs.empty());
+  EXPECT_TRUE(triangulate(*mixed).corner_uvs.empty());
+  auto bad = parse_obj("v 0 0 0\nv 1 0 0\nv 1 0 1\nvt 0 0\nf 1/1 2/2 3/1\n", "bad.obj");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("bad.obj:5: texture index in 2/2 is outside the 1 vt"), std::string::npos)
+      << bad.error().message;
+}
+
 TEST(Obj, ErrorsNameFileAndLine) {
   struct Bad {
     const char* text;

@@ -29,6 +29,7 @@
 #include <sylva/grass/grass_field.hpp>
 #include <sylva/grass/maps.hpp>
 #include <sylva/grass/settings.hpp>
+#include <sylva/grass/uv_density_map.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/scene/module_instance.hpp>
 #ifdef SYLVA_HAS_TERRAIN
@@ -67,10 +68,21 @@ constexpr std::array<EnumName<GrassSurface>, 2> enum_names(GrassSurface) {
   return {{{GrassSurface::kGround, "ground"}, {GrassSurface::kMesh, "mesh"}}};
 }
 
+// Where the blades on a mesh take their density from (see mesh_blades).
+enum class MeshDensitySource { kAuto, kVertexColor, kMapXz, kUvMap };
+constexpr std::array<EnumName<MeshDensitySource>, 4> enum_names(MeshDensitySource) {
+  return {{{MeshDensitySource::kAuto, "auto"},
+           {MeshDensitySource::kVertexColor, "vertex_color"},
+           {MeshDensitySource::kMapXz, "map_xz"},
+           {MeshDensitySource::kUvMap, "uv_map"}}};
+}
+
 // grass.mesh: the mesh of grass.surface = "mesh" (issue 16, grass on any mesh).
 struct GrassMeshSettings {
   std::string file;          // OBJ, IV, glTF or GLB, relative to the scene file
   glm::dvec3 offset{0.0};    // added to every vertex [m]
+  MeshDensitySource density_source = MeshDensitySource::kAuto;
+  std::string density_file;  // uv_map: image over the mesh's UVs, relative to the scene file
 
   template <class V>
   void visit(V& v) {
@@ -80,6 +92,12 @@ struct GrassMeshSettings {
       .rebuild = Rebuild::kOffline});
     v(offset, "offset", {.min = -1.0e9, .max = 1.0e9, .unit = "m", .help = "Added to every vertex of grass.mesh.file",
       .rebuild = Rebuild::kOffline});
+    v(density_source, "density_source", {.help = "Blade density on the mesh: \"auto\" (vertex colour red if the file "
+      "has colours, else map_xz), \"vertex_color\", \"map_xz\" (the density map at the vertices' x/z) or \"uv_map\" "
+      "(density_file at each blade's UV; needs texture coordinates)", .rebuild = Rebuild::kOffline});
+    v(density_file, "density_file", {.max = 4096.0,
+      .help = "Density image over the mesh's UVs for density_source \"uv_map\", relative to the scene file: red "
+              "(or grey) 0..1, bilinear, UVs repeat outside 0..1", .rebuild = Rebuild::kOffline});
   }
 };
 
@@ -100,8 +118,7 @@ struct GrassSectionSettings {
   template <class V>
   void visit(V& v) {
     v(surface, "surface", {.help = "What the blades grow on: \"ground\" (the scene's ground over the area) or \"mesh\" "
-      "(every triangle of mesh.file, along its normal; density from the red of the file's vertex colours, else the "
-      "density map at the vertices' x/z; no far field)",
+      "(every triangle of mesh.file, along its normal; density as mesh.density_source; no far field)",
       .rebuild = Rebuild::kOffline});
     v(mesh, "mesh");
     v(area_min, "area_min", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
@@ -513,10 +530,12 @@ class GrassInstance final : public ModuleInstance {
 
   // grass.surface = "mesh": every triangle of grass.mesh.file (terrain's load_mesh: OBJ, IV,
   // glTF, GLB; moved by grass.mesh.offset) grows blades along its face normal (sharp edges keep
-  // their walls' normals), Jahrmann & Wimmer 2017 (grass::generate_blades_on_mesh). Density per
-  // vertex is the red of the vertex colour when the file has colours (OBJ `v x y z r g b`), else
-  // the density map at the vertex's world x/z (0 outside area_min..area_max, as on the ground),
-  // so the map painted from above thins grass on walls and overhangs below it too.
+  // their walls' normals), Jahrmann & Wimmer 2017 (grass::generate_blades_on_mesh). Density by
+  // mesh.density_source: "vertex_color" the red of the vertex colours (OBJ `v x y z r g b`, glTF
+  // COLOR_0); "map_xz" the density map at the vertex's world x/z (0 outside area_min..area_max,
+  // as on the ground), so the map painted from above thins grass on walls and overhangs below it
+  // too; "auto" the first when the file has colours, else the second; "uv_map" mesh.density_file
+  // at each blade root's UV (grass::UvDensityMap; a mesh without UVs is an error).
   Result<grass::BladeSet> mesh_blades(const grass::GrassMaps& maps) {
     const std::string key = ctx_.section->name + ".mesh.file";
 #ifdef SYLVA_HAS_TERRAIN
@@ -531,6 +550,8 @@ class GrassInstance final : public ModuleInstance {
                                                    : fmt::format("{}: {}: {}", key, path.string(), m));
     }
     const terrain::TriangleMesh mesh = terrain::triangulate(*polygons);
+    auto uv_map = mesh_uv_density(mesh, path);
+    if (!uv_map.ok()) return uv_map.error();
     glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
     for (const glm::vec3& p : mesh.positions) {
       lo = glm::min(lo, glm::dvec3(p) + s.mesh.offset);
@@ -546,11 +567,21 @@ class GrassInstance final : public ModuleInstance {
       positions.push_back(glm::vec3(world - origin));
       density.push_back(maps.density(world.x, world.z));
     }
-    if (!polygons->colors.empty()) {  // vertex colours win: R is the density (seed 001's control layout)
+    const MeshDensitySource source = s.mesh.density_source;
+    if (source == MeshDensitySource::kVertexColor && polygons->colors.empty()) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}.mesh.density_source: \"vertex_color\" but {} has no vertex colours",
+                                    ctx_.section->name, path.string()));
+    }
+    const bool by_color = source == MeshDensitySource::kVertexColor || (source == MeshDensitySource::kAuto && !polygons->colors.empty());
+    if (by_color) {  // R is the density (seed 001's control layout)
       for (std::size_t i = 0; i < density.size(); ++i) density[i] = polygons->colors[i].r;
     }
     mesh_triangles_ = mesh.triangle_count();
-    auto set = grass::generate_blades_on_mesh(s.field, s.blade, {positions, {}, mesh.indices, density}, origin);
+    std::optional<grass::MeshUvDensity> uv;
+    if (*uv_map) uv.emplace(grass::MeshUvDensity{mesh.corner_uvs, **uv_map});
+    auto set = grass::generate_blades_on_mesh(s.field, s.blade, {positions, {}, mesh.indices, density}, origin,
+                                              uv ? &*uv : nullptr);
     if (!set.ok()) return make_error(set.error().code, fmt::format("{} ({}): {}", key, path.string(), set.error().message));
     return set;
 #else
@@ -560,6 +591,38 @@ class GrassInstance final : public ModuleInstance {
                                   key, ctx_.section->name));
 #endif
   }
+
+#ifdef SYLVA_HAS_TERRAIN
+  // density_source "uv_map": grass.mesh.density_file read through core's image reader (16k side
+  // limit, no NaN); nullopt for the other sources. Errors name the setting and the file.
+  Result<std::optional<grass::UvDensityMap>> mesh_uv_density(const terrain::TriangleMesh& mesh,
+                                                              const std::filesystem::path& mesh_path) const {
+    const GrassSectionSettings& s = settings();
+    if (s.mesh.density_source != MeshDensitySource::kUvMap) return std::optional<grass::UvDensityMap>();
+    const std::string& name = ctx_.section->name;
+    if (mesh.corner_uvs.empty()) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}.mesh.density_source: \"uv_map\" needs texture coordinates, but {} has none "
+                                    "(OBJ: vt and f v/vt on every face; glTF: TEXCOORD_0 on every primitive)",
+                                    name, mesh_path.string()));
+    }
+    if (s.mesh.density_file.empty()) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}.mesh.density_file: {}.mesh.density_source is \"uv_map\" but no density image "
+                                    "is given", name, name));
+    }
+    const std::filesystem::path file =
+        ctx_.document != nullptr ? ctx_.document->resolve(s.mesh.density_file) : std::filesystem::path(s.mesh.density_file);
+    ImageReadOptions options;
+    options.max_side = 16384;
+    options.allow_non_finite = false;
+    auto image = read_image(file, options);
+    if (!image.ok()) return make_error(image.error().code, fmt::format("{}.mesh.density_file: {}", name, image.error().message));
+    auto map = grass::UvDensityMap::create(*image, "mesh.density_file");
+    if (!map.ok()) return make_error(map.error().code, fmt::format("{}.mesh.density_file: {}: {}", name, file.string(), map.error().message));
+    return std::optional<grass::UvDensityMap>(std::move(*map));
+  }
+#endif
 
   // Blades of a mesh surface by the axis their up vector is within 0.1 rad of (stats "up_axes").
   static nlohmann::json count_up_axes(const grass::BladeSet& set) {

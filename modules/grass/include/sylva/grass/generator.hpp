@@ -27,6 +27,7 @@
 #include <sylva/grass/blade.hpp>
 #include <sylva/grass/maps.hpp>
 #include <sylva/grass/settings.hpp>
+#include <sylva/grass/uv_density_map.hpp>
 
 #include <glm/glm.hpp>
 
@@ -117,10 +118,21 @@ struct GroundMesh {
   std::span<const float> density;
 };
 
-// Errors: indices out of range or not a multiple of 3, size mismatch of normals/density,
-// non-finite positions, too many blades.
+// Density over the mesh's texture coordinates (issue 16): the blade density is `map` at each
+// root's UV, interpolated from corner_uvs (3 per triangle, parallel to GroundMesh::indices), and
+// GroundMesh::density is ignored. Each triangle draws its candidates at density 1
+// (stochastic-rounded area * field.density) and keeps candidate i when map(uv_i) > a hash of
+// (triangle, i), so an edge of the map crosses triangles sharply and the count is unbiased.
+struct MeshUvDensity {
+  std::span<const glm::vec2> corner_uvs;
+  const UvDensityMap& map;
+};
+
+// Errors: indices out of range or not a multiple of 3, size mismatch of normals/density/corner_uvs,
+// non-finite positions, too many blades (with uv: counted at density 1). `uv` is not kept.
 Result<BladeSet> generate_blades_on_mesh(const GrassFieldSettings& field, const BladeSettings& blade,
-                                         const GroundMesh& mesh, const glm::dvec3& origin);
+                                         const GroundMesh& mesh, const glm::dvec3& origin,
+                                         const MeshUvDensity* uv = nullptr);
 
 // Validates the placement settings; errors name "grass.field.<name>" / "grass.blade.<name>".
 Status check_settings(const GrassFieldSettings& field, const BladeSettings& blade);

@@ -18,6 +18,7 @@ namespace sylva::terrain {
 struct TriangleMesh {
   std::vector<glm::vec3> positions;
   std::vector<std::uint32_t> indices;  // three per triangle
+  std::vector<glm::vec2> corner_uvs;   // parallel to indices when the source has UVs, else empty
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
@@ -28,17 +29,23 @@ struct PolygonMesh {
   std::vector<std::uint32_t> face_indices;  // concatenated
   // Per position when the file has vertex colours (OBJ `v x y z r g b`, glTF COLOR_0), else empty.
   std::vector<glm::vec3> colors;
+  // Per face corner (parallel to face_indices) when every face has texture coordinates (OBJ
+  // `f a/t`, glTF TEXCOORD_0), else empty. Image convention: (0, 0) is the image's top-left
+  // corner and v grows downwards (glTF's; OBJ's vt v is flipped to 1 - v on reading).
+  std::vector<glm::vec2> corner_uvs;
   std::size_t face_count() const { return face_sizes.size(); }
   bool all_triangles() const;
 };
 
 // Parses Wavefront OBJ text: `v x y z [w]` or `v x y z r g b` (the common vertex-colour
 // extension: colours in [0, 1], on every vertex or none) and `f a b c ...` with a, a/t, a/t/n
-// or a//n (1-based or negative relative indices); comments, vt, vn, o, g, s, usemtl and mtllib are
-// ignored; other statements are skipped with a warning naming the line. Errors (kParse) name
+// or a//n (1-based or negative relative indices), `vt u [v [w]]` (texture coordinates, kept in
+// corner_uvs when every face corner names one; a mix of corners with and without drops them with a
+// warning); comments, vn, o, g, s, usemtl and mtllib are ignored; other statements are skipped with a warning naming the line. Errors (kParse) name
 // `source:line` and say what is wrong: a bad number, a face with fewer than 3 vertices, an
 // index of 0 or outside the vertices, a non-finite coordinate, a colour outside [0, 1], a
-// vertex without a colour among coloured ones (or the reverse), no faces at all.
+// vertex without a colour among coloured ones (or the reverse), a texture index outside the vt
+// read so far, no faces at all.
 Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source = "<obj>");
 Result<PolygonMesh> load_obj(const std::filesystem::path& path);
 // The Open Inventor ASCII subset of the seed's general-model files (cilaos.iv): the first line
@@ -56,10 +63,11 @@ Result<PolygonMesh> load_iv(const std::filesystem::path& path);
 // triangle primitive (mode 4) of every mesh reached from the default scene's nodes (or from every
 // root node when there is no scene), transformed by the node's world matrix; other modes are
 // skipped. COLOR_0 (VEC3/VEC4 of FLOAT or normalized unsigned byte/short) fills colors (white for
-// primitives without it). Errors name the file and the glTF JSON path
+// primitives without it). TEXCOORD_0 (VEC2 of FLOAT or normalized unsigned byte/short) fills
+// corner_uvs when every primitive has it (dropped with a warning otherwise). Errors name the file and the glTF JSON path
 // (`meshes[0].primitives[1].indices`, `bufferViews[2]`): a missing buffer file, an accessor past
 // its view or buffer, POSITION not VEC3 FLOAT, an index outside the primitive's vertices, a
-// COLOR_0 of another type, count or outside [0, 1]. gltf_supported() is false when the build
+// COLOR_0 or TEXCOORD_0 of another type or count, a COLOR_0 outside [0, 1], a non-finite UV. gltf_supported() is false when the build
 // has no tinygltf; load_gltf then returns kUnsupported.
 bool gltf_supported();
 Result<PolygonMesh> load_gltf(const std::filesystem::path& path);
