@@ -184,6 +184,11 @@ Result<Image> read_slot_image(const ModuleBuildContext& ctx, const MapSlot& slot
   const std::filesystem::path file = ctx.document->resolve(ctx.section->maps.at(slot.name));
   ImageReadOptions options;
   options.max_side = 16384;
+  // Refused from the header, before any pixel is decoded: the image fills two or three maps of
+  // its size, so 256 MiB as floats (4096^2 RGBA, 8192^2 grey) is the most read; a one-colour
+  // 16384^2 grey PNG of 1.2 MB would otherwise decode to 1 GiB and only then fail its channel
+  // check (issue 16, "Bad input").
+  options.max_bytes = std::uint64_t{256} << 20;
   options.allow_non_finite = false;
   auto image = read_image(file, options);
   if (!image.ok()) return make_error(image.error().code, fmt::format("{}: {}", key, image.error().message));
