@@ -1,6 +1,7 @@
 #include <sylva/grass/far_field.hpp>
 
 #include "shadow_binding.hpp"
+#include "tile_merge.hpp"
 
 #include <sylva/core/log.hpp>
 #include <sylva/core/params.hpp>
@@ -12,7 +13,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 namespace sylva::render::embedded {
@@ -72,26 +75,80 @@ void box_distances(const glm::vec3& p, const glm::vec3& lo, const glm::vec3& hi,
 
 }  // namespace
 
-Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin) {
-  const Rect in = maps.rect();
-  if (!(margin > 0.0) || in.empty()) return maps;
-  const Rect out{in.min - margin, in.max + margin};
-  const glm::dvec2 texel = glm::max(maps.density_texel(), out.size() / 2048.0);
-  const int w = std::max(1, static_cast<int>(std::ceil(out.size().x / texel.x)));
-  const int h = std::max(1, static_cast<int>(std::ceil(out.size().y / texel.y)));
-  Image density(w, h, 1), height(w, h, 1), tint(w, h, 3);
-  // Sample points clamped a hair inside the original rectangle, where every map is defined.
+namespace {
+
+// The sample point of texel (i, j) of extended images over `out` of w x h texels: its centre,
+// clamped a hair inside the original rectangle, where every map is defined.
+glm::dvec2 extended_sample_point(const Rect& in, const Rect& out, int w, int h, int i, int j) {
   const glm::dvec2 lo = in.min + 1e-6 * in.size(), hi = in.max - 1e-6 * in.size();
-  for (int j = 0; j < h; ++j) {
-    for (int i = 0; i < w; ++i) {
-      const glm::dvec2 p = glm::clamp(out.min + (glm::dvec2(i, j) + 0.5) * out.size() / glm::dvec2(w, h), lo, hi);
-      density.at(i, j, 0) = maps.density(p.x, p.y);
-      height.at(i, j, 0) = maps.height_scale(p.x, p.y);
-      const glm::vec3 t = maps.tint(p.x, p.y);
-      for (int c = 0; c < 3; ++c) tint.at(i, j, c) = t[c];
+  return glm::clamp(out.min + (glm::dvec2(i, j) + 0.5) * out.size() / glm::dvec2(w, h), lo, hi);
+}
+
+void resample_extended_texel(ExtendedMapImages& e, const GrassMaps& maps, int i, int j) {
+  const glm::dvec2 p = extended_sample_point(maps.rect(), e.rect, e.density.width(), e.density.height(), i, j);
+  e.density.at(i, j, 0) = maps.density(p.x, p.y);
+  e.height.at(i, j, 0) = maps.height_scale(p.x, p.y);
+  const glm::vec3 t = maps.tint(p.x, p.y);
+  for (int c = 0; c < 3; ++c) e.tint.at(i, j, c) = t[c];
+}
+
+}  // namespace
+
+ExtendedMapImages extend_map_images(const GrassMaps& maps, double margin) {
+  ExtendedMapImages e;
+  const Rect in = maps.rect();
+  if (!(margin > 0.0) || in.empty()) return e;
+  e.rect = {in.min - margin, in.max + margin};
+  const glm::dvec2 texel = glm::max(maps.density_texel(), e.rect.size() / 2048.0);
+  const int w = std::max(1, static_cast<int>(std::ceil(e.rect.size().x / texel.x)));
+  const int h = std::max(1, static_cast<int>(std::ceil(e.rect.size().y / texel.y)));
+  e.density = Image(w, h, 1);
+  e.height = Image(w, h, 1);
+  e.tint = Image(w, h, 3);
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) resample_extended_texel(e, maps, i, j);
+  return e;
+}
+
+Rect refresh_extended_map_images(ExtendedMapImages& e, const GrassMaps& maps, const Rect& changed) {
+  if (e.rect.empty() || changed.empty()) return {};
+  const int w = e.density.width(), h = e.density.height();
+  const glm::dvec2 texel = e.rect.size() / glm::dvec2(w, h);
+  // A texel's sample point is its centre clamped into maps.rect(): texels beyond an edge the edit
+  // touches sample the edit too, so the candidates run out to the margin there.
+  const Rect in = maps.rect();
+  auto first = [&](double lo, double in_lo, double out_lo, double t) {
+    return lo <= in_lo ? 0 : static_cast<int>(std::floor((lo - out_lo) / t - 0.5)) - 1;
+  };
+  auto last = [&](double hi, double in_hi, double out_lo, double t, int n) {
+    return hi >= in_hi ? n : static_cast<int>(std::ceil((hi - out_lo) / t - 0.5)) + 2;
+  };
+  const int i0 = std::clamp(first(changed.min.x, in.min.x + 1e-6 * in.size().x, e.rect.min.x, texel.x), 0, w);
+  const int i1 = std::clamp(last(changed.max.x, in.max.x - 1e-6 * in.size().x, e.rect.min.x, texel.x, w), 0, w);
+  const int j0 = std::clamp(first(changed.min.y, in.min.y + 1e-6 * in.size().y, e.rect.min.y, texel.y), 0, h);
+  const int j1 = std::clamp(last(changed.max.y, in.max.y - 1e-6 * in.size().y, e.rect.min.y, texel.y, h), 0, h);
+  int ri0 = w, ri1 = -1, rj0 = h, rj1 = -1;
+  for (int j = j0; j < j1; ++j) {
+    for (int i = i0; i < i1; ++i) {
+      const glm::dvec2 p = extended_sample_point(in, e.rect, w, h, i, j);
+      if (p.x < changed.min.x || p.x > changed.max.x || p.y < changed.min.y || p.y > changed.max.y) continue;
+      resample_extended_texel(e, maps, i, j);
+      ri0 = std::min(ri0, i);
+      ri1 = std::max(ri1, i);
+      rj0 = std::min(rj0, j);
+      rj1 = std::max(rj1, j);
     }
   }
-  return GrassMaps::from_images(out, &density, &height, &tint);
+  if (ri1 < 0) return {};
+  // The bilinear interpolant (and a cell's exact integral) reads a texel within one texel of its
+  // centre; one more texel and a hair of margin against rounding.
+  return {e.rect.min + (glm::dvec2(ri0, rj0) - 1.01) * texel, e.rect.min + (glm::dvec2(ri1, rj1) + 2.01) * texel};
+}
+
+Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin) {
+  const ExtendedMapImages e = extend_map_images(maps, margin);
+  if (e.rect.empty()) return maps;
+  return e.maps();
 }
 
 float slope_keep(float normal_y, float max_slope_deg) {
@@ -133,7 +190,8 @@ namespace {
 // density 1, as wide as its longer side, their strand keep in size.z (far_field.hpp).
 Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                               const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far,
-                              double t, double per_m2, float width, std::uint32_t seed, const char* what, bool wide) {
+                              double t, double per_m2, float width, std::uint32_t seed, const char* what, bool wide,
+                              const Rect* within) {
   SYLVA_TRY(check_settings(field, blade));
   SYLVA_TRY(validate_params(far, "grass.far"));
   if (ground.samples().empty()) return make_error(ErrorCode::kInvalidArgument, "grass far field: the ground height field is empty");
@@ -143,7 +201,7 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
   if (area.empty()) return set;
   const Result<TileRange> range = tiles_overlapping(area, t);
   if (!range.ok()) return range.error();
-  const auto [x0, x1, z0, z1] = *range;
+  const auto [x0, x1, z0, z1] = within ? clump_tile_range(area, *within, t) : *range;
   const double expected = maps.density_integral(area) * per_m2;
   if (expected > static_cast<double>(kMaxBlades)) {
     return make_error(ErrorCode::kLimit, fmt::format("{}: {:.0f} clumps is above the limit {}", what, expected, kMaxBlades));
@@ -218,19 +276,34 @@ Result<ClumpSet> place_clumps(const GrassFieldSettings& field, const BladeSettin
 
 }  // namespace
 
-Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
-                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
-  // A different seed than the blades so clumps do not sit on the first blades.
-  return place_clumps(field, blade, maps, ground, origin, far, field.tile_size, far.clumps_per_m2, far.clump_width,
-                      field.seed ^ 0xc1a3a5u, "grass.far.clumps_per_m2", false);
+TileRange clump_tile_range(const Rect& area, const Rect& within, double tile) {
+  const Rect r = area.intersect(within);
+  if (r.empty()) return {};
+  const Result<TileRange> range = tiles_overlapping(r, tile);
+  return range.ok() ? *range : TileRange{};
 }
 
+Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far,
+                                 const Rect* within) {
+  // A different seed than the blades so clumps do not sit on the first blades.
+  return place_clumps(field, blade, maps, ground, origin, far, field.tile_size, far.clumps_per_m2, far.clump_width,
+                      field.seed ^ 0xc1a3a5u, "grass.far.clumps_per_m2", false, within);
+}
+
+namespace {
+double wide_group_size(const GrassFieldSettings& field, const FarFieldSettings& far) {
+  return static_cast<double>(field.tile_size) * far.wide_group;
+}
+}  // namespace
+
 Result<ClumpSet> generate_wide_billboards(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
-                                          const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
+                                          const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far,
+                                          const Rect* within) {
   // Seed 003 §2.4.3 / Tab. 4.2: wide_per_group billboards per (clipped) group at density 1.
-  const double group = static_cast<double>(field.tile_size) * far.wide_group;
+  const double group = wide_group_size(field, far);
   return place_clumps(field, blade, maps, ground, origin, far, group, far.wide_per_group / (group * group),
-                      static_cast<float>(group), field.seed ^ 0x3f1de5u, "grass.far.wide_per_group", true);
+                      static_cast<float>(group), field.seed ^ 0x3f1de5u, "grass.far.wide_per_group", true, within);
 }
 
 std::vector<float> clump_coverage_curve(const Image& atlas) {
@@ -592,13 +665,15 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   render::embedded::register_render_shaders();
   render::embedded::register_grass_shaders();
   SYLVA_TRY(validate_params(far, "grass.far"));
-  auto clump_maps = extend_maps(maps, far.clump_margin);
+  FarField f;
+  f.clump_map_images_ = extend_map_images(maps, far.clump_margin);
+  Result<GrassMaps> clump_maps = f.clump_map_images_.rect.empty() ? Result<GrassMaps>(maps) : f.clump_map_images_.maps();
   if (!clump_maps) return clump_maps.error();
   auto clumps = generate_clumps(field, blade, *clump_maps, ground, origin, far);
   if (!clumps) return clumps.error();
 
-  FarField f;
   f.settings_ = far;
+  f.built_ = far;
   f.origin_ = origin;
   f.map_rect_ = maps.rect();
   f.clump_tiles_ = std::move(clumps->tiles);
@@ -624,8 +699,8 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   f.clump_program_ = std::move(*cp);
   f.ground_program_ = std::move(*gp);
 
-  if (clumps->clumps.empty()) clumps->clumps.push_back(Clump{});
-  f.clumps_ = render::Buffer::immutable(std::span<const Clump>(clumps->clumps));
+  f.clump_records_ = std::move(clumps->clumps);
+  f.upload_clumps(0);
   f.wind_ = render::Buffer::immutable(sizeof(WindGpuParams), nullptr, true);
   f.clump_vao_ = render::VertexArray::create();
 
@@ -639,7 +714,8 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   std::vector<std::uint32_t>& indices = layer->indices;
   if (vertices.empty()) vertices.assign(kGroundFloats, 0.0f);
   if (indices.empty()) indices.assign(3, 0u);
-  f.ground_vertices_ = render::Buffer::immutable(std::span<const float>(vertices));
+  f.ground_vertices_ = render::Buffer::immutable(std::span<const float>(vertices), true);  // update_region
+  f.ground_vertex_data_ = std::move(vertices);
   f.ground_indices_ = render::Buffer::immutable(std::span<const std::uint32_t>(indices));
   f.ground_vao_ = render::VertexArray::create();
   f.ground_vao_.attribute(0, 0, 3, GL_FLOAT, 0);
@@ -659,16 +735,204 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   linear.min_filter = GL_LINEAR;
   linear.wrap = GL_CLAMP_TO_EDGE;
   linear.encoding = render::TextureEncoding::kFloat32;
-  auto dens = render::Texture::from_image(maps.density_image(), linear);
+  f.density_image_ = maps.density_image();
+  auto dens = render::Texture::from_image(f.density_image_, linear);
   if (!dens) return dens.error();
   f.density_ = std::move(*dens);
   // The tint map (maps.hpp) colours the ground layer as it colours blades and clumps.
   f.tinted_ = maps.has_tint_map();
-  auto tint = render::Texture::from_image(maps.tint_image(), linear);
+  f.tint_image_ = maps.tint_image();
+  auto tint = render::Texture::from_image(f.tint_image_, linear);
   if (!tint) return tint.error();
   f.tint_ = std::move(*tint);
   return f;
 }
+
+void FarField::upload_clumps(std::size_t first_changed) {
+  const std::size_t n = clump_records_.size();
+  if (n > clump_capacity_ || !clumps_) {
+    // Room for edits that add clumps (an eighth more), so a dab re-uploads only its changed range.
+    clump_capacity_ = std::max<std::size_t>(n + n / 8, 1);
+    clumps_ = render::Buffer::immutable(clump_capacity_ * sizeof(Clump), nullptr, true);
+    first_changed = 0;
+  }
+  if (first_changed < n) {
+    clumps_.update(first_changed * sizeof(Clump), (n - first_changed) * sizeof(Clump), clump_records_.data() + first_changed);
+  }
+}
+
+namespace {
+
+// Rewrites texels [x0, x1) x [y0, y1) (image rows, row 0 = rect min) of `tex` from `im`; the
+// texture holds the rows flipped (render::Texture::upload).
+void upload_texels(const render::Texture& tex, const Image& im, int x0, int y0, int x1, int y1) {
+  const int c = im.channels();
+  std::vector<float> rows(static_cast<std::size_t>(x1 - x0) * static_cast<std::size_t>(y1 - y0) * static_cast<std::size_t>(c));
+  std::size_t k = 0;
+  for (int y = y1 - 1; y >= y0; --y)
+    for (int x = x0; x < x1; ++x)
+      for (int ch = 0; ch < c; ++ch) rows[k++] = im.at(x, y, ch);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTextureSubImage2D(tex.id(), 0, x0, im.height() - y1, x1 - x0, y1 - y0, c == 1 ? GL_RED : GL_RGB, GL_FLOAT, rows.data());
+}
+
+// Copies into `held` (and its texture) the bounding box of the texels where `now` differs from it.
+void refresh_texels(Image& held, const render::Texture& tex, const Image& now) {
+  int x0 = held.width(), x1 = -1, y0 = held.height(), y1 = -1;
+  for (int y = 0; y < held.height(); ++y)
+    for (int x = 0; x < held.width(); ++x)
+      for (int c = 0; c < held.channels(); ++c) {
+        if (std::bit_cast<std::uint32_t>(held.at(x, y, c)) == std::bit_cast<std::uint32_t>(now.at(x, y, c))) continue;
+        x0 = std::min(x0, x);
+        x1 = std::max(x1, x);
+        y0 = std::min(y0, y);
+        y1 = std::max(y1, y);
+      }
+  if (x1 < 0) return;
+  for (int y = y0; y <= y1; ++y)
+    for (int x = x0; x <= x1; ++x)
+      for (int c = 0; c < held.channels(); ++c) held.at(x, y, c) = now.at(x, y, c);
+  upload_texels(tex, held, x0, y0, x1 + 1, y1 + 1);
+}
+
+Rect bounding(const Rect& a, const Rect& b) {
+  if (a.empty()) return b;
+  if (b.empty()) return a;
+  return {glm::min(a.min, b.min), glm::max(a.max, b.max)};
+}
+
+}  // namespace
+
+Status FarField::update_region(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                               const HeightField& ground, std::span<const Rect> areas, bool ground_changed) {
+  const FarFieldSettings& far = built_;
+  const Image density = maps.density_image(), tint = maps.tint_image();
+  auto same_size = [](const Image& a, const Image& b) {
+    return a.width() == b.width() && a.height() == b.height() && a.channels() == b.channels();
+  };
+  if (maps.rect().min != map_rect_.min || maps.rect().max != map_rect_.max || !same_size(density, density_image_) ||
+      !same_size(tint, tint_image_) || maps.has_tint_map() != tinted_) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "grass far field: the maps' rectangle, size or tint changed since it was built; it needs a full rebuild");
+  }
+  // Where the clumps' inputs changed: the maps' edits, grown for a ground edit by the two samples
+  // that HeightField::normal's central differences reach (slope_keep reads it).
+  std::vector<Rect> changed;
+  for (Rect a : areas) {
+    if (ground_changed) a = {a.min - 2.0 * ground.spacing(), a.max + 2.0 * ground.spacing()};
+    if (!a.empty()) changed.push_back(a);
+  }
+  // The clumps' maps (extended by clump_margin): resample the edited texels; each edit then reaches
+  // where the extended interpolant changed (and the ground edit's own area).
+  Result<GrassMaps> clump_maps = maps;
+  if (!clump_map_images_.rect.empty()) {
+    for (Rect& a : changed) {
+      const Rect reach = refresh_extended_map_images(clump_map_images_, maps, a);
+      a = ground_changed ? bounding(reach, a) : reach;
+    }
+    clump_maps = clump_map_images_.maps();
+    if (!clump_maps) return clump_maps.error();
+  }
+  // Splice the fresh tiles of each edit into the small clumps, then the wide billboards' groups.
+  std::vector<Clump> small(clump_records_.begin(), clump_records_.begin() + static_cast<std::ptrdiff_t>(clump_count_));
+  std::vector<Clump> wide(clump_records_.begin() + static_cast<std::ptrdiff_t>(clump_count_), clump_records_.end());
+  std::vector<GrassTile> small_tiles = clump_tiles_, wide_tiles = wide_tiles_;
+  for (GrassTile& t : wide_tiles) t.first -= static_cast<std::uint32_t>(clump_count_);
+  const bool with_wide = far.wide_billboards;
+  for (const Rect& a : changed) {
+    auto fresh = generate_clumps(field, blade, *clump_maps, ground, origin_, far, &a);
+    if (!fresh) return fresh.error();
+    auto merged = detail::merge_tiles<Clump>(small, small_tiles, fresh->clumps, fresh->tiles,
+                                             clump_tile_range(clump_maps->rect(), a, field.tile_size));
+    small = std::move(merged.items);
+    small_tiles = std::move(merged.tiles);
+    if (!with_wide) continue;
+    auto fresh_wide = generate_wide_billboards(field, blade, *clump_maps, ground, origin_, far, &a);
+    if (!fresh_wide) return fresh_wide.error();
+    auto merged_wide = detail::merge_tiles<Clump>(wide, wide_tiles, fresh_wide->clumps, fresh_wide->tiles,
+                                                  clump_tile_range(clump_maps->rect(), a, wide_group_size(field, far)));
+    wide = std::move(merged_wide.items);
+    wide_tiles = std::move(merged_wide.tiles);
+  }
+  if (static_cast<double>(small.size() + wide.size()) > static_cast<double>(kMaxBlades)) {
+    return make_error(ErrorCode::kLimit, fmt::format("grass.far.clumps_per_m2: {} clumps is above the limit {}",
+                                                     small.size() + wide.size(), kMaxBlades));
+  }
+  std::vector<Clump> records = std::move(small);
+  const std::size_t small_count = records.size();
+  records.insert(records.end(), wide.begin(), wide.end());
+  for (GrassTile& t : wide_tiles) t.first += static_cast<std::uint32_t>(small_count);
+  // Re-upload from the first record that differs (the records after an edit that changed the
+  // count all move).
+  const auto same = [](const Clump& x, const Clump& y) { return std::memcmp(&x, &y, sizeof(Clump)) == 0; };
+  const std::size_t common = std::min(records.size(), clump_records_.size());
+  const auto first = static_cast<std::size_t>(
+      std::mismatch(records.begin(), records.begin() + static_cast<std::ptrdiff_t>(common), clump_records_.begin(), same).first -
+      records.begin());
+  clump_records_ = std::move(records);
+  clump_count_ = small_count;
+  wide_count_ = clump_records_.size() - small_count;
+  clump_tiles_ = std::move(small_tiles);
+  wide_tiles_ = std::move(wide_tiles);
+  upload_clumps(first);
+
+  // The ground layer's density and tint textures: their changed texels.
+  refresh_texels(density_image_, density_, density);
+  refresh_texels(tint_image_, tint_, tint);
+
+  if (ground_changed) {
+    // The layer's vertices sit on the ground's samples: remade on the CPU (a few ms), and only the
+    // range that changed goes to the GPU; the chunks' bounds follow.
+    auto layer = build_ground_layer(field, blade, maps, ground, origin_, far);
+    if (!layer) return layer.error();
+    if (layer->vertices.size() != ground_vertex_data_.size()) {
+      return make_error(ErrorCode::kInvalidArgument, "grass far field: the ground layer's size changed; it needs a full rebuild");
+    }
+    const auto bits = [](float x, float y) { return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y); };
+    const auto lo = std::mismatch(layer->vertices.begin(), layer->vertices.end(), ground_vertex_data_.begin(), bits);
+    if (lo.first != layer->vertices.end()) {
+      const auto hi = std::mismatch(layer->vertices.rbegin(), layer->vertices.rend(), ground_vertex_data_.rbegin(), bits);
+      const auto a = static_cast<std::size_t>(lo.first - layer->vertices.begin());
+      const auto b = layer->vertices.size() - static_cast<std::size_t>(hi.first - layer->vertices.rbegin());
+      ground_vertices_.update(a * sizeof(float), (b - a) * sizeof(float), layer->vertices.data() + a);
+      ground_vertex_data_ = std::move(layer->vertices);
+    }
+    chunks_ = std::move(layer->chunks);
+    coarse_chunks_ = std::move(layer->coarse);
+  }
+  return {};
+}
+
+std::vector<Clump> FarField::read_clump_buffer() const {
+  std::vector<Clump> out(clump_records_.size());
+  if (!out.empty()) clumps_.read(0, out.size() * sizeof(Clump), out.data());
+  return out;
+}
+
+std::vector<float> FarField::read_ground_vertex_buffer() const {
+  std::vector<float> out(ground_vertex_data_.size());
+  if (!out.empty()) ground_vertices_.read(0, out.size() * sizeof(float), out.data());
+  return out;
+}
+
+namespace {
+// A texture's level 0 as an image in the input's row order (row 0 = rect min).
+Image read_texture(const render::Texture& tex, const Image& like) {
+  const int w = like.width(), h = like.height(), c = like.channels();
+  std::vector<float> rows(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * static_cast<std::size_t>(c));
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glGetTextureImage(tex.id(), 0, c == 1 ? GL_RED : GL_RGB, GL_FLOAT, static_cast<GLsizei>(rows.size() * sizeof(float)), rows.data());
+  Image out(w, h, c);
+  std::size_t k = 0;
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = 0; x < w; ++x)
+      for (int ch = 0; ch < c; ++ch) out.at(x, y, ch) = rows[k++];
+  return out;
+}
+}  // namespace
+
+Image FarField::read_density_texture() const { return read_texture(density_, density_image_); }
+Image FarField::read_tint_texture() const { return read_texture(tint_, tint_image_); }
 
 void FarField::set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
                         const glm::vec3& tip_color, float ambient, float translucency) {

@@ -1,5 +1,7 @@
 #include <sylva/grass/generator.hpp>
 
+#include "tile_merge.hpp"
+
 #include <sylva/core/params.hpp>
 #include <sylva/core/rng.hpp>
 #include <sylva/grass/field_color.hpp>
@@ -314,28 +316,12 @@ Result<std::uint32_t> regenerate_tiles(BladeSet& set, const GrassFieldSettings& 
   fresh.origin = set.origin;
   append_tiles(field, blade, maps, ground, *range, fresh);
   // Merge in generate_blades' order (z, then x): old tiles outside the area, fresh ones inside.
-  const auto before = [](const TileKey& a, const TileKey& b) { return a.z != b.z ? a.z < b.z : a.x < b.x; };
-  const auto inside = [&r = *range](const TileKey& k) { return k.x >= r.x0 && k.x < r.x1 && k.z >= r.z0 && k.z < r.z1; };
-  const TileKey first_key{static_cast<std::int32_t>(range->x0), 0, static_cast<std::int32_t>(range->z0)};
+  auto merged = detail::merge_tiles<Blade>(set.blades, set.tiles, fresh.blades, fresh.tiles, *range);
   BladeSet out;
   out.origin = set.origin;
-  out.blades.reserve(set.blades.size() + fresh.blades.size());
-  out.tiles.reserve(set.tiles.size() + fresh.tiles.size());
-  std::uint32_t first_changed = unchanged;
-  std::size_t i = 0, j = 0;
-  while (i < set.tiles.size() || j < fresh.tiles.size()) {
-    if (i < set.tiles.size() && inside(set.tiles[i].key)) {
-      ++i;
-      continue;
-    }
-    const bool take_old = j == fresh.tiles.size() || (i < set.tiles.size() && before(set.tiles[i].key, fresh.tiles[j].key));
-    GrassTile t = take_old ? set.tiles[i++] : fresh.tiles[j++];
-    const Blade* src = (take_old ? set.blades.data() : fresh.blades.data()) + t.first;
-    if (first_changed == unchanged && !before(t.key, first_key)) first_changed = static_cast<std::uint32_t>(out.blades.size());
-    t.first = static_cast<std::uint32_t>(out.blades.size());
-    out.blades.insert(out.blades.end(), src, src + t.count);
-    out.tiles.push_back(t);
-  }
+  out.blades = std::move(merged.items);
+  out.tiles = std::move(merged.tiles);
+  std::uint32_t first_changed = merged.first_changed;
   if (out.blades.size() > kMaxBlades) {
     return make_error(ErrorCode::kLimit, fmt::format("grass.field.density: {} blades/m^2 over this map gives {} "
                                                      "blades, above the limit of {}",

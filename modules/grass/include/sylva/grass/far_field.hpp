@@ -80,7 +80,16 @@
 // edges (the neighbour is coarse too, or there is none) or stitched to the ordinary chunks'
 // vertices (the neighbour is drawn ordinary), so the layer stays watertight without skirts.
 //
-// Height fields only (a mesh field has no far field: draw its blades to near_distance).
+// Height fields only. A mesh surface gets one when the mesh is a height field
+// (mesh_height_field.hpp rasterises it into one); otherwise it draws its blades to near_distance.
+//
+// Tile-local updates (issue 16). After a map or ground edit, update_region() remakes only what the
+// edit reaches: the clumps of the tiles (and wide-billboard groups) whose maps changed, the texels
+// of the margin-extended maps (extend_maps) whose samples lie in the edit, the changed texels of the
+// density and tint textures (glTextureSubImage2D) and, after a ground edit, the ground layer's
+// changed vertices (glNamedBufferSubData of the changed range). Clumps are a function of their
+// tile alone (world-anchored sampler), so the result equals create() with the same inputs bit for
+// bit (grass_tile_edit_gl_test compares records, GPU buffers, textures and pictures).
 
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/image.hpp>
@@ -99,6 +108,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace sylva::grass {
@@ -213,6 +223,19 @@ struct FarFieldSettings {
 // every map continues its edge value. Texels keep the density map's size up to 2048 per side.
 Result<GrassMaps> extend_maps(const GrassMaps& maps, double margin);
 
+// extend_maps' images, kept so that an edit resamples only its texels. Empty rect: margin 0 (the
+// maps are used as they are).
+struct ExtendedMapImages {
+  Rect rect;
+  Image density, height, tint;
+  Result<GrassMaps> maps() const { return GrassMaps::from_images(rect, &density, &height, &tint); }
+};
+ExtendedMapImages extend_map_images(const GrassMaps& maps, double margin);
+// Resamples the texels of `images` whose sample point lies in `changed` (a rectangle of `maps`
+// where its interpolant changed) and returns the rectangle where the extended interpolant may
+// have changed (those texels' cells grown by one texel); empty when no texel was resampled.
+Rect refresh_extended_map_images(ExtendedMapImages& images, const GrassMaps& maps, const Rect& changed);
+
 // Share in [0, 1] of far grass kept on ground whose normal has this y (max_slope_deg above).
 float slope_keep(float normal_y, float max_slope_deg);
 
@@ -259,13 +282,20 @@ struct ClumpSet {
   std::vector<GrassTile> tiles;  // runs of clumps, bounds for culling
 };
 
-// World-anchored clumps for every tile overlapping maps.rect() (same tiles as the blades).
+// World-anchored clumps for every tile overlapping maps.rect() (same tiles as the blades); with
+// `within`, only the tiles of clump_tile_range(maps.rect(), *within, tile) (update_region).
 Result<ClumpSet> generate_clumps(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
-                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
+                                 const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far,
+                                 const Rect* within = nullptr);
 
 // Wide billboards over groups of far.wide_group^2 tiles (header comment); tiles are the groups.
 Result<ClumpSet> generate_wide_billboards(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
-                                          const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far);
+                                          const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far,
+                                          const Rect* within = nullptr);
+
+// The tiles of side `tile` [m] overlapping both the clumps' area and `within`; empty (x0 == x1)
+// when they do not meet.
+TileRange clump_tile_range(const Rect& area, const Rect& within, double tile);
 
 // The ground layer's mesh (GL-free; FarField::create uploads it). Vertices: xyz blade-set local
 // position, xyz normal, rgb field colour. `chunks`: 16 x 16 quads each; `coarse` (coarse_ground
@@ -314,6 +344,29 @@ class FarField : public render::Drawable {
                                  const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far = {});
 
   FarFieldSettings& settings() { return settings_; }
+
+  // Tile-local update after an edit (header comment "Tile-local updates"): `areas` are the world
+  // rectangles where the maps' interpolants (or, with ground_changed, the ground's heights)
+  // changed, as for regenerate_tiles. `field`, `blade`, the origin and the far settings must be
+  // create()'s; `maps` and `ground` are the edited ones. Errors (the far field is then unchanged
+  // on the GPU but may hold partly updated CPU data: rebuild it with create()): a maps rectangle,
+  // map size or tint presence other than at create() ("needs a full rebuild"), or those of create().
+  Status update_region(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
+                       const HeightField& ground, std::span<const Rect> areas, bool ground_changed);
+
+  // What the far field holds, for tests comparing an update with a rebuild. CPU: the clump records
+  // (small clumps, then wide billboards), tiles, the density and tint images of the textures and the
+  // ground layer's vertices; GPU: the same read back (first clump_records().size() records).
+  const std::vector<Clump>& clump_records() const { return clump_records_; }
+  const std::vector<GrassTile>& clump_tiles() const { return clump_tiles_; }
+  const std::vector<GrassTile>& wide_tiles() const { return wide_tiles_; }
+  const Image& density_image() const { return density_image_; }
+  const Image& tint_image() const { return tint_image_; }
+  const std::vector<float>& ground_vertices() const { return ground_vertex_data_; }
+  std::vector<Clump> read_clump_buffer() const;
+  std::vector<float> read_ground_vertex_buffer() const;
+  Image read_density_texture() const;
+  Image read_tint_texture() const;
   // The blades' culling, wind response, colours and shading (ambient, translucency: ShadingSettings),
   // so the far representations match the near field.
   void set_near(float near_distance, float wind_response, float mean_stiffness, const glm::vec3& base_color,
@@ -338,8 +391,19 @@ class FarField : public render::Drawable {
   std::uint64_t last_wide_billboards_drawn() const { return wide_drawn_; }
 
  private:
+  // The clump buffer holds clump_records_ in room for clump_capacity_ records (an edit that adds
+  // clumps re-uploads from its first changed record without reallocating).
+  void upload_clumps(std::size_t first_changed);
+
   FarFieldSettings settings_;
+  FarFieldSettings built_;  // the settings create() generated with (update_region uses them)
   glm::dvec3 origin_{0.0};
+  std::vector<Clump> clump_records_;
+  std::size_t clump_capacity_ = 0;
+  ExtendedMapImages clump_map_images_;  // extend_maps(maps, clump_margin); empty rect: margin 0
+  Image density_image_;
+  Image tint_image_;
+  std::vector<float> ground_vertex_data_;
   float near_distance_ = 50.0f;
   float wind_response_ = 6.0f;
   float mean_stiffness_ = 60.0f;
