@@ -74,10 +74,31 @@ TEST(BakeProcesses, ThreeTileProcessesMergeByteIdenticallyToOneProcess) {
   EXPECT_TRUE(one == text_of(dir / "merged.sylvaterrain"));
   EXPECT_NE(text_of(dir / "one.log").find("ETA"), std::string::npos) << text_of(dir / "one.log");
 
+  // The ground heights travel with the shares: every share and both files hold the 700^2 field
+  // (3 x 3 tiles of 256^2: 9 checksums and the table's) right after the 128-byte header.
+  const std::size_t heights_end = 128 + 10 * 8 + 700 * 700 * 4;
+  EXPECT_TRUE(one.compare(0, heights_end, text_of(dir / "s2.share"), 0, heights_end) != 0) << "headers differ";
+  EXPECT_TRUE(one.compare(128, heights_end - 128, text_of(dir / "s2.share"), 128, heights_end - 128) == 0);
+  // A damaged height tile in share 0 (the one whose heights are copied): named with its tile.
+  const std::string good0 = text_of(dir / "s0.share");
+  {
+    std::string bad = good0;
+    bad[heights_end - 10] = static_cast<char>(bad[heights_end - 10] ^ 0x40);  // the last tile
+    ASSERT_TRUE(write_file_atomic(dir / "s0.share", bad).ok());
+  }
+  EXPECT_EQ(run_bake({"merge", (dir / "s0.share").string(), (dir / "s1.share").string(), (dir / "s2.share").string(),
+                      "--out", (dir / "bad.sylvaterrain").string()},
+                     dir / "bad.log"),
+            1);
+  EXPECT_NE(text_of(dir / "bad.log").find("s0.share: height tile 8 (samples x 512..699, z 512..699): checksum mismatch"),
+            std::string::npos) << text_of(dir / "bad.log");
+  EXPECT_FALSE(fs::exists(dir / "bad.sylvaterrain"));
+  ASSERT_TRUE(write_file_atomic(dir / "s0.share", good0).ok());
+
   // A damaged share: the merge names it and the chunk, and writes nothing.
   {
     std::string bad = text_of(dir / "s1.share");
-    bad[200] = static_cast<char>(bad[200] ^ 0x40);
+    bad[heights_end + 200] = static_cast<char>(bad[heights_end + 200] ^ 0x40);  // its first blob
     ASSERT_TRUE(write_file_atomic(dir / "s1.share", bad).ok());
   }
   EXPECT_EQ(run_bake({"merge", (dir / "s0.share").string(), (dir / "s1.share").string(), (dir / "s2.share").string(),

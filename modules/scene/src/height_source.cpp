@@ -77,7 +77,7 @@ Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optio
     log_info("{}: the control texture's heights are used; the elevation raster {} is not read", control_file->string(),
              elevation_file->string());
   }
-  if (elevation_file && is_chunk_file(*elevation_file)) {
+  if (elevation_file && (is_chunk_file(*elevation_file) || elevation_file->extension() == ".sylvaterrain")) {
     // terrain.baked_file (terrain_module.cpp names it as the elevation source): the ground the
     // chunks were baked from wins over every other height key.
     auto grid = read_baked_ground(*elevation_file);

@@ -246,12 +246,26 @@ TEST_F(BakedTerrainGl, MissingCorruptAndForeignFilesAreSceneErrorsNamingTheFile)
   EXPECT_NE(error.find("corrupt.sylvaterrain"), std::string::npos) << error;
 
   std::string foreign = bytes;
-  foreign[8] = 9;  // the header's version
+  foreign[8] = 1;  // the header's version: a file baked before the ground heights
   write("foreign.sylvaterrain", foreign);
   error.clear();
   EXPECT_FALSE(open_scene(baked.dir.path / "foreign.json", scene_text("foreign.sylvaterrain", 64.0), &error));
-  EXPECT_NE(error.find("foreign.sylvaterrain"), std::string::npos) << error;
-  EXPECT_NE(error.find("version"), std::string::npos) << error;
+  EXPECT_NE(error.find("foreign.sylvaterrain: chunk file version 1, this build reads version 2"), std::string::npos)
+      << error;
+  EXPECT_NE(error.find("re-bake it with `sylva-bake terrain`"), std::string::npos) << error;
+  EXPECT_NE(error.find("terrain.baked_file"), std::string::npos) << error;
+
+  // A damaged ground height tile: 513^2 samples are 3 x 3 tiles of 256^2 (table of 9 checksums and
+  // its own); tile 4 (x 256..511, z 256..511) starts after the two tile rows' first 256 rows and
+  // tile 3.
+  std::string tile = bytes;
+  const std::size_t tile4 = 128 + 10 * 8 + 4 * (256 * 513 + 256 * 256);
+  tile[tile4 + 100] = static_cast<char>(tile[tile4 + 100] ^ 0x21);
+  write("tile.sylvaterrain", tile);
+  error.clear();
+  EXPECT_FALSE(open_scene(baked.dir.path / "tile.json", scene_text("tile.sylvaterrain", 64.0), &error));
+  EXPECT_NE(error.find("tile.sylvaterrain: height tile 4 (samples x 256..511, z 256..511): checksum mismatch"),
+            std::string::npos) << error;
 
   write("short.sylvaterrain", bytes.substr(0, bytes.size() / 2));
   error.clear();
@@ -324,25 +338,72 @@ TEST_F(BakedTerrainGl, PlayerStatsReportStreaming) {
 }
 #endif
 
-// The scene's ground still comes from the section's height keys: another field is named in a
-// warning (what differs and what to set), and the terrain then shades from its triangles.
-TEST_F(BakedTerrainGl, AGroundOtherThanTheBakedFieldIsNamedInAWarning) {
+// A user who names only terrain.baked_file: the scene's ground is the baked field (the file
+// carries its heights, chunk_file.hpp version 2), so grass, trees and the camera's above-ground
+// height stand on the terrain drawn, whatever (or nothing) the height keys say.
+TEST_F(BakedTerrainGl, ASceneNamingOnlyTheBakedFileStandsOnTheBakedGround) {
   if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
   Baked baked;
   ASSERT_TRUE(baked.reference);
+  std::string text = R"({"terrain": {"baked_file": "valley.sylvaterrain", "stream": {"budget_mb": 64}},
+                         "render": {"shadows": {"enabled": false}})";
+  if (find_module("grass")) {
+    text += R"(, "grass": {"area_min": [94, -106], "area_max": [106, -94], "field": {"density": 8},
+                           "render": {"simulate": false}})";
+  }
+  if (find_module("vegetation")) {
+    text += R"(, "vegetation": {"area_min": [-200, -200], "area_max": [200, 200], "trees_per_hectare": 2,
+                                "leaf_texture_size": 32})";
+  }
+  text += "}";
   std::vector<std::string> warnings;
   set_log_sink([&](LogLevel level, std::string_view m) {
     if (level >= LogLevel::kWarn) warnings.emplace_back(m);
   });
-  auto other = open_scene(baked.dir.path / "other.json", scene_text("valley.sylvaterrain", 64.0, 12));
+  auto scene = open_scene(baked.dir.path / "only_baked.json", text);
   set_log_sink(nullptr);
-  ASSERT_TRUE(other);
-  ASSERT_EQ(warnings.size(), 1u);
-  EXPECT_NE(warnings[0].find("valley.sylvaterrain"), std::string::npos) << warnings[0];
-  EXPECT_NE(warnings[0].find("m high, the file"), std::string::npos) << warnings[0];
-  EXPECT_EQ(stat((*other).module_stats()["terrain"], "baked_ground_matches"), 0u);
-  EXPECT_EQ(terrain_of(*other)->height_texture(), nullptr);
-  std::printf("warning: %s\n", warnings[0].c_str());
+  ASSERT_TRUE(scene);
+  EXPECT_TRUE(warnings.empty()) << warnings.front();
+  EXPECT_EQ(stat(scene->module_stats()["terrain"], "baked_ground_matches"), 1u);
+  EXPECT_NE(terrain_of(*scene)->height_texture(), nullptr) << "the ground is the baked field: it shades too";
+
+  // The source field (the reference scene's ground, which was baked): same samples, same place.
+  const HeightField& source = *baked.reference->ground();
+  ASSERT_NE(scene->ground(), nullptr);
+  EXPECT_EQ(scene->ground()->origin(), source.origin());
+  EXPECT_EQ(scene->ground()->spacing(), source.spacing());
+  EXPECT_TRUE(scene->ground()->samples() == source.samples()) << "float32 tiles: exact";
+  for (int j = 0; j < 13; ++j) {
+    for (int i = 0; i < 13; ++i) {
+      const double x = -500.0 + 83.1 * i, z = -500.0 + 82.7 * j;
+      ASSERT_EQ(scene->ground_height(x, z), source.height(x, z)) << x << ", " << z;
+    }
+  }
+  CameraView walker;
+  walker.position = {31.0, 1.7, -47.0};
+  walker.height_mode = HeightMode::kAboveGround;
+  EXPECT_NEAR(scene->make_camera(walker, {64, 36}).position().y, source.height(31.0, -47.0) + 1.7, 1e-6);
+
+  std::size_t blades = 0, trees = 0;
+  double worst_blade = 0.0, worst_tree = 0.0;
+  if (ModuleInstance* grass = scene->module("grass")) {
+    for (const glm::dvec3& r : grass->placed_positions(300)) {
+      worst_blade = std::max(worst_blade, std::abs(r.y - source.height(r.x, r.z)));
+      ++blades;
+    }
+    EXPECT_GT(blades, 100u);
+    EXPECT_LT(worst_blade, 2e-3) << "blade roots on the baked terrain";
+  }
+  if (ModuleInstance* forest = scene->module("vegetation")) {
+    for (const glm::dvec3& t : forest->placed_positions(1000)) {
+      worst_tree = std::max(worst_tree, std::abs(t.y - source.height(t.x, t.z)));
+      ++trees;
+    }
+    EXPECT_GT(trees, 5u);
+    EXPECT_LT(worst_tree, 1e-4) << "trees on the baked terrain";
+  }
+  std::printf("baked ground: %zu blades (worst root %.2g m off the terrain), %zu trees (worst %.2g m)\n", blades,
+              worst_blade, trees, worst_tree);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "bake_share_format.hpp"
 #include "chunk_blob.hpp"
+#include "chunk_file_heights.hpp"
 #include "bake_merge.hpp"
 #include "chunk_build.hpp"
 #include "parallel.hpp"
@@ -29,6 +30,8 @@ struct Share {
   std::filesystem::path path;
   std::string header, directory;
   std::uint32_t index = 0, count = 0, first = 0, end = 0;
+  detail::HeightTiles tiles;
+  std::vector<std::uint64_t> height_table;  // verified per-tile checksums of the ground heights
   std::unique_ptr<std::ifstream> in;
   std::string name() const { return path.string(); }
 };
@@ -72,8 +75,15 @@ Result<Share> open_share(const std::filesystem::path& path) {
   s.end = get_le<std::uint32_t>(h, detail::kShEndSlot);
   const auto dir_offset = get_le<std::uint64_t>(h, detail::kShDirOffset);
   const auto dir_bytes = get_le<std::uint64_t>(h, detail::kShDirBytes);
+  s.tiles = detail::HeightTiles{get_le<std::int32_t>(h, detail::kShColumns), get_le<std::int32_t>(h, detail::kShRows),
+                                 get_le<std::uint32_t>(h, detail::kShHeightTile)};
+  if (s.tiles.tile != detail::kHeightTileSamples || s.tiles.columns < 1 || s.tiles.rows < 1) {
+    return corrupt(fmt::format("implausible ground height layout ({} x {} samples, tiles of {})", s.tiles.columns,
+                               s.tiles.rows, s.tiles.tile));
+  }
   if (s.first > s.end || dir_bytes != static_cast<std::uint64_t>(s.end - s.first) * detail::kShareEntryBytes ||
-      dir_bytes > size || dir_offset != size - dir_bytes || s.index >= s.count) {
+      dir_bytes > size || dir_offset != size - dir_bytes || s.index >= s.count ||
+      dir_offset < detail::kShareHeaderBytes + s.tiles.section_bytes()) {
     return corrupt("inconsistent header (share index, slot range or directory)");
   }
   s.directory.assign(dir_bytes, '\0');
@@ -83,6 +93,9 @@ Result<Share> open_share(const std::filesystem::path& path) {
   if (get_le<std::uint64_t>(h, detail::kShDirChecksum) != fnv1a64(s.directory.data(), s.directory.size())) {
     return corrupt("directory checksum mismatch");
   }
+  auto table = detail::read_height_table(*s.in, detail::kShareHeaderBytes, s.tiles, name);
+  if (!table) return table.error();
+  s.height_table = std::move(*table);
   return s;
 }
 
@@ -101,6 +114,10 @@ Status check_shares(const std::vector<Share>& shares, std::uint32_t slot_count) 
       return make_error(ErrorCode::kInvalidArgument,
                         fmt::format("{}: baked from another field or with other terrain.tree settings than {}",
                                     s.name(), a.name()));
+    }
+    if (s.height_table != a.height_table) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: its ground heights differ from {}'s: baked from another field", s.name(), a.name()));
     }
   }
   for (std::size_t i = 0; i < shares.size(); ++i) {
@@ -188,8 +205,14 @@ Result<BakeReport> detail::merge_shares(const std::vector<std::filesystem::path>
   // before it is overwritten, and the larger chunk-file directory replaces the share's.
   SYLVA_ASSERT(!in_place || shares.size() == 1, "in-place merge of {} shares", shares.size());
   Result<std::unique_ptr<ChunkFileWriter>> writer =
-      ChunkFileWriter::create(out, tree, in_place ? shares.front().path : std::filesystem::path());
+      ChunkFileWriter::create(out, tree, in_place ? shares.front().path : std::filesystem::path(), true);
   if (!writer) return writer.error();
+  if (!in_place) {
+    // Every share holds the same heights (check_shares); share 0's are copied tile by tile.
+    const Share& s = shares.front();
+    SYLVA_TRY((*writer)->write_heights(
+        detail::HeightTileRows(*s.in, detail::kShareHeaderBytes, s.tiles, s.height_table, s.name())));
+  }
   BakeReport report;
   // Batches of blobs: read in slot order, verified and patched on every thread, written in slot
   // order (the output does not depend on the thread count).
@@ -267,7 +290,7 @@ Result<BakeReport> detail::merge_shares(const std::vector<std::filesystem::path>
         return make_error(ErrorCode::kCorrupt, fmt::format("{}: chunk {} (level {} at {}, {}): {}", s.name(), i,
                                                            c.key.level, c.key.x, c.key.z, what));
       };
-      if (offset < detail::kShareHeaderBytes || bytes > dir_offset || offset > dir_offset - bytes || bytes < 24) {
+      if (offset < detail::kShareHeaderBytes + s.tiles.section_bytes() || bytes > dir_offset || offset > dir_offset - bytes || bytes < 24) {
         return corrupt("points outside the data");
       }
       Item& it = batch.emplace_back(Item{&s, i, std::string(bytes, '\0'), {}, 0});

@@ -4,6 +4,7 @@
 
 #include "bake_share_format.hpp"
 #include "chunk_blob.hpp"
+#include "chunk_file_heights.hpp"
 #include "chunk_build.hpp"
 #include "parallel.hpp"
 
@@ -78,7 +79,14 @@ Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& sh
   std::string header(detail::kShareHeaderBytes, '\0');
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   std::string directory(static_cast<std::size_t>(end - first) * detail::kShareEntryBytes, '\0');
-  std::uint64_t offset = detail::kShareHeaderBytes;
+  // The ground heights: the field's samples, which are the padded grid's [0, columns) x [0, rows).
+  const detail::HeightTiles tiles{layout.field_columns(), layout.field_rows(), detail::kHeightTileSamples};
+  SYLVA_TRY(detail::write_height_section(out, tiles, [&](int z, int x0, int width, float* row) {
+    const float* src = grids.heights.h.data() + static_cast<std::size_t>(z) * static_cast<std::size_t>(grids.heights.n + 1);
+    std::memcpy(row, src + x0, static_cast<std::size_t>(width) * sizeof(float));
+    return ok_status();
+  }, name));
+  std::uint64_t offset = detail::kShareHeaderBytes + tiles.section_bytes();
 
   // Batches of chunks meshed on every thread, then written in slot order: the file does not
   // depend on the thread count or timing, and only one batch of meshes is in memory.
@@ -144,6 +152,7 @@ Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& sh
   put_le(header, detail::kShOptimize, static_cast<std::uint8_t>(settings.optimize_vertex_cache ? 1 : 0));
   put_le(header, detail::kShFirstSlot, first);
   put_le(header, detail::kShEndSlot, end);
+  put_le(header, detail::kShHeightTile, tiles.tile);
   put_le(header, detail::kShDirOffset, dir_offset);
   put_le(header, detail::kShDirBytes, static_cast<std::uint64_t>(directory.size()));
   put_le(header, detail::kShDirChecksum, fnv1a64(directory.data(), directory.size()));

@@ -1,6 +1,7 @@
 #include <sylva/terrain/chunk_file.hpp>
 
 #include "chunk_blob.hpp"
+#include "chunk_file_heights.hpp"
 #include "parallel.hpp"
 
 #include <sylva/core/atomic_file.hpp>
@@ -21,12 +22,18 @@ constexpr std::size_t kHeaderBytes = 128;
 constexpr std::size_t kEntryBytes = 64;
 using detail::get_le;
 using detail::put_le;
+constexpr std::size_t kHeightTileAt = 76;  // header: samples per height tile side, 0 = no heights
+
+detail::HeightTiles height_tiles(const ChunkTree& t, std::uint32_t tile) {
+  return detail::HeightTiles{t.field_columns(), t.field_rows(), tile};
+}
 
 }  // namespace
 
 Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::filesystem::path& path,
                                                                  const ChunkTree& layout,
-                                                                 const std::filesystem::path& overwrite) {
+                                                                 const std::filesystem::path& overwrite,
+                                                                 bool heights) {
   SYLVA_TRY(check_replaceable(path));
   if (layout.settings().tessellation != Tessellation::kRtin) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -45,8 +52,12 @@ Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::file
     w->temp_ = overwrite;
     w->out_.open(w->temp_, std::ios::binary | std::ios::in | std::ios::out);  // no truncation
     if (!w->out_) return make_error(ErrorCode::kIo, fmt::format("{}: cannot reopen {}", path.string(), overwrite.string()));
-    w->out_.seekp(static_cast<std::streamoff>(kHeaderBytes));
   }
+  const detail::HeightTiles tiles = height_tiles(layout, heights ? detail::kHeightTileSamples : 0);
+  w->offset_ = kHeaderBytes + tiles.section_bytes();
+  w->heights_pending_ = heights && overwrite.empty();
+  // In place, the share's section already lies where this file wants it (bake_merge.cpp).
+  if (!overwrite.empty()) w->out_.seekp(static_cast<std::streamoff>(w->offset_));
   std::string& header = w->header_;
   std::memcpy(header.data(), kMagic, 8);
   put_le(header, 8, kChunkFileVersion);
@@ -63,6 +74,7 @@ Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::file
   put_le(header, 64, layout.settings().flat_tolerance);
   put_le(header, 68, layout.settings().max_morph_fraction);
   put_le(header, 72, static_cast<std::uint32_t>(layout.settings().leaf_dimension));
+  put_le(header, kHeightTileAt, tiles.tile);
   w->directory_.assign(layout.chunk_count() * kEntryBytes, '\0');
   for (std::uint32_t i = 0; i < layout.chunk_count(); ++i) {
     const ChunkKey& k = layout.chunk(i).key;
@@ -93,7 +105,18 @@ Status ChunkFileWriter::add(std::uint32_t index, const Chunk& c, std::string_vie
   return add(index, c, blob, c.present ? fnv1a64(blob.data(), blob.size()) : 0);
 }
 
+Status ChunkFileWriter::write_heights(const HeightRows& rows) {
+  SYLVA_ASSERT(heights_pending_ && !done_, "write_heights: not announced to create() or already written");
+  heights_pending_ = false;
+  const detail::HeightTiles tiles{get_le<std::int32_t>(header_.data(), 28), get_le<std::int32_t>(header_.data(), 32),
+                                  get_le<std::uint32_t>(header_.data(), kHeightTileAt)};
+  Status written = detail::write_height_section(out_, tiles, rows, path_.string());
+  if (!written.ok()) abandon();
+  return written;
+}
+
 Status ChunkFileWriter::add(std::uint32_t index, const Chunk& c, std::string_view blob, std::uint64_t checksum) {
+  SYLVA_ASSERT(!heights_pending_, "ChunkFileWriter: write_heights() must come before the chunks");
   SYLVA_ASSERT(!done_ && static_cast<std::int64_t>(index) > last_ && index < directory_.size() / kEntryBytes,
                "chunk {} after {} ({} slots, finished {})", index, last_, directory_.size() / kEntryBytes, done_);
   last_ = index;
@@ -139,14 +162,24 @@ Status ChunkFileWriter::finish() {
   return replace_with_temp(temp_, path_);
 }
 
-Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag) {
+Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag,
+                       const HeightField* ground) {
   if (!tree.has_meshes()) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: the chunk tree was built without meshes (keep_meshes = false)", path.string()));
   }
-  Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(path, tree);
+  Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(path, tree, {}, ground != nullptr);
   if (!writer) return writer.error();
   (*writer)->set_tag(tag);
+  if (ground != nullptr) {
+    SYLVA_ASSERT(ground->columns() == tree.field_columns() && ground->rows() == tree.field_rows(),
+                 "save_chunk_file: ground {}x{} for a tree of {}x{}", ground->columns(), ground->rows(),
+                 tree.field_columns(), tree.field_rows());
+    SYLVA_TRY((*writer)->write_heights([&](int z, int x0, int width, float* out) {
+      for (int x = 0; x < width; ++x) out[x] = ground->sample(x0 + x, z);
+      return ok_status();
+    }));
+  }
   for (std::uint32_t i = 0; i < tree.chunk_count(); ++i) SYLVA_TRY((*writer)->add(i, tree.chunk(i), tree.chunk(i).mesh));
   return (*writer)->finish();
 }
@@ -171,8 +204,9 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
   if (std::memcmp(header.data(), kMagic, 8) != 0) return corrupt("not a Sylva chunk file (bad magic)");
   const auto version = get_le<std::uint32_t>(header.data(), 8);
   if (version != kChunkFileVersion) {
-    return make_error(ErrorCode::kUnsupported, fmt::format("{}: chunk file version {}, this build reads version {}",
-                                                           name, version, kChunkFileVersion));
+    return make_error(ErrorCode::kUnsupported,
+                      fmt::format("{}: chunk file version {}, this build reads version {} (which adds the ground "
+                                  "heights): re-bake it with `sylva-bake terrain`", name, version, kChunkFileVersion));
   }
   if (get_le<std::uint64_t>(header.data(), 120) != fnv1a64(header.data(), 120)) return corrupt("header checksum mismatch");
   const auto file_bytes = get_le<std::uint64_t>(header.data(), 104);
@@ -208,11 +242,22 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
     return corrupt(fmt::format("implausible field geometry ({} x {} samples, spacing {}, leaf dimension {})", t.columns_,
                                t.rows_, t.spacing_, t.settings_.leaf_dimension));
   }
+  file->height_tile_ = get_le<std::uint32_t>(header.data(), kHeightTileAt);
+  if (file->height_tile_ != 0 && file->height_tile_ != detail::kHeightTileSamples) {
+    return corrupt(fmt::format("implausible height tile size {}", file->height_tile_));
+  }
+  const detail::HeightTiles tiles = height_tiles(t, file->height_tile_);
+  const std::uint64_t data_start = kHeaderBytes + tiles.section_bytes();
   const auto dir_offset = get_le<std::uint64_t>(header.data(), 80);
   const auto dir_bytes = get_le<std::uint64_t>(header.data(), 88);
   if (dir_bytes != static_cast<std::uint64_t>(count) * kEntryBytes || dir_bytes > size ||
-      dir_offset != size - dir_bytes) {
+      dir_offset != size - dir_bytes || dir_offset < data_start) {
     return corrupt("the directory does not fit the file");
+  }
+  if (tiles.tile != 0) {
+    auto table = detail::read_height_table(file->in_, kHeaderBytes, tiles, name);
+    if (!table) return table.error();
+    file->height_table_ = std::move(*table);
   }
   std::string dir(dir_bytes, '\0');
   file->in_.seekg(static_cast<std::streamoff>(dir_offset));
@@ -253,13 +298,53 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
     en.checksum = get_le<std::uint64_t>(e, 56);
     en.vertices = c.vertex_count;
     en.indices = c.triangle_count * 3;
-    if (c.present && (en.offset < kHeaderBytes || en.bytes > dir_offset || en.offset > dir_offset - en.bytes ||
+    if (c.present && (en.offset < data_start || en.bytes > dir_offset || en.offset > dir_offset - en.bytes ||
                       en.bytes < 24)) {
       return corrupt(fmt::format("chunk {} (level {} at {}, {}) points outside the data", i, c.key.level, c.key.x, c.key.z));
     }
   }
   t.compute_nodes();
   return file;
+}
+
+int ChunkFile::height_stride(std::uint64_t max_samples) const {
+  int stride = 1;
+  auto samples = [&](int s) {
+    return std::uint64_t{static_cast<std::uint32_t>((tree_.field_columns() - 1) / s + 1)} *
+           static_cast<std::uint32_t>((tree_.field_rows() - 1) / s + 1);
+  };
+  while (samples(stride) > std::max<std::uint64_t>(max_samples, 1) && stride < (1 << 20)) stride *= 2;
+  return stride;
+}
+
+Result<HeightField> ChunkFile::read_heights(int stride) const {
+  SYLVA_ASSERT(stride >= 1, "read_heights: stride {}", stride);
+  if (!has_heights()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: holds no ground heights (a tree cache file): re-bake it with `sylva-bake terrain`",
+                                  path_.string()));
+  }
+  const detail::HeightTiles tiles = height_tiles(tree_, height_tile_);
+  const int columns = (tiles.columns - 1) / stride + 1, rows = (tiles.rows - 1) / stride + 1;
+  HeightField field(columns, rows, tree_.spacing() * stride, tree_.origin());
+  std::vector<float> tile;
+  for (std::uint32_t t = 0; t < tiles.count(); ++t) {
+    const detail::HeightTiles::Rect r = tiles.rect(t);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      SYLVA_TRY(detail::read_height_tile(in_, kHeaderBytes, tiles, height_table_, t, path_.string(), tile));
+    }
+    // Samples of this tile on the stride's grid (multiples of `stride` from 0).
+    const int fx = (r.x0 + stride - 1) / stride * stride, fz = (r.z0 + stride - 1) / stride * stride;
+    for (int z = fz; z < r.z0 + r.height && z / stride < rows; z += stride) {
+      for (int x = fx; x < r.x0 + r.width && x / stride < columns; x += stride) {
+        field.sample(x / stride, z / stride) =
+            tile[static_cast<std::size_t>(z - r.z0) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(x - r.x0)];
+      }
+    }
+  }
+  field.update_range();
+  return field;
 }
 
 std::size_t ChunkFile::mesh_bytes(std::uint32_t index) const {

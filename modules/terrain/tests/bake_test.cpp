@@ -74,7 +74,7 @@ TEST(Bake, OutOfCoreBakeOf2049FieldWithSmallBudgetEqualsInMemoryBuild) {
   {
     auto tree = ChunkTree::build(field, s);
     ASSERT_TRUE(tree.ok()) << tree.error().describe();
-    ASSERT_TRUE(save_chunk_file(memory, *tree).ok());
+    ASSERT_TRUE(save_chunk_file(memory, *tree, 0, &field).ok());
   }
   BakeOptions o;
   o.tree = s;
@@ -123,7 +123,7 @@ TEST(Bake, SharesMergeByteIdenticallyInAnyOrderOnPaddedFields) {
   // Same as the in-memory tree, too.
   auto tree = ChunkTree::build(field, o.tree);
   const fs::path memory = unique_temp("bake_memory_padded.sylvaterrain");
-  ASSERT_TRUE(save_chunk_file(memory, *tree).ok());
+  ASSERT_TRUE(save_chunk_file(memory, *tree, 0, &field).ok());
   EXPECT_TRUE(bytes_of(one) == bytes_of(memory)) << first_difference(one, memory);
   fs::remove(one);
   fs::remove(memory);
@@ -200,7 +200,9 @@ class BadShares : public ::testing::Test {
 };
 
 TEST_F(BadShares, ADamagedChunkIsNamedWithItsShare) {
-  patch(shares[1], 128 + 30, 0x55);  // inside the share's first blob
+  // Inside the share's first blob, after the header and the 200^2 ground heights (one tile: its
+  // checksum and the table's, then the samples).
+  patch(shares[1], 128 + 16 + 200 * 200 * 4 + 30, 0x55);
   const Error e = merge_error(shares);
   EXPECT_EQ(e.code, ErrorCode::kCorrupt);
   EXPECT_NE(e.message.find(shares[1].string()), std::string::npos) << e.message;

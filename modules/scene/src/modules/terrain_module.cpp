@@ -24,15 +24,14 @@
 // (`sylva-bake terrain`, relative to the scene file). The section then opens it (header and
 // directory only) and draws it through the ChunkStreamer within "terrain.stream.budget_mb": a
 // loader thread reads chunks requested by projected error, a chunk whose children are not resident
-// is drawn instead of them (never a hole), and the frame never waits on disk. The chunk file holds
-// meshes, not a height field, so the scene's ground (grass, trees, the camera's above-ground
-// height, Scene::ground_height) still comes from the section's height-source keys: a baked scene
-// names the same source the bake was made from (and, as sylva-bake keeps a raster's origin at
-// (0, 0), terrain.center at the middle of the baked field). The section checks this on the grid and
-// the root chunk's vertices (exact field samples): when they match, the ground also shades the
-// terrain (normals, materials); otherwise it warns why (the key to set, or the first sample that
-// differs) and shades from the triangles. Painting does not change a baked
-// terrain. Streaming numbers are in stats() ("stream_*").
+// is drawn instead of them (never a hole), and the frame never waits on disk. The file carries the
+// field's heights (chunk_file.hpp, version 2), and the descriptor names the baked file as the
+// section's elevation source, so the scene's ground (grass, trees, the camera's above-ground
+// height, Scene::ground_height) is the baked field, where its chunks are (../baked_ground.hpp;
+// every 2nd/4th... sample above 8193^2). The section checks the ground on the grid and the root
+// chunk's vertices (exact field samples): when they match, the ground also shades the terrain
+// (normals, materials); a coarser ground shades from the triangles. Painting does not change a
+// baked terrain. Streaming numbers are in stats() ("stream_*").
 
 #include "modules/module_factories.hpp"
 
@@ -264,6 +263,8 @@ class TerrainInstance final : public ModuleInstance {
     const HeightField* field = mismatch.empty() ? ctx_.ground : nullptr;
     if (field != nullptr) {
       ground_matches_ = true;
+    } else if (coarse_baked_ground(**streamer)) {
+      ground_matches_ = false;  // the baked heights every n-th sample: shaded from the triangles
     } else {
       ground_matches_ = false;
       log_warn("terrain: the scene's ground (grass, trees, camera height) is not the field baked into {}: {}",
@@ -305,6 +306,15 @@ class TerrainInstance final : public ModuleInstance {
       }
     }
     return {};
+  }
+
+  // Whether the ground is the file's heights every n-th sample (a field too big to read whole).
+  bool coarse_baked_ground(const terrain::ChunkStreamer& streamer) const {
+    const HeightField& f = *ctx_.ground;
+    const terrain::ChunkTree& t = streamer.tree();
+    const double n = f.spacing() / t.spacing();
+    return n > 1.0 && n == std::round(n) && f.origin() == t.origin() &&
+           f.columns() == (t.field_columns() - 1) / static_cast<int>(n) + 1;
   }
 
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
@@ -358,7 +368,13 @@ ModuleDescriptor terrain_module() {
   d.make_settings = [] {
     return std::make_unique<Settings>(std::vector<MapSlot>{{"height", MapKind::kHeight, "Terrain height in metres"}});
   };
-  d.height_source = [](const ModuleSettings& s) { return static_cast<const Settings&>(s).value.source; };
+  d.height_source = [](const ModuleSettings& s) {
+    const TerrainSectionSettings& v = static_cast<const Settings&>(s).value;
+    HeightSourceSettings source = v.source;
+    // A baked file carries its ground (chunk_file.hpp); make_height_grid reads it by its magic.
+    if (!v.baked_file.empty()) source.elevation.file = v.baked_file;
+    return source;
+  };
   d.create = &TerrainInstance::create;
   return d;
 }

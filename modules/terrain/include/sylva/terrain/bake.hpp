@@ -15,8 +15,11 @@
 // (tested: one process and three, against the in-memory build).
 //
 // Share file ("SYLVASHR", little endian): 128-byte header (version, share I of N, field geometry,
-// tree settings, slot range, directory place, FNV-1a 64 checksums of directory and header), the
-// share's blobs, a 48-byte directory entry per slot of its range. Shares are written through a
+// tree settings, slot range, directory place, height tile size, FNV-1a 64 checksums of directory
+// and header), the ground height section (every share holds the whole field's, as the chunk file
+// does: chunk_file.hpp), the share's blobs, a 48-byte directory entry per slot of its range. The
+// merge copies share 0's heights tile by tile, verified, after checking that every share's
+// height table is the same. Shares are written through a
 // temporary and a rename: a killed bake leaves no share and no chunk file, only nothing.
 //
 // Failure: every error names the file (and the chunk or share); nothing is left at the target
@@ -32,7 +35,7 @@
 
 namespace sylva::terrain {
 
-inline constexpr std::uint32_t kBakeShareVersion = 1;
+inline constexpr std::uint32_t kBakeShareVersion = 2;  // 2: the ground heights after the header
 
 struct BakeOptions {
   ChunkTreeSettings tree;        // keep_meshes is ignored: a bake always writes the meshes

@@ -12,12 +12,14 @@
 // chunk, for a blob), never a crash.
 
 #include <sylva/core/hash.hpp>
+#include <sylva/core/height_field.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
 
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -25,11 +27,18 @@
 
 namespace sylva::terrain {
 
-inline constexpr std::uint32_t kChunkFileVersion = 1;
+inline constexpr std::uint32_t kChunkFileVersion = 2;
+
+// Rows of ground heights for a writer: fill `out` with the `width` samples of row z from x0 on
+// [m]. Called tile by tile (256^2); an error stops the writing and is returned.
+using HeightRows = std::function<Status(int z, int x0, int width, float* out)>;
 
 // Writes the tree (which must hold its meshes) through a temporary file and a rename. `tag` goes
-// into the header (ChunkFile::tag()).
-Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag = 0);
+// into the header (ChunkFile::tag()). `ground`: the field the tree was built from, stored as the
+// ground height section (its columns and rows must equal the tree's, asserted); nullptr = none
+// (the tree cache, which keeps its field elsewhere).
+Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag = 0,
+                       const HeightField* ground = nullptr);
 
 // Writes a chunk file chunk by chunk, so a tree too big for memory can be saved (bake.hpp): blobs
 // go to a temporary file beside the target as they come, the directory and header at finish(),
@@ -43,8 +52,11 @@ class ChunkFileWriter {
   // `overwrite`: instead of a new temporary, write over this existing file of ours (beside
   // `path`), which becomes the temporary: blobs added must then lie where the file already holds
   // blobs of the same sizes in the same order (the bake's one-process share, bake.hpp).
+  // `heights`: the file gets a ground height section of the layout's field size: written by
+  // write_heights() before the first add(), or, with `overwrite`, already in that file.
   static Result<std::unique_ptr<ChunkFileWriter>> create(const std::filesystem::path& path, const ChunkTree& layout,
-                                                         const std::filesystem::path& overwrite = {});
+                                                         const std::filesystem::path& overwrite = {},
+                                                         bool heights = false);
   ~ChunkFileWriter();
   ChunkFileWriter(const ChunkFileWriter&) = delete;
   ChunkFileWriter& operator=(const ChunkFileWriter&) = delete;
@@ -56,6 +68,9 @@ class ChunkFileWriter {
   Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob);
   // The same with the blob's fnv1a64 computed by the caller (on another thread).
   Status add(std::uint32_t index, const Chunk& chunk, std::string_view blob, std::uint64_t checksum);
+  // The ground height section (create() with heights, no overwrite; once, before add()).
+  // Errors: the row source's, kIo naming the file; the temporary is then removed.
+  Status write_heights(const HeightRows& rows);
   // The header's tag (default 0), written at finish().
   void set_tag(std::uint64_t tag);
   // Directory, header, fsync, rename over the target. Errors: kIo naming the file.
@@ -71,6 +86,7 @@ class ChunkFileWriter {
   std::string header_, directory_;
   std::uint64_t offset_ = 128;
   std::int64_t last_ = -1;
+  bool heights_pending_ = false;
   bool done_ = false;
 };
 
@@ -85,6 +101,16 @@ class ChunkFile {
   const std::filesystem::path& path() const { return path_; }
   // The header's tag: what the writer stored there (0 for a bake or a plain save_chunk_file).
   std::uint64_t tag() const { return tag_; }
+
+  // Whether the file holds the ground heights (version 2 files written with them: every bake).
+  bool has_heights() const { return height_tile_ != 0; }
+  // The ground: every `stride`-th sample (stride >= 1) of the baked field in x and z, from sample
+  // (0, 0), placed like the tree (origin, spacing x stride). Reads the tiles one at a time.
+  // Errors: kInvalidArgument without heights, kCorrupt naming the file and the tile (checksum,
+  // truncation).
+  Result<HeightField> read_heights(int stride = 1) const;
+  // The smallest power-of-two stride whose ground has at most `max_samples` samples.
+  int height_stride(std::uint64_t max_samples) const;
 
   // Reads, verifies and decodes one chunk's mesh. Thread-safe. Errors (kCorrupt/kIo) name the
   // file and the chunk.
@@ -108,6 +134,8 @@ class ChunkFile {
   };
   std::filesystem::path path_;
   std::uint64_t tag_ = 0;
+  std::uint32_t height_tile_ = 0;
+  std::vector<std::uint64_t> height_table_;  // per-tile checksums
   ChunkTree tree_;
   std::vector<Entry> entries_;
   mutable std::mutex mutex_;

@@ -1,0 +1,174 @@
+// The ground height section of chunk files (chunk_file.hpp, version 2; issue 15, "a baked file
+// carries its ground"): a bake stores the field's samples exactly, in tiles, equal for one process
+// and merged shares; a reader gets every sample or every n-th; a damaged tile or table is an error
+// naming the file (and tile), never a crash; a version-1 file tells the user to re-bake.
+#include <sylva/terrain/bake.hpp>
+#include <sylva/terrain/chunk_file.hpp>
+
+#include "support/terrain_test_support.hpp"
+
+#include <sylva/core/atomic_file.hpp>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace sylva::terrain {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::fbm_field;
+using testing::unique_temp;
+
+// 520 x 300 samples: 3 x 2 tiles of 256^2 (the last column and row partial), padded in the tree.
+HeightField test_field(std::uint32_t seed = 4) { return fbm_field(520, 300, 1.5, 90.0f, seed, {-300.0, 120.0}); }
+
+BakeOptions options() {
+  BakeOptions o;
+  o.tree.leaf_dimension = 17;
+  return o;
+}
+
+void patch(const fs::path& p, std::uint64_t at, char value) {
+  std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(static_cast<std::streamoff>(at));
+  f.put(value);
+}
+
+// Byte offset of tile t's first sample in a file whose section starts after the 128-byte header.
+std::uint64_t tile_start(int columns, int t) {
+  const int tiles_x = (columns + 255) / 256, tiles = tiles_x * 2;
+  const int tx = t % tiles_x, tz = t / tiles_x;
+  const int height = tz == 0 ? 256 : 300 - 256;
+  return 128 + std::uint64_t(tiles) * 8 + 8 + 4 * (std::uint64_t(tz) * 256 * columns + std::uint64_t(tx) * 256 * height);
+}
+
+struct Baked {
+  HeightField field = test_field();
+  fs::path file = unique_temp("heights.sylvaterrain");
+  Baked() { EXPECT_TRUE(bake_chunk_file(field, file, options()).ok()); }
+  ~Baked() { fs::remove(file); }
+};
+
+TEST(ChunkFileHeights, ABakeCarriesEverySampleExactlyAndPlacedLikeTheTree) {
+  Baked b;
+  auto file = ChunkFile::open(b.file);
+  ASSERT_TRUE(file.ok()) << file.error().describe();
+  ASSERT_TRUE((*file)->has_heights());
+  auto ground = (*file)->read_heights();
+  ASSERT_TRUE(ground.ok()) << ground.error().describe();
+  EXPECT_EQ(ground->columns(), 520);
+  EXPECT_EQ(ground->rows(), 300);
+  EXPECT_EQ(ground->spacing(), 1.5);
+  EXPECT_EQ(ground->origin(), glm::dvec2(-300.0, 120.0));
+  EXPECT_TRUE(ground->samples() == b.field.samples());  // bit for bit
+  EXPECT_EQ(ground->min_height(), b.field.min_height());
+
+  // Every 4th sample: (520 - 1) / 4 + 1 = 130 columns, 75 rows, 4 x the spacing.
+  EXPECT_EQ((*file)->height_stride(520u * 300u), 1);
+  EXPECT_EQ((*file)->height_stride(130u * 75u), 4);
+  auto coarse = (*file)->read_heights(4);
+  ASSERT_TRUE(coarse.ok()) << coarse.error().describe();
+  ASSERT_EQ(coarse->columns(), 130);
+  ASSERT_EQ(coarse->rows(), 75);
+  EXPECT_EQ(coarse->spacing(), 6.0);
+  for (int z = 0; z < 75; ++z)
+    for (int x = 0; x < 130; ++x) ASSERT_EQ(coarse->sample(x, z), b.field.sample(4 * x, 4 * z)) << x << ", " << z;
+}
+
+TEST(ChunkFileHeights, MergedSharesAndTheInMemorySaveHoldTheSameSection) {
+  Baked b;
+  std::vector<fs::path> shares;
+  BakeOptions o = options();
+  for (int i = 0; i < 3; ++i) {
+    o.share = i;
+    o.shares = 3;
+    shares.push_back(unique_temp(fmt::format("heights_{}.share", i)));
+    ASSERT_TRUE(bake_share(b.field, shares.back(), o).ok());
+  }
+  const fs::path merged = unique_temp("heights_merged.sylvaterrain");
+  auto m = merge_bake_shares(shares, merged);
+  ASSERT_TRUE(m.ok()) << m.error().describe();
+  EXPECT_TRUE(read_file(merged).value() == read_file(b.file).value());
+  fs::remove(merged);
+
+  // Share 0's section is the one copied: a damaged tile there is named with the share.
+  patch(shares[0], tile_start(520, 4) + 100, 0x13);
+  auto bad = merge_bake_shares(shares, merged);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(bad.error().message.find(shares[0].string()), std::string::npos) << bad.error().message;
+  EXPECT_NE(bad.error().message.find("height tile 4"), std::string::npos) << bad.error().message;
+
+  // A share of another field with the same geometry and settings: its heights give it away.
+  o.share = 1;
+  ASSERT_TRUE(bake_share(test_field(5), shares[1], o).ok());
+  ASSERT_TRUE(bake_share(b.field, shares[0], (o.share = 0, o)).ok());
+  auto foreign = merge_bake_shares(shares, merged);
+  ASSERT_FALSE(foreign.ok());
+  EXPECT_NE(foreign.error().message.find("ground heights differ"), std::string::npos) << foreign.error().message;
+  EXPECT_FALSE(fs::exists(merged));
+
+  auto tree = ChunkTree::build(b.field, options().tree);
+  ASSERT_TRUE(tree.ok());
+  const fs::path memory = unique_temp("heights_memory.sylvaterrain");
+  ASSERT_TRUE(save_chunk_file(memory, *tree, 0, &b.field).ok());
+  EXPECT_TRUE(read_file(memory).value() == read_file(b.file).value());
+  for (const auto& p : shares) fs::remove(p);
+  fs::remove(merged);
+  fs::remove(memory);
+}
+
+TEST(ChunkFileHeights, ADamagedTileOrTableIsAnErrorNamingTheFileAndTile) {
+  Baked b;
+  const std::string good = read_file(b.file).value();
+  patch(b.file, tile_start(520, 2) + 8, 0x7f);  // tile 2: x 512..519, z 0..255
+  auto file = ChunkFile::open(b.file);  // opening reads the table only
+  ASSERT_TRUE(file.ok()) << file.error().describe();
+  auto ground = (*file)->read_heights();
+  ASSERT_FALSE(ground.ok());
+  EXPECT_EQ(ground.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(ground.error().message.find(b.file.string()), std::string::npos) << ground.error().message;
+  EXPECT_NE(ground.error().message.find("height tile 2 (samples x 512..519, z 0..255): checksum mismatch"),
+            std::string::npos) << ground.error().message;
+
+  ASSERT_TRUE(write_file_atomic(b.file, good).ok());
+  patch(b.file, 128 + 3, 0x01);  // the table
+  auto table = ChunkFile::open(b.file);
+  ASSERT_FALSE(table.ok());
+  EXPECT_NE(table.error().message.find("height tile table checksum mismatch"), std::string::npos)
+      << table.error().message;
+
+  ASSERT_TRUE(write_file_atomic(b.file, good.substr(0, 128 + 60)).ok());  // truncated in the heights
+  EXPECT_FALSE(ChunkFile::open(b.file).ok());
+}
+
+TEST(ChunkFileHeights, AVersionOneFileTellsTheUserToRebake) {
+  Baked b;
+  patch(b.file, 8, 1);
+  auto file = ChunkFile::open(b.file);
+  ASSERT_FALSE(file.ok());
+  EXPECT_EQ(file.error().code, ErrorCode::kUnsupported);
+  EXPECT_NE(file.error().message.find(b.file.string() + ": chunk file version 1, this build reads version 2"),
+            std::string::npos) << file.error().message;
+  EXPECT_NE(file.error().message.find("re-bake it with `sylva-bake terrain`"), std::string::npos)
+      << file.error().message;
+}
+
+TEST(ChunkFileHeights, AFileWithoutHeightsSaysSo) {
+  const HeightField field = test_field();
+  auto tree = ChunkTree::build(field, options().tree);
+  ASSERT_TRUE(tree.ok());
+  const fs::path plain = unique_temp("heights_none.sylvaterrain");
+  ASSERT_TRUE(save_chunk_file(plain, *tree).ok());  // as the tree cache writes
+  auto file = ChunkFile::open(plain);
+  ASSERT_TRUE(file.ok());
+  EXPECT_FALSE((*file)->has_heights());
+  auto ground = (*file)->read_heights();
+  ASSERT_FALSE(ground.ok());
+  EXPECT_NE(ground.error().message.find("holds no ground heights"), std::string::npos) << ground.error().message;
+  fs::remove(plain);
+}
+
+}  // namespace
+}  // namespace sylva::terrain
