@@ -110,6 +110,8 @@ struct VoxelRenderer::ChunkGpu {
   std::uint32_t opaque_quads = 0;
   std::uint32_t alpha_quads = 0;
   std::uint32_t translucent_quads = 0;  // after the alpha-cut ones
+  std::vector<PackedQuad> translucent;   // their CPU copy, re-sorted back to front as the eye moves
+  glm::ivec3 sorted_for{std::numeric_limits<int>::min()};  // eye half-block cell of the last sort
   std::uint64_t revision = ~std::uint64_t{0};
   render::Buffer plants;
   std::uint32_t plant_opaque = 0;
@@ -264,6 +266,7 @@ void VoxelRenderer::upload_chunk(const ChunkCoord& c, ChunkGpu& gpu) {
   const BlockPalette& palette = world_->palette();
   gpu.quads = {};
   gpu.opaque_quads = gpu.alpha_quads = gpu.translucent_quads = 0;
+  gpu.translucent.clear();
   if (mesh && mesh->opaque.size() + mesh->alpha_cut.size() > 0) {
     std::vector<PackedQuad> all, translucent;
     all.reserve(mesh->opaque.size() + mesh->alpha_cut.size());
@@ -282,8 +285,11 @@ void VoxelRenderer::upload_chunk(const ChunkCoord& c, ChunkGpu& gpu) {
     gpu.alpha_quads = static_cast<std::uint32_t>(all.size()) - gpu.opaque_quads;
     gpu.translucent_quads = static_cast<std::uint32_t>(translucent.size());
     all.insert(all.end(), translucent.begin(), translucent.end());
-    if (!all.empty()) gpu.quads = render::Buffer::immutable(std::span<const PackedQuad>(all));
+    // Updatable only when the translucent range is re-sorted in draw_translucent.
+    if (!all.empty()) gpu.quads = render::Buffer::immutable(std::span<const PackedQuad>(all), !translucent.empty());
+    gpu.translucent = std::move(translucent);
   }
+  gpu.sorted_for = glm::ivec3(std::numeric_limits<int>::min());
   upload_tufts(c, gpu);
   // Point lights: the emissive blocks of the chunk (seed §2.3.3.2).
   gpu.lights.clear();
@@ -626,11 +632,47 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   restore_block(shadow_block);
 }
 
+namespace {
+
+// Centre of a packed quad relative to its chunk's origin (the corners chunk.vert builds).
+glm::vec3 quad_centre(const PackedQuad& p) {
+  const Quad q = unpack_quad(p);
+  const int axis = q.face >> 1, u = (axis + 1) % 3, v = (axis + 2) % 3;
+  glm::vec3 c(static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z));
+  if ((q.face & 1) == 0) c[axis] += 1.0f;
+  c[u] += 0.5f * static_cast<float>(q.du);
+  c[v] += 0.5f * static_cast<float>(q.dv);
+  return c;
+}
+
+}  // namespace
+
+// Back to front within the chunk: farthest quad centre first (ties keep the mesher's order, so
+// the result is deterministic). Re-sorted and re-uploaded only when the eye has moved by half a
+// block since the last sort; the opaque and alpha-cut ranges of the buffer are left alone.
+void VoxelRenderer::sort_translucent(ChunkGpu& gpu, const glm::dvec3& eye) {
+  const glm::dvec3 local = eye - gpu.origin;
+  const glm::ivec3 cell(glm::floor(local * 2.0));
+  if (cell == gpu.sorted_for) return;
+  gpu.sorted_for = cell;
+  const glm::vec3 e(local);
+  std::vector<std::pair<float, PackedQuad>> keyed(gpu.translucent.size());
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    const glm::vec3 d = quad_centre(gpu.translucent[i]) - e;
+    keyed[i] = {glm::dot(d, d), gpu.translucent[i]};
+  }
+  std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (std::size_t i = 0; i < keyed.size(); ++i) gpu.translucent[i] = keyed[i].second;
+  gpu.quads.update(std::span<const PackedQuad>(gpu.translucent),
+                   static_cast<std::size_t>(gpu.opaque_quads + gpu.alpha_quads) * sizeof(PackedQuad));
+  ++stats_.translucent_sorts;
+}
+
 // Translucent faces (glass, water, ice; seed §2.2): after everything opaque, blended over it,
-// chunks back to front (the seed sorted transparent objects by distance; the faces of one chunk
-// keep the mesher's order), depth tested but not written, back faces culled so a block's far
-// faces do not double its colour. Texels below translucent_cutoff (the seed's 0.05) are
-// discarded. They cast no shadows.
+// back to front (the seed sorted transparent objects by distance): chunks by distance and the
+// faces of each chunk by their centre's distance (sort_translucent), depth tested but not
+// written, back faces culled so a block's far faces do not double its colour. Texels below
+// translucent_cutoff (the seed's 0.05) are discarded. They cast no shadows.
 void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::PassStats& stats) {
   bool any = false;
   for (const ChunkGpu* gpu : visible_) any = any || gpu->translucent_quads > 0;
@@ -662,6 +704,7 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   for (auto it = visible_.rbegin(); it != visible_.rend(); ++it) {
     ChunkGpu* gpu = *it;
     if (gpu->translucent_quads == 0) continue;
+    sort_translucent(*gpu, eye);
     translucent_program_.set("u_chunk_offset", glm::vec3(gpu->origin - eye));
     translucent_program_.set("u_quad_base", gpu->opaque_quads + gpu->alpha_quads);
     gpu->quads.bind_base(GL_SHADER_STORAGE_BUFFER, kQuadBinding);

@@ -1,6 +1,7 @@
 // Translucent blocks (glass, water, ice; seed 004 §2.2, issue #16): drawn in draw(kTransparent)
-// after everything opaque, blended with alpha = texture alpha x opacity, chunks back to front,
-// without writing depth, texels below translucent_cutoff (the seed's 0.05) discarded.
+// after everything opaque, blended with alpha = texture alpha x opacity, chunks back to front
+// and the faces of a chunk back to front, without writing depth, texels below translucent_cutoff
+// (the seed's 0.05) discarded.
 
 #include <sylva/render/testing.hpp>
 #include <sylva/voxel/block_textures.hpp>
@@ -14,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 #include <tuple>
+#include <utility>
 
 #include "support/voxel_gl_scene.hpp"
 
@@ -130,6 +132,55 @@ TEST_F(VoxelTranslucentGl, ChunksBlendBackToFront) {
   EXPECT_GE(right.matching, right.covered * 95 / 100) << right.matching << " of " << right.covered;
   EXPECT_LT(wrong.matching, wrong.covered / 10) << wrong.matching << " of " << wrong.covered;
   std::printf("two layers: back to front %d, front to back %d of %d\n", right.matching, wrong.matching, right.covered);
+}
+
+// 16 x 16 vertical panes of the named blocks at the given z (Layers::y holds z), all in chunk
+// (0, 0, 0), on a stone wall at z = 0 .. 1 behind them; seen along z from `eye`.
+Image render_panes(const BlockPalette& palette, std::initializer_list<Layers> panes, glm::dvec3 eye,
+                   VoxelFrameStats* stats = nullptr) {
+  World w(palette);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) (void)w.set({x, y, eye.z > 0.0 ? 0 : 31}, palette.id("stone"));
+  for (const Layers& l : panes) {
+    for (int y = 8; y < 24; ++y)
+      for (int x = 8; x < 24; ++x) (void)w.set({x, y, l.y}, palette.id(l.block));
+  }
+  auto mesher = make_mesher(MesherKind::kBitmask);
+  (void)w.remesh(*mesher);
+  auto renderer = VoxelRenderer::create(w, nullptr, VoxelRenderSettings{});
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  auto scene = testing::VoxelGlScene::create(96, 96);
+  scene.camera.set_position(eye);
+  scene.camera.look_at({16.0, 16.0, 16.0});
+  scene.render(**renderer);
+  if (stats) *stats = (*renderer)->frame_stats();
+  return scene.color();
+}
+
+TEST_F(VoxelTranslucentGl, FacesWithinOneChunkBlendBackToFront) {
+  // White glass at z 20 and brown glass at z 12, both half opaque, in one chunk: seen from +z the
+  // white pane is in front, from -z the brown one. The mesher emits the faces in one order, so
+  // without sorting inside the chunk one of the two views blends front to back.
+  const BlockPalette solid = glass_palette(1.0f, 1.0f);
+  const BlockPalette half = glass_palette(0.5f, 0.5f);
+  for (const glm::dvec3 eye : {glm::dvec3(16.0, 16.0, 60.0), glm::dvec3(16.0, 16.0, -28.0)}) {
+    const bool from_front = eye.z > 0.0;
+    const Image wall = render_panes(solid, {}, eye);
+    const Image white = render_panes(solid, {{"white_glass", 20}}, eye);
+    const Image brown = render_panes(solid, {{"brown_glass", 12}}, eye);
+    VoxelFrameStats stats;
+    const Image both = render_panes(half, {{"white_glass", 20}, {"brown_glass", 12}}, eye, &stats);
+    const Image& near = from_front ? white : brown;
+    const Image& far = from_front ? brown : white;
+    const Match right = match(both, wall, near, [&](int x, int y, int c) {
+      return 0.5f * near.at(x, y, c) + 0.25f * far.at(x, y, c) + 0.25f * wall.at(x, y, c);
+    }, 0.02f);
+    std::printf("one chunk seen from %s z: back to front on %d of %d pixels, %zu chunk sort(s)\n", from_front ? "+" : "-",
+                right.matching, right.covered, stats.translucent_sorts);
+    EXPECT_GT(right.covered, 500) << "the near pane's footprint";
+    EXPECT_GE(right.matching, right.covered * 95 / 100) << (from_front ? "from +z" : "from -z");
+    EXPECT_EQ(stats.translucent_sorts, 1u) << "one chunk with translucent faces, sorted at its first frame";
+  }
 }
 
 TEST_F(VoxelTranslucentGl, TheSeedsAlphaThresholdDiscardsFaintTexels) {

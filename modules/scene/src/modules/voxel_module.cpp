@@ -146,6 +146,7 @@ class VoxelInstance final : public ModuleInstance {
             {"plant_parts_drawn", s.plant_parts_drawn}, {"tufts_drawn", s.tufts_drawn},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
             {"shadow_chunks_cast", s.shadow_chunks_cast}, {"translucent_quads_drawn", s.translucent_quads_drawn},
+            {"translucent_sorts", s.translucent_sorts},
             {"generation_ms", generation_ms_},
             {"species_table", generator_->species().source},
             {"palette_blocks", generator_->palette().size() - 1},

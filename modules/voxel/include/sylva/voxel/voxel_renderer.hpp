@@ -150,6 +150,7 @@ struct VoxelFrameStats {
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
   std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
   std::size_t translucent_quads_drawn = 0;  // in draw(kTransparent), also counted in quads_drawn
+  std::size_t translucent_sorts = 0;        // chunks whose translucent faces were re-sorted (eye moved)
 };
 
 class VoxelRenderer final : public render::Drawable {
@@ -201,6 +202,7 @@ class VoxelRenderer final : public render::Drawable {
                   render::PassStats& stats);
   void draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
   void draw_translucent(const render::FrameContext& frame, render::PassStats& stats);
+  void sort_translucent(ChunkGpu& gpu, const glm::dvec3& eye);
   void bind_common(const render::Program& program, const render::FrameContext* frame) const;
   void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin,
