@@ -24,6 +24,7 @@ const char* outline_label(const std::string& module) {
   if (module == "grass") return "Grass field";
   if (module == "vegetation") return "Forest";
   if (module == "voxel") return "Voxel world";
+  if (module == "model_terrain") return "Model terrain (mesh)";
   return module.c_str();
 }
 
@@ -99,6 +100,7 @@ void EditorUi::frame(double dt) {
   for (; session_messages_shown_ < session_.messages().size(); ++session_messages_shown_) {
     message(session_.messages()[session_messages_shown_]);
   }
+  poll_terrain_import();
   handle_shortcuts();
   menu_bar();
   const ImGuiViewport* vp = ImGui::GetMainViewport();
@@ -127,6 +129,12 @@ void EditorUi::frame(double dt) {
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + left + 20.0f, vp->Pos.y + menu + 20.0f), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(340.0f, 520.0f), ImGuiCond_FirstUseEver);
     if (ImGui::Begin("Plant preview", &session_.preview_open())) plant_preview_panel();
+    ImGui::End();
+  }
+  if (import_open_) {
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + left + 40.0f, vp->Pos.y + menu + 40.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(460.0f, 220.0f), ImGuiCond_FirstUseEver);
+    if (ImGui::Begin("Import terrain", &import_open_)) terrain_import_panel();
     ImGui::End();
   }
   dialogs();
@@ -160,6 +168,8 @@ bool EditorUi::save_in_place() {
 void EditorUi::menu_bar() {
   if (!ImGui::BeginMainMenuBar()) return;
   if (ImGui::BeginMenu("File")) {
+    // A running import applies to the scene it was started for: no other scene until it ends.
+    ImGui::BeginDisabled(import_.busy());
     if (ImGui::MenuItem("New")) {
       pending_ = Pending::kNew;
       if (session_.unsaved()) unsaved_dialog_ = true;
@@ -175,6 +185,7 @@ void EditorUi::menu_bar() {
       if (session_.unsaved()) unsaved_dialog_ = true;
       else continue_pending();
     }
+    ImGui::EndDisabled();
     if (ImGui::MenuItem("Save", "Ctrl+S", false, session_.path().has_value())) save_in_place();
     if (ImGui::MenuItem("Save as...")) {
       save_as_dialog_ = true;
@@ -188,6 +199,7 @@ void EditorUi::menu_bar() {
       export_tree_dialog_ = true;
       std::snprintf(path_buffer_, sizeof(path_buffer_), "tree_export");
     }
+    if (ImGui::MenuItem("Import terrain...")) import_open_ = true;
     ImGui::Separator();
     if (ImGui::MenuItem("Quit")) request_quit();
     ImGui::EndMenu();
@@ -343,11 +355,9 @@ void EditorUi::properties_panel() {
 
 void EditorUi::brush_panel() {
   ImGui::Checkbox("Paint (left mouse in the viewport)", &paint_);
-  const std::vector<std::string> ids = session_.map_ids();
+  std::vector<std::string> ids = session_.map_ids();
   if (std::find(ids.begin(), ids.end(), paint_map_) == ids.end()) paint_map_ = ids.empty() ? "" : ids.front();
-  if (ImGui::BeginCombo("map", paint_map_.empty() ? "(no maps)" : paint_map_.c_str())) {
     for (const std::string& id : ids) {
-      if (ImGui::Selectable(id.c_str(), id == paint_map_)) paint_map_ = id;
     }
     ImGui::EndCombo();
   }

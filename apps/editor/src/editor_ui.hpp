@@ -6,6 +6,7 @@
 
 #include "camera_control.hpp"
 #include "editor_session.hpp"
+#include "terrain_import.hpp"
 
 #include <deque>
 #include <string>
@@ -38,6 +39,8 @@ class EditorUi {
   void section_params(const std::string& section);
   void brush_panel();
   void plant_preview_panel();  // plant_preview_panel.cpp
+  void terrain_import_panel();  // terrain_import_panel.cpp (File > Import terrain...)
+  void poll_terrain_import();   // every frame: applies a finished read or bake
   void viewport_panel(double dt);
   void stats_overlay(const glm::vec2& origin);
   void brush_outline(const glm::vec2& origin, const glm::dvec3& centre);
@@ -71,6 +74,11 @@ class EditorUi {
   std::size_t preview_messages_ = 0;
   char preview_file_[256] = {};
   float preview_yaw_deg_ = 0.0f;
+  // File > Import terrain... (terrain_import.hpp): its worker, window and paths.
+  TerrainImport import_;
+  bool import_open_ = false;
+  char import_path_[512] = {};
+  char import_out_[512] = {};
   std::optional<glm::dvec3> brush_hit_;
   std::string playing_path_;
   // The overlay's memory line, rebuilt twice a second rather than every frame.

@@ -36,6 +36,9 @@ const std::map<std::string, Arity, std::less<>>& commands() {
       {"screenshot", {1, 2, "screenshot PATH [WxH]"}},
       {"screenshot_ui", {1, 1, "screenshot_ui PATH"}},
       {"export_tree", {1, 1, "export_tree FOLDER"}},
+      {"import_terrain", {1, 4, "import_terrain PATH [bake OUT [hold]]"}},
+      {"wait_import", {0, 1, "wait_import [MAX_FRAMES]"}},
+      {"cancel_import", {0, 0, "cancel_import"}},
       {"save", {0, 1, "save [PATH]"}},
       {"copy_file", {2, 2, "copy_file FROM TO"}},
       {"wait_reload", {1, 2, "wait_reload FILE [MAX_FRAMES]"}},
@@ -163,7 +166,11 @@ Result<std::vector<ScriptCommand>> parse_script(std::string_view text, std::stri
             }
             c.points.push_back(*p);
           }
-        } else if ((c.name == "undo" || c.name == "redo" || c.name == "frames" || c.name == "wait_reload") &&
+        } else if (c.name == "import_terrain" && n > 1 &&
+                   (c.args[1] != "bake" || n < 3 || (n == 4 && c.args[3] != "hold"))) {
+          fail("import_terrain: expected import_terrain PATH [bake OUT [hold]]");
+        } else if ((c.name == "undo" || c.name == "redo" || c.name == "frames" || c.name == "wait_reload" ||
+                    c.name == "wait_import") &&
                    n == (c.name == "wait_reload" ? 2 : 1)) {
           auto count = parse_count(c.args.back(), 1, 1000000);
           if (!count.ok()) fail(fmt::format("{}: {}", c.name, count.error().message));

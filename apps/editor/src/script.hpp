@@ -23,6 +23,13 @@
 //   screenshot_ui PATH           save the whole window with its panels (window mode only)
 //   export_tree FOLDER           export the forest's first species (OBJT, glTF, slices; File >
 //                                Export tree...; EditorSession::export_tree)
+//   import_terrain PATH [bake OUT [hold]]   File > Import terrain... (terrain_import.hpp): read an
+//                                elevation raster or a mesh and use it directly (one undo entry), or
+//                                start baking the raster into the chunk file OUT on a worker thread
+//                                (hold: the bake waits at its first progress report, for tests)
+//   wait_import [MAX_FRAMES]     render frames until the bake is done (default 100000), then set
+//                                terrain.baked_file; writes "import: ..." lines (progress, result)
+//   cancel_import                cancel the running bake (no file is left at OUT, the scene unchanged)
 //   save [PATH]                  save the scene and its edited maps (atomic), PATH = save as
 //   expect PATH VALUE            fail unless the parameter's text equals VALUE (self-checking scripts)
 //   expect_unsaved yes|no        fail unless the unsaved-changes state is as given

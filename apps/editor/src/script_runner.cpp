@@ -1,5 +1,7 @@
 #include "script_runner.hpp"
 
+#include "terrain_import.hpp"
+
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/output_check.hpp>
 
@@ -7,6 +9,7 @@
 
 #include <charconv>
 #include <map>
+#include <thread>
 
 namespace sylva::editor {
 namespace {
@@ -25,7 +28,54 @@ std::filesystem::path resolve(const std::filesystem::path& base, const std::stri
 // What a run remembers between commands.
 struct RunState {
   std::map<std::filesystem::path, int> reloads_seen;  // wait_reload: the count at the last wait
+  TerrainImport import;                                // import_terrain / wait_import / cancel_import
 };
+
+// import_terrain PATH [bake OUT [hold]]: reads the source (waiting for it), then uses it or
+// starts the bake.
+Status import_terrain(EditorSession& s, const std::vector<std::string>& a, const std::filesystem::path& base,
+                      std::ostream& out, TerrainImport& import) {
+  SYLVA_TRY(import.start_read(s, resolve(base, a[0])));
+  auto read = import.wait(s);
+  if (!read || !read->ok()) return read ? Status(read->error()) : make_error(ErrorCode::kInvalidArgument, "nothing was read");
+  out << "import: " << **read << "\n";
+  if (a.size() == 1) return import.use_directly(s);
+  return import.start_bake(s, resolve(base, a[2]), a.size() == 4);
+}
+
+// wait_import [MAX_FRAMES]: frames go on while the bake runs (as in the window); progress is
+// written each time it passes another 10 %.
+Status wait_import(EditorSession& s, int max_frames, std::ostream& out, TerrainImport& import) {
+  if (!import.busy()) return make_error(ErrorCode::kInvalidArgument, "no import is running");
+  import.release();
+  int frames = 0, shown = -1;
+  std::optional<Result<std::string>> done;
+  for (; frames < max_frames && !(done = import.poll(s)); ++frames) {
+    const int decile = static_cast<int>(import.progress() * 10.0f);
+    if (decile > shown) {
+      shown = decile;
+      out << fmt::format("import: bake {} % (ETA {:.1f} s)\n", decile * 10, std::max(import.eta_s(), 0.0));
+    }
+    SYLVA_TRY(s.render_frame(1.0 / 30.0));
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));  // a window's frame pacing
+  }
+  if (!done) return make_error(ErrorCode::kLimit, fmt::format("the bake did not finish within {} frames", max_frames));
+  out << "import: " << frames << " frames drawn during the bake\n";
+  if (!done->ok()) return done->error();
+  out << "import: " << **done << "\n";
+  return {};
+}
+
+// cancel_import: the bake stops at its next chunk; the scene is left as it was.
+Status cancel_import(EditorSession& s, std::ostream& out, TerrainImport& import) {
+  if (!import.busy()) return make_error(ErrorCode::kInvalidArgument, "no import is running");
+  import.cancel();
+  auto done = import.wait(s);
+  if (done && done->ok()) return make_error(ErrorCode::kInvalidArgument, "the import finished before the cancel: " + **done);
+  if (!done || done->error().code != ErrorCode::kCancelled) return done ? Status(done->error()) : Status(ok_status());
+  out << "import: " << done->error().message << "\n";
+  return {};
+}
 
 Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::path& base, std::ostream& out,
                const ScriptHooks& hooks, RunState& state) {
@@ -107,6 +157,9 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     out << "sylva-editor: " << *summary << "\n";
     return {};
   }
+  if (c.name == "import_terrain") return import_terrain(s, a, base, out, state.import);
+  if (c.name == "wait_import") return wait_import(s, a.empty() ? 100000 : c.count, out, state.import);
+  if (c.name == "cancel_import") return cancel_import(s, out, state.import);
   if (c.name == "save") {
     if (a.empty()) return s.save();
     return s.save_as(resolve(base, a[0]));

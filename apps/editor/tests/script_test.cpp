@@ -73,6 +73,22 @@ TEST(Script, ParsesTheFileCommands) {
   EXPECT_TRUE((*script)[4].args.empty());
 }
 
+TEST(Script, ParsesTheImportCommands) {
+  auto script = parse_script("import_terrain dem.tif\nimport_terrain \"my dem.tif\" bake out.sylvaterrain hold\n"
+                             "wait_import\nwait_import 500\ncancel_import\n",
+                             "t.sylva");
+  ASSERT_TRUE(script.ok()) << script.error().message;
+  ASSERT_EQ(script->size(), 5u);
+  EXPECT_EQ((*script)[1].args, (std::vector<std::string>{"my dem.tif", "bake", "out.sylvaterrain", "hold"}));
+  EXPECT_EQ((*script)[3].count, 500);
+  for (const char* bad : {"import_terrain", "import_terrain a.tif out.sylvaterrain", "import_terrain a.tif bake",
+                          "import_terrain a.tif bake o.sylvaterrain later", "wait_import soon", "cancel_import now"}) {
+    auto parsed = parse_script(bad, "t.sylva");
+    ASSERT_FALSE(parsed.ok()) << bad;
+    EXPECT_NE(parsed.error().message.find("t.sylva:1: "), std::string::npos) << parsed.error().message;
+  }
+}
+
 TEST(Script, MistakesNameTheLine) {
   struct Case {
     const char* text;
