@@ -355,9 +355,11 @@ void EditorUi::properties_panel() {
 
 void EditorUi::brush_panel() {
   ImGui::Checkbox("Paint (left mouse in the viewport)", &paint_);
-  std::vector<std::string> ids = session_.map_ids();
+  const std::vector<std::string> ids = session_.map_ids();
   if (std::find(ids.begin(), ids.end(), paint_map_) == ids.end()) paint_map_ = ids.empty() ? "" : ids.front();
+  if (ImGui::BeginCombo("map", paint_map_.empty() ? "(no maps)" : paint_map_.c_str())) {
     for (const std::string& id : ids) {
+      if (ImGui::Selectable(id.c_str(), id == paint_map_)) paint_map_ = id;
     }
     ImGui::EndCombo();
   }
