@@ -16,8 +16,10 @@
 // (sync_settings), only the tiles they reach are regenerated (grass::regenerate_tiles, equal to a
 // full regeneration bit for bit because placement is world-anchored per tile) and the blades are
 // re-uploaded without rebuilding the programs (GrassField::set_blades); physics restarts. The far
-// field is rebuilt whole on the first frame without a new edit, so a stroke pays it once, at its
-// end. A ground edit that moves the field's origin (under its centre) rebuilds everything.
+// field updates the same way (grass::FarField::update_region: the clumps of the tiles reached, the
+// changed texels of its textures, after a ground edit the changed ground-layer vertices), also equal
+// to a full rebuild bit for bit. A ground edit that moves the field's origin (under its centre)
+// rebuilds everything.
 //
 // surface = "mesh" (issue 16, grass on any mesh): the blades grow on every triangle of
 // mesh.file instead (see mesh_blades), with no far field; a map edit rebuilds them whole.
@@ -278,16 +280,13 @@ class GrassInstance final : public ModuleInstance {
 
   void sync_settings() override {
     if (!edits_.empty()) {
-      // Dabs since the last frame: only the tiles they reach (issue 16); the far field follows on
-      // the first frame without a new edit, so a stroke pays its full rebuild once, at its end.
+      // Dabs since the last frame: only the tiles they reach (issue 16), blades and far field.
       const std::vector<grass::Rect> areas = std::move(edits_);
+      const bool ground = ground_edited_;
       edits_.clear();
-      Status st = regenerate(areas);
+      ground_edited_ = false;
+      Status st = regenerate(areas, ground);
       if (!st.ok()) log_warn("grass: regeneration after an edit failed: {}", st.error().message);
-    } else if (far_stale_) {
-      far_stale_ = false;
-      Status st = rebuild_far();
-      if (!st.ok()) log_warn("grass.far: regeneration after an edit failed: {}", st.error().message);
     }
     const GrassSectionSettings& s = settings();
     field_->settings() = s.render;
@@ -307,12 +306,13 @@ class GrassInstance final : public ModuleInstance {
   }
 
   Status on_map_changed(const std::string& map_id, const WorldArea& area) override {
-    (void)map_id;
     const GrassSectionSettings& s = settings();
     if (area.max.x < s.area_min.x || area.min.x > s.area_max.x || area.max.y < s.area_min.y || area.min.y > s.area_max.y) {
       return {};  // the edit is outside the field
     }
     const grass::Rect r{glm::max(area.min, s.area_min), glm::min(area.max, s.area_max)};
+    // Not one of this section's maps: the ground under it (the far field's ground layer follows).
+    if (map_id.rfind(ctx_.section->name + ".", 0) != 0) ground_edited_ = true;
     if (edits_.size() < kMaxEditsPerFrame) {
       edits_.push_back(r);
     } else {  // a flood of edits in one frame: their union
@@ -330,6 +330,7 @@ class GrassInstance final : public ModuleInstance {
                         {"regenerations", regenerations_},
                         {"tile_regenerations", tile_regenerations_},
                         {"last_tiles_regenerated", last_tiles_regenerated_},
+                        {"far_tile_updates", far_tile_updates_},
                         {"max_blade_height", field_->max_height()},
                         {"blade_triangles", blades_.last_primitives()}};
     if (settings().surface == GrassSurface::kMesh) {
@@ -502,7 +503,7 @@ class GrassInstance final : public ModuleInstance {
     blades_.set(&*field_);
     far_ = std::move(*far);
     edits_.clear();
-    far_stale_ = false;
+    ground_edited_ = false;
     ++regenerations_;
     return {};
   }
@@ -510,7 +511,7 @@ class GrassInstance final : public ModuleInstance {
   // Tile-local regeneration (grass::regenerate_tiles): equal to build()'s blades bit for bit
   // (grass_tile_edit_gl_test); a full build when the origin moved (a ground edit under the
   // field's centre), since every blade is stored relative to it.
-  Status regenerate(const std::vector<grass::Rect>& areas) {
+  Status regenerate(const std::vector<grass::Rect>& areas, bool ground_changed) {
     const GrassSectionSettings& s = settings();
     if (s.surface == GrassSurface::kMesh) return build();  // mesh blades are not tiled by x/z
     auto in = inputs();
@@ -527,7 +528,15 @@ class GrassInstance final : public ModuleInstance {
       }
     }
     if (!field_->set_blades(set_).ok()) return build();  // a tile over the storage limit: as before
-    far_stale_ = far_.has_value();
+    if (far_) {
+      Status far = far_->update_region(s.field, s.blade, in->maps, *in->ground, areas, ground_changed);
+      if (far.ok()) {
+        ++far_tile_updates_;
+      } else {  // e.g. a tint map appeared: the far field is made anew
+        log_info("grass.far: {}; rebuilding it", far.error().message);
+        SYLVA_TRY(rebuild_far());
+      }
+    }
     ++regenerations_;
     ++tile_regenerations_;
     return {};
@@ -664,10 +673,11 @@ class GrassInstance final : public ModuleInstance {
   grass::BladeSet set_;                 // the blades as generated (the GPU copy moves with physics)
   static constexpr std::size_t kMaxEditsPerFrame = 64;
   std::vector<grass::Rect> edits_;      // the map edits since the last frame
-  bool far_stale_ = false;              // the far field still shows the maps before an edit
+  bool ground_edited_ = false;          // edits_ include an edit of the ground (not our maps)
   std::uint64_t regenerations_ = 0;     // full builds and tile-local regenerations
   std::uint64_t tile_regenerations_ = 0;
   std::uint64_t last_tiles_regenerated_ = 0;
+  std::uint64_t far_tile_updates_ = 0;  // edits the far field took tile-locally (update_region)
   std::uint64_t mesh_triangles_ = 0;    // of grass.mesh.file (surface "mesh")
   nlohmann::json up_axes_;              // count_up_axes of the mesh blades
 };
