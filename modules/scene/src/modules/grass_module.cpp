@@ -179,6 +179,12 @@ Image to_image(const MapGrid& g) {
   return image;
 }
 
+// Largest control, tint or UV density image read, as floats: refused from the header before any
+// pixel is decoded. Each fills maps of its size, so 256 MiB (4096^2 RGBA, 8192^2 grey) is the
+// most read; a one-colour 16384^2 grey PNG of 1.2 MB would otherwise decode to 1 GiB and then fail
+// its channel check, or be kept as a 1 GiB density map (issue 16, "Bad input").
+constexpr std::uint64_t kMaxImageBytes = std::uint64_t{256} << 20;
+
 // The image file of file-only slot `slot`, read once per build; errors name the key and the file.
 Result<Image> read_slot_image(const ModuleBuildContext& ctx, const MapSlot& slot, int channels_needed,
                               const std::string& why) {
@@ -186,11 +192,7 @@ Result<Image> read_slot_image(const ModuleBuildContext& ctx, const MapSlot& slot
   const std::filesystem::path file = ctx.document->resolve(ctx.section->maps.at(slot.name));
   ImageReadOptions options;
   options.max_side = 16384;
-  // Refused from the header, before any pixel is decoded: the image fills two or three maps of
-  // its size, so 256 MiB as floats (4096^2 RGBA, 8192^2 grey) is the most read; a one-colour
-  // 16384^2 grey PNG of 1.2 MB would otherwise decode to 1 GiB and only then fail its channel
-  // check (issue 16, "Bad input").
-  options.max_bytes = std::uint64_t{256} << 20;
+  options.max_bytes = kMaxImageBytes;
   options.allow_non_finite = false;
   auto image = read_image(file, options);
   if (!image.ok()) return make_error(image.error().code, fmt::format("{}: {}", key, image.error().message));
@@ -629,6 +631,7 @@ class GrassInstance final : public ModuleInstance {
         ctx_.document != nullptr ? ctx_.document->resolve(s.mesh.density_file) : std::filesystem::path(s.mesh.density_file);
     ImageReadOptions options;
     options.max_side = 16384;
+    options.max_bytes = kMaxImageBytes;
     options.allow_non_finite = false;
     auto image = read_image(file, options);
     if (!image.ok()) return make_error(image.error().code, fmt::format("{}.mesh.density_file: {}", name, image.error().message));
