@@ -13,7 +13,8 @@ uniform vec3 u_color;                // deep water's scattering albedo
 uniform vec3 u_absorption;           // [1/m]
 uniform float u_shore_fade;          // [m]
 uniform float u_sun_glint;
-uniform vec4 u_waves[6];             // k.x, k.y [rad/m], phase at the camera [rad], slope
+uniform vec4 u_waves[8];             // k.x, k.y [rad/m], phase at the camera [rad], slope
+uniform vec4 u_warp[2];              // k.x, k.y [rad/m], phase at the camera [rad], amplitude [m]
 uniform float u_pixel_angle;         // pixel footprint per metre of distance
 
 layout(binding = 0) uniform sampler2D u_scene_depth;
@@ -33,12 +34,16 @@ vec3 camera_relative(vec2 ndc, float depth) {
 // Unit normal of the rippled surface at camera-relative xz; waves smaller than ~2 footprints
 // fade out (the mean slope of an unresolved ripple is what a mirror shows).
 vec3 ripple_normal(vec2 rel_xz, float footprint) {
+  // A slow domain warp (two long waves, u_warp) bends the crests of the shorter ones.
+  vec2 warp = vec2(sin(dot(u_warp[0].xy, rel_xz) + u_warp[0].z), sin(dot(u_warp[1].xy, rel_xz) + u_warp[1].z)) *
+              u_warp[0].w;
   vec2 slope = vec2(0.0);
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 8; ++i) {
     vec2 k = u_waves[i].xy;
     float wavelength = 6.2831853 / max(length(k), 1.0e-6);
     float fade = 1.0 - smoothstep(0.08, 0.5, footprint / wavelength);
-    slope += u_waves[i].w * fade * cos(dot(k, rel_xz) + u_waves[i].z) * normalize(k);
+    vec2 p = i == 0 ? rel_xz : rel_xz + warp;
+    slope += u_waves[i].w * fade * cos(dot(k, p) + u_waves[i].z) * normalize(k);
   }
   return normalize(vec3(-slope.x, 1.0, -slope.y));
 }

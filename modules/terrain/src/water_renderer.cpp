@@ -18,18 +18,19 @@ constexpr GLuint kDepthUnit = 0;
 }  // namespace
 
 std::array<RippleWave, kRippleWaves> ripple_waves(const WaterSettings& s) {
-  // Wavelengths fall by irrational-looking ratios so the sum never repeats visibly; directions
-  // spread +-70 degrees around one wind direction (+x), as a wind sea's short waves do.
-  static constexpr double kLength[kRippleWaves] = {1.0, 0.61, 0.37, 0.23, 0.141, 0.087};
-  static constexpr double kAngle[kRippleWaves] = {0.0, 0.83, -0.61, 1.21, -1.05, 0.29};
-  static constexpr float kShare[kRippleWaves] = {0.30f, 0.22f, 0.17f, 0.13f, 0.10f, 0.08f};
+  // Wavelengths fall by irregular ratios and directions spread over +-140 degrees around one
+  // wind direction (+x), with nearly equal slopes: no single train of parallel crests shows
+  // (with the longest wave dominant the water looked like corduroy).
+  static constexpr double kLength[kRippleWaves] = {1.0, 0.73, 0.53, 0.39, 0.28, 0.2, 0.145, 0.1};
+  static constexpr double kAngle[kRippleWaves] = {0.0, 1.6, -1.1, 0.55, 2.4, -2.0, -0.35, 1.05};
+  static constexpr float kShare[kRippleWaves] = {1.0f, 0.95f, 0.9f, 0.85f, 0.8f, 0.75f, 0.7f, 0.65f};
   std::array<RippleWave, kRippleWaves> waves{};
   for (int i = 0; i < kRippleWaves; ++i) {
     const double length = static_cast<double>(s.ripple_scale_m) * kLength[i];
     const double k = 2.0 * std::numbers::pi / length;
     waves[i].k = glm::dvec2(std::cos(kAngle[i]), std::sin(kAngle[i])) * k;
     waves[i].omega = std::sqrt(kGravity * k) * static_cast<double>(s.ripple_speed);
-    waves[i].slope = s.ripple_strength * kShare[i] / 0.30f;
+    waves[i].slope = s.ripple_strength * kShare[i] * 0.5f;
   }
   return waves;
 }
@@ -118,6 +119,15 @@ void WaterRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
     waves[i] = glm::vec4(glm::vec2(ripple[i].k), static_cast<float>(phase), ripple[i].slope);
   }
   program_.set("u_waves", std::span<const glm::vec4>(waves));
+  // The domain warp: two waves 3 and 3.4 times longer than the longest ripple, slower, across it.
+  const glm::dvec2 k0 = ripple[0].k;
+  const glm::dvec2 warp_k[2] = {glm::dvec2(-k0.y, k0.x) * 0.29, k0 * 0.34};
+  std::array<glm::vec4, 2> warp{};
+  for (int i = 0; i < 2; ++i) {
+    const double phase = std::remainder(glm::dot(warp_k[i], cam) - 0.3 * ripple[0].omega * frame.time, 2.0 * std::numbers::pi);
+    warp[i] = glm::vec4(glm::vec2(warp_k[i]), static_cast<float>(phase), 0.3f * s.ripple_scale_m);
+  }
+  program_.set("u_warp", std::span<const glm::vec4>(warp));
   // Pixel footprint per metre of distance (radians per pixel, vertical), for the ripple fade.
   const float fy = vp[1][1] != 0.0f ? 2.0f / (std::abs(vp[1][1]) * static_cast<float>(std::max(viewport[3], 1))) : 0.0f;
   program_.set("u_pixel_angle", fy);

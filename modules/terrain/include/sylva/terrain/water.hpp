@@ -18,7 +18,7 @@
 //    the sky in the reflected direction, from render/lib/sky.glsl (the sky pass's own function,
 //    so the horizon matches), plus an optional sun glint (normalised Blinn-Phong).
 //  * Shore: the water fades in over the first `shore_fade_m` of vertical depth: no seam line.
-//  * Ripples: six procedural travelling waves (deep-water dispersion) perturb the normal; each
+//  * Ripples: eight procedural travelling waves (deep-water dispersion) perturb the normal; each
 //    fades out once it is smaller than about two pixels, so far water does not shimmer.
 //  * Fog: the render core's aerial perspective (render/lib/fog.glsl) to the water point.
 // Limits: no reflection of the terrain itself (the sky only), no underwater view (a camera
@@ -68,7 +68,7 @@ struct WaterSettings {
     v(ripple_strength, "ripple_strength", {.min = 0.0, .max = 1.0, .step = 0.005,
       .help = "Slope of the animated ripples (0 = a flat mirror)"});
     v(ripple_scale_m, "ripple_scale_m", {.min = 0.05, .max = 1000.0, .unit = "m",
-      .help = "Wavelength of the longest ripple; five shorter ones follow", .log_scale = true});
+      .help = "Wavelength of the longest ripple; seven shorter ones follow", .log_scale = true});
     v(ripple_speed, "ripple_speed", {.min = 0.0, .max = 10.0, .step = 0.05,
       .help = "Ripple speed as a multiple of the deep-water phase speed (0 = frozen)"});
     v(sun_glint, "sun_glint", {.min = 0.0, .max = 10.0, .step = 0.05,
@@ -83,7 +83,7 @@ struct RippleWave {
   double omega = 0.0;
   float slope = 0.0f;
 };
-constexpr int kRippleWaves = 6;
+constexpr int kRippleWaves = 8;
 std::array<RippleWave, kRippleWaves> ripple_waves(const WaterSettings& s);
 
 struct WaterFrameStats {
