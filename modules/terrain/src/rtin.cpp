@@ -8,22 +8,27 @@
 namespace sylva::terrain::detail {
 namespace {
 
+// A midpoint's own error: computed in double, where the mean of two floats is exact, so the error
+// is the true one.
+float own_error(float hm, float ha, float hb) {
+  return static_cast<float>(std::fabs(static_cast<double>(hm) - 0.5 * (static_cast<double>(ha) + hb)));
+}
+
+// Passes t = 4, 8, ..., n: they write only points with both coordinates even (ErrorGrid::even);
+// the finest pass (t = 2) is ErrorGrid::finest, evaluated where it is read.
 struct ErrorPass {
   const HeightGrid& hg;
   ErrorGrid& eg;
   std::int32_t n;
 
   float h(std::int32_t x, std::int32_t z) const { return hg.at(x, z); }
-  float& e(std::int32_t x, std::int32_t z) const {
-    return eg.err[static_cast<std::size_t>(z) * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(x)];
+  void set(std::int32_t x, std::int32_t z, float err) const {
+    eg.even[static_cast<std::size_t>(z / 2) * static_cast<std::size_t>(n / 2 + 1) + static_cast<std::size_t>(x / 2)] = err;
   }
+  float e(std::int32_t x, std::int32_t z) const { return eg.at(Pt{x, z}); }
   float e_or0(std::int32_t x, std::int32_t z) const {
     if (x < 0 || z < 0 || x > n || z > n) return 0.0f;
     return e(x, z);
-  }
-  static float own(float hm, float ha, float hb) {
-    // Computed in double: the mean of two floats is exact there, so the error is the true one.
-    return static_cast<float>(std::fabs(static_cast<double>(hm) - 0.5 * (static_cast<double>(ha) + hb)));
   }
 
   // Side midpoints of cells of size t on row z.
@@ -31,21 +36,17 @@ struct ErrorPass {
     const std::int32_t half = t / 2, quarter = t / 4;
     if (z % t == 0) {  // horizontal sides: x = t/2 mod t
       for (std::int32_t x = half; x <= n; x += t) {
-        float err = own(h(x, z), h(x - half, z), h(x + half, z));
-        if (quarter > 0) {
-          err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
-                          e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
-        }
-        e(x, z) = err;
+        float err = own_error(h(x, z), h(x - half, z), h(x + half, z));
+        err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
+                        e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
+        set(x, z, err);
       }
     } else if (z % t == half) {  // vertical sides: x = 0 mod t
       for (std::int32_t x = 0; x <= n; x += t) {
-        float err = own(h(x, z), h(x, z - half), h(x, z + half));
-        if (quarter > 0) {
-          err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
-                          e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
-        }
-        e(x, z) = err;
+        float err = own_error(h(x, z), h(x, z - half), h(x, z + half));
+        err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
+                        e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
+        set(x, z, err);
       }
     }
   }
@@ -64,22 +65,37 @@ struct ErrorPass {
         ha = h(x + half, z - half);
         hb = h(x - half, z + half);
       }
-      float err = own(h(x, z), ha, hb);
+      float err = own_error(h(x, z), ha, hb);
       err = std::max({err, e(x - half, z), e(x + half, z), e(x, z - half), e(x, z + half)});
-      e(x, z) = err;
+      set(x, z, err);
     }
   }
 };
 
 }  // namespace
 
+float ErrorGrid::finest(Pt p) const {
+  const HeightGrid& hg = *heights;
+  const std::int32_t x = p.x, z = p.z;
+  if ((z & 1) == 0) return own_error(hg.at(x, z), hg.at(x - 1, z), hg.at(x + 1, z));  // horizontal side
+  if ((x & 1) == 0) return own_error(hg.at(x, z), hg.at(x, z - 1), hg.at(x, z + 1));  // vertical side
+  // Centre of the 2x2 cell (cx, cz): the diagonal alternates with the cell's parity.
+  const std::int32_t cx = (x - 1) / 2, cz = (z - 1) / 2;
+  const bool main_diagonal = ((cx + cz) & 1) == 0;
+  const float ha = main_diagonal ? hg.at(x - 1, z - 1) : hg.at(x + 1, z - 1);
+  const float hb = main_diagonal ? hg.at(x + 1, z + 1) : hg.at(x - 1, z + 1);
+  const float err = own_error(hg.at(x, z), ha, hb);
+  return std::max({err, finest({x - 1, z}), finest({x + 1, z}), finest({x, z - 1}), finest({x, z + 1})});
+}
+
 ErrorGrid compute_errors(const HeightGrid& heights, int threads) {
   ErrorGrid eg;
   eg.n = heights.n;
-  const std::size_t side = static_cast<std::size_t>(heights.n) + 1;
-  eg.err.assign(side * side, 0.0f);
+  eg.heights = &heights;
+  const std::size_t side = static_cast<std::size_t>(heights.n / 2) + 1;
+  eg.even.assign(side * side, 0.0f);
   ErrorPass pass{heights, eg, heights.n};
-  for (std::int32_t t = 2; t <= heights.n; t *= 2) {
+  for (std::int32_t t = 4; t <= heights.n; t *= 2) {
     // Rows of side midpoints: z multiple of t/2. Each row writes only its own points and reads
     // the finer pass, so rows are independent.
     const std::size_t side_rows = static_cast<std::size_t>(heights.n / (t / 2)) + 1;

@@ -59,13 +59,22 @@ struct HeightGrid {
   float at(Pt p) const { return at(p.x, p.z); }
 };
 
-// Vertex errors over the root grid.
+// Vertex errors over the root grid. Only points with both coordinates even are stored (a quarter
+// of the grid: 1 byte per root-grid point, not 4; the bake's peak memory, bake.hpp): a point with
+// an odd coordinate is split only by the finest pass (t = 2), has no children, and its error is
+// its own deviation from its hypotenuse ends (a centre's also its four side neighbours'), so at()
+// computes it from the heights, with the same float operations the pass would have done.
 struct ErrorGrid {
   std::int32_t n = 0;
-  std::vector<float> err;
+  const HeightGrid* heights = nullptr;  // outlives the grid (both live in TreeGrids or a scope)
+  std::vector<float> even;              // errors of (2i, 2j), (n/2 + 1)^2 of them
   float at(Pt p) const {
-    return err[static_cast<std::size_t>(p.z) * static_cast<std::size_t>(n + 1) + static_cast<std::size_t>(p.x)];
+    if (((p.x | p.z) & 1) == 0) {
+      return even[static_cast<std::size_t>(p.z / 2) * static_cast<std::size_t>(n / 2 + 1) + static_cast<std::size_t>(p.x / 2)];
+    }
+    return finest(p);
   }
+  float finest(Pt p) const;  // a point with an odd coordinate (pass t = 2)
 };
 
 // Computes ErrorGrid from the heights, finest triangles first, rows in parallel.
