@@ -85,6 +85,20 @@ float resolve_target(const scene::MapGrid& grid, const BrushSettings& brush, glm
   return 1.0f;  // paint
 }
 
+std::array<std::string, 3> color_channel_ids(const std::string& color_map_id) {
+  return {color_map_id + "_r", color_map_id + "_g", color_map_id + "_b"};
+}
+
+BrushSettings color_channel_brush(const BrushSettings& brush, int channel) {
+  BrushSettings b = brush;
+  if (brush.op == BrushOp::kPaint || brush.op == BrushOp::kErase) {
+    b.target = brush.op == BrushOp::kPaint ? brush.color[channel] : 1.0f;
+    b.op = BrushOp::kPaint;
+    b.use_target = true;
+  }
+  return b;
+}
+
 scene::TexelRect apply_dab(scene::MapGrid& grid, scene::MapKind kind, const BrushSettings& brush, glm::dvec2 center,
                            float target) {
   const scene::TexelRect r = dab_rect(grid, center, brush.radius);

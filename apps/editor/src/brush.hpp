@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace sylva::editor {
@@ -59,6 +60,7 @@ struct BrushSettings {
   float spacing = 0.25f;    // dab spacing as a share of the radius
   float noise_scale = 6.0f; // metres per noise cell
   std::uint32_t seed = 1;
+  glm::vec3 color{1.0f};    // colour maps: the paint colour, linear RGB [0, 1] (see color_channel_brush)
 
   template <class V>
   void visit(V& v) {
@@ -71,6 +73,7 @@ struct BrushSettings {
     v(spacing, "spacing", {.min = 0.01, .max = 4.0, .help = "Dab spacing as a share of the radius"});
     v(noise_scale, "noise_scale", {.min = 0.01, .max = 1.0e5, .unit = "m", .help = "Noise feature size", .log_scale = true});
     v(seed, "seed", {.min = 0.0, .max = 4294967295.0, .help = "Noise seed"});
+    v(color, "color", {.min = 0.0, .max = 1.0, .help = "Paint colour of colour maps (grass.tint), linear RGB"});
   }
 };
 
@@ -96,5 +99,14 @@ scene::TexelRect apply_dab(scene::MapGrid& grid, scene::MapKind kind, const Brus
 
 // The paint/flatten target of a stroke starting at `first_dab`.
 float resolve_target(const scene::MapGrid& grid, const BrushSettings& brush, glm::dvec2 first_dab);
+
+// Colour maps (issue 16: the grass tint is three unit maps, tint_r, tint_g, tint_b). A stroke on
+// the colour map "grass.tint" paints its three channel maps with the same dabs, one undo entry.
+// The ids of the channel maps of colour map `color_map_id` ("grass.tint" -> "grass.tint_r", ...).
+std::array<std::string, 3> color_channel_ids(const std::string& color_map_id);
+// The brush channel `channel` (0..2) of a colour stroke gets: paint goes towards color[channel]
+// and erase towards 1 (white: no tint), both as paint with use_target; the other ops act on each
+// channel as on any unit map.
+BrushSettings color_channel_brush(const BrushSettings& brush, int channel);
 
 }  // namespace sylva::editor

@@ -149,33 +149,65 @@ std::vector<std::string> EditorSession::map_ids() const {
   return ids;
 }
 
+std::vector<std::string> EditorSession::color_map_ids() const {
+  const std::vector<std::string> ids = map_ids();
+  std::vector<std::string> out;
+  for (const std::string& id : ids) {
+    if (!id.ends_with("_r")) continue;
+    const std::string color = id.substr(0, id.size() - 2);
+    const auto channels = color_channel_ids(color);
+    if (std::all_of(channels.begin(), channels.end(), [&](const std::string& c) {
+          return std::find(ids.begin(), ids.end(), c) != ids.end();
+        })) {
+      out.push_back(color);
+    }
+  }
+  return out;
+}
+
 Status EditorSession::begin_stroke(const std::string& map_id, glm::dvec2 world_xz) {
   end_stroke();
-  scene::SceneMap* map = scene_->map(map_id);
-  if (!map || !scene_->document().has_module(map->module)) {
+  const std::vector<std::string> colors = color_map_ids();
+  const bool color = std::find(colors.begin(), colors.end(), map_id) != colors.end();
+  scene::SceneMap* map = color ? nullptr : scene_->map(map_id);
+  if (!color && (!map || !scene_->document().has_module(map->module))) {
     std::string known;
     for (const std::string& id : map_ids()) known += (known.empty() ? "" : ", ") + id;
+    for (const std::string& id : colors) known += ", " + id + " (colour)";
     return make_error(ErrorCode::kNotFound,
                       fmt::format("no map \"{}\" to paint (this scene has: {})", map_id, known.empty() ? "none" : known));
   }
   if (!(brush_.radius > 0.0f) || !std::isfinite(world_xz.x) || !std::isfinite(world_xz.y)) {
     return make_error(ErrorCode::kInvalidArgument, "stroke: the brush radius and the points must be positive/finite");
   }
-  stroke_.emplace(Stroke{map_id, StrokeRecorder(map_id, map->grid), resolve_target(map->grid, brush_, world_xz), world_xz});
+  Stroke stroke{map_id, {}, world_xz};
+  auto add_layer = [&](const std::string& id, scene::SceneMap& m, const BrushSettings& b) {
+    stroke.layers.push_back({id, StrokeRecorder(id, m.grid), b, resolve_target(m.grid, b, world_xz)});
+  };
+  if (color) {
+    const auto channels = color_channel_ids(map_id);
+    for (int c = 0; c < 3; ++c) add_layer(channels[c], *scene_->map(channels[c]), color_channel_brush(brush_, c));
+  } else {
+    add_layer(map_id, *map, brush_);
+  }
+  stroke_.emplace(std::move(stroke));
   dab_to(world_xz);
   return {};
 }
 
 void EditorSession::dab_to(glm::dvec2 p) {
-  scene::SceneMap* map = scene_->map(stroke_->map_id);
-  if (!map) return;
-  const BrushSettings& b = brush_;
-  scene::TexelRect changed;
+  std::vector<scene::TexelRect> changed(stroke_->layers.size());
   auto dab = [&](glm::dvec2 c) {
-    stroke_->recorder.before_dab(dab_rect(map->grid, c, b.radius));
-    changed = changed.unite(apply_dab(map->grid, map->kind, b, c, stroke_->target));
+    for (std::size_t k = 0; k < stroke_->layers.size(); ++k) {
+      StrokeLayer& layer = stroke_->layers[k];
+      scene::SceneMap* map = scene_->map(layer.map_id);
+      if (!map) continue;
+      layer.recorder.before_dab(dab_rect(map->grid, c, layer.brush.radius));
+      changed[k] = changed[k].unite(apply_dab(map->grid, map->kind, layer.brush, c, layer.target));
+    }
   };
-  if (p == stroke_->last_dab && stroke_->recorder.rect().empty()) {
+  const BrushSettings& b = brush_;
+  if (p == stroke_->last_dab && stroke_->layers.front().recorder.rect().empty()) {
     dab(p);  // the first dab of the stroke
   } else {
     const std::vector<glm::dvec2> segment = {stroke_->last_dab, p};
@@ -185,8 +217,9 @@ void EditorSession::dab_to(glm::dvec2 p) {
       stroke_->last_dab = dabs[k];
     }
   }
-  if (!changed.empty()) {
-    Status s = scene_->map_changed(stroke_->map_id, changed);
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    if (changed[k].empty()) continue;
+    Status s = scene_->map_changed(stroke_->layers[k].map_id, changed[k]);
     if (!s.ok()) log_warn("editor: {}", s.error().message);
   }
 }
@@ -200,9 +233,11 @@ Status EditorSession::continue_stroke(glm::dvec2 world_xz) {
 
 void EditorSession::end_stroke() {
   if (!stroke_) return;
-  if (auto edit = stroke_->recorder.finish()) {
-    history_.push({"paint " + stroke_->map_id, {std::move(*edit)}});
+  UndoEntry entry{"paint " + stroke_->map_id, {}};
+  for (const StrokeLayer& layer : stroke_->layers) {
+    if (auto edit = layer.recorder.finish()) entry.edits.push_back(std::move(*edit));
   }
+  if (!entry.edits.empty()) history_.push(std::move(entry));  // a colour stroke: its three maps, one step
   stroke_.reset();
 }
 

@@ -65,6 +65,9 @@ class EditorSession final : public EditTarget {
   BrushSettings& brush() { return brush_; }
   // Names of the paintable maps ("ground.height", "grass.density", ...).
   std::vector<std::string> map_ids() const;
+  // Colour maps ("grass.tint": maps X_r, X_g, X_b all present); a stroke on one paints all three
+  // towards brush().color (brush.hpp, color_channel_brush) as one undo entry.
+  std::vector<std::string> color_map_ids() const;
   Status begin_stroke(const std::string& map_id, glm::dvec2 world_xz);
   Status continue_stroke(glm::dvec2 world_xz);
   void end_stroke();  // pushes the stroke's undo entry
@@ -133,10 +136,16 @@ class EditorSession final : public EditTarget {
   Status adopt(scene::SceneDocument document, std::optional<std::filesystem::path> path);
   void dab_to(glm::dvec2 world_xz);
 
-  struct Stroke {
+  // One map a stroke paints: a unit/height map, or one channel of a colour map.
+  struct StrokeLayer {
     std::string map_id;
     StrokeRecorder recorder;
+    BrushSettings brush;
     float target = 0.0f;
+  };
+  struct Stroke {
+    std::string map_id;  // as given: "grass.density" or the colour map "grass.tint"
+    std::vector<StrokeLayer> layers;
     glm::dvec2 last_dab{0.0};
   };
 

@@ -355,15 +355,21 @@ void EditorUi::properties_panel() {
 
 void EditorUi::brush_panel() {
   ImGui::Checkbox("Paint (left mouse in the viewport)", &paint_);
-  const std::vector<std::string> ids = session_.map_ids();
+  std::vector<std::string> ids = session_.map_ids();
+  const std::vector<std::string> colors = session_.color_map_ids();  // "grass.tint": one stroke paints tint_r/g/b
+  const bool color = std::find(colors.begin(), colors.end(), paint_map_) != colors.end();
+  ids.insert(ids.end(), colors.begin(), colors.end());
   if (std::find(ids.begin(), ids.end(), paint_map_) == ids.end()) paint_map_ = ids.empty() ? "" : ids.front();
-  if (ImGui::BeginCombo("map", paint_map_.empty() ? "(no maps)" : paint_map_.c_str())) {
+  if (ImGui::BeginCombo("map", paint_map_.empty() ? "(no maps)" : (paint_map_ + (color ? " (colour)" : "")).c_str())) {
     for (const std::string& id : ids) {
-      if (ImGui::Selectable(id.c_str(), id == paint_map_)) paint_map_ = id;
+      const bool is_color = std::find(colors.begin(), colors.end(), id) != colors.end();
+      if (ImGui::Selectable((id + (is_color ? " (colour)" : "")).c_str(), id == paint_map_)) paint_map_ = id;
     }
     ImGui::EndCombo();
   }
+  if (color) ImGui::ColorEdit3("colour", &session_.brush().color.x);  // paint: towards it; erase: towards white
   for (const ParamDescriptor& p : describe_params(session_.brush())) {
+    if (p.path == "color") continue;  // the colour picker above, for colour maps only
     ParamWidgetResult r = param_widget(p, p.path.c_str());
     if (r.new_text) apply(p.set_string(*r.new_text));
   }

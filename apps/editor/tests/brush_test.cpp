@@ -189,3 +189,23 @@ TEST(Brush, NoiseIsDeterministicAndBounded) {
   EXPECT_LE(hi, 2.0f);
   EXPECT_GT(hi - lo, 0.2f) << "noise actually changes the map";
 }
+
+// Colour maps (grass.tint): paint goes to the colour's channel, erase to white (no tint), other
+// ops act per channel unchanged.
+TEST(Brush, ColourChannelBrushes) {
+  BrushSettings b;
+  b.color = {0.9f, 0.2f, 0.0f};
+  b.op = BrushOp::kPaint;
+  for (int c = 0; c < 3; ++c) {
+    const BrushSettings cb = color_channel_brush(b, c);
+    EXPECT_EQ(cb.op, BrushOp::kPaint);
+    EXPECT_TRUE(cb.use_target);
+    EXPECT_EQ(cb.target, b.color[c]);
+  }
+  b.op = BrushOp::kErase;
+  EXPECT_EQ(color_channel_brush(b, 1).op, BrushOp::kPaint);
+  EXPECT_EQ(color_channel_brush(b, 1).target, 1.0f);
+  b.op = BrushOp::kSmooth;
+  EXPECT_EQ(color_channel_brush(b, 2).op, BrushOp::kSmooth);
+  EXPECT_EQ(color_channel_ids("grass.tint"), (std::array<std::string, 3>{"grass.tint_r", "grass.tint_g", "grass.tint_b"}));
+}
