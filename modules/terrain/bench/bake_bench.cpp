@@ -63,7 +63,7 @@ void BM_InMemoryBuild(benchmark::State& state) {
       state.SkipWithError(tree.error().describe().c_str());
       return;
     }
-    if (save && !save_chunk_file(out, *tree).ok()) state.SkipWithError("save failed");
+    if (save && !save_chunk_file(out, *tree, 0, &f).ok()) state.SkipWithError("save failed");  // as the bake: with the ground
     state.counters["triangles"] = static_cast<double>(tree->report().triangles());
   }
   state.counters["peak_rss_mib"] = peak_rss_mib();
