@@ -6,6 +6,8 @@
 #include "hostile_bytes.hpp"
 #include "hostile_case.hpp"
 
+#include <limits>
+
 namespace sylva::hostile {
 
 namespace {
@@ -29,15 +31,18 @@ std::string species_scene(const std::string& bad) {
          slots + "}}}\n";
 }
 
-// The good species and `bad.json` (with `bytes`) beside it; the scene plays (exit 0, a picture)
-// and the message names the bad file and `words`.
-HostileCase bad_species(std::string name, std::function<std::string()> bytes, std::vector<std::string> words) {
+// The good species and `bad.json` (with `bytes`, and the files `beside` it) beside it; the scene
+// plays (exit 0, a picture) and the message names the bad file and `words`.
+HostileCase bad_species(std::string name, std::function<std::string()> bytes, std::vector<std::string> words,
+                        std::vector<InputFile> beside = {}) {
   words.insert(words.begin(), {"vegetation.species_files.1.file", "bad.json", "left out"});
+  std::vector<InputFile> files = {{"scene.json", [] { return species_scene("bad.json"); }},
+                                  {"good.json", [] { return std::string(R"({"name": "good", "model": {"objt": "tree.objt"}})"); }},
+                                  {"tree.objt", seed_objt},
+                                  {"bad.json", std::move(bytes)}};
+  for (InputFile& f : beside) files.push_back(std::move(f));
   return {.name = std::move(name),
-          .files = {{"scene.json", [] { return species_scene("bad.json"); }},
-                    {"good.json", [] { return std::string(R"({"name": "good", "model": {"objt": "tree.objt"}})"); }},
-                    {"tree.objt", seed_objt},
-                    {"bad.json", std::move(bytes)}},
+          .files = std::move(files),
           .args = kRun + " --screenshot shot.png",
           .exit_code = 0,
           .words = std::move(words),
@@ -47,6 +52,18 @@ HostileCase bad_species(std::string name, std::function<std::string()> bytes, st
 
 std::function<std::string()> text(std::string s) {
   return [s] { return s; };
+}
+
+// A species of the shrub preset whose `images` (the JSON members "leaf", "bark", "season") name
+// the image files of a row.
+std::function<std::string()> with_images(const std::string& images) {
+  return text(R"({"model": {"preset": "shrub"}, )" + images + "}");
+}
+std::string rgba_png(std::uint32_t side) { return png_solid(side, side, 4, std::string("\x30\x80\x20\xff", 4)); }
+std::vector<float> nan_every_third(int n) {
+  std::vector<float> v(static_cast<std::size_t>(n), 0.5f);
+  for (std::size_t i = 0; i < v.size(); i += 3) v[i] = std::numeric_limits<float>::quiet_NaN();
+  return v;
 }
 
 // The editor's path: a script sets a species slot on a scene that plays with the good species.
@@ -87,6 +104,38 @@ std::vector<HostileCase> species_file_cases() {
       bad_species("SpeciesParameterHuge", text(R"({"model": {"preset": "birch", "parameters": {"trunk_length": 1e9}}})"),
                   {"model.parameters.trunk_length"}),
       bad_species("SpeciesTooBig", [] { return std::string(3u << 20, ' '); }, {"MiB limit"}),
+      // Leaf, bark and season images (issue #16): each refused naming the species file, the JSON
+      // path and the image, by its header where the size is the problem (nothing decoded).
+      bad_species("SpeciesLeafImageMissing", with_images(R"("leaf": {"color": "gone.png"})"), {"leaf.color: no such file gone.png"}),
+      bad_species("SpeciesLeafImageTruncated", with_images(R"("leaf": {"color": "leaf.png"})"), {"leaf.color", "leaf.png"},
+                  {{"leaf.png", [] { return truncated(rgba_png(64), 50); }}}),
+      bad_species("SpeciesLeafImageIsJson", with_images(R"("leaf": {"color": "leaf.png"})"), {"leaf.color", "leaf.png"},
+                  {{"leaf.png", text(R"({"not": "an image"})")}}),
+      bad_species("SpeciesLeafImageWrongType", with_images(R"("leaf": {"color": 5})"), {"leaf.color"}),
+      bad_species("SpeciesLeafImageWithoutAlpha", with_images(R"("leaf": {"color": "leaf.png"})"),
+                  {"leaf.color", "leaf.png has 3 channels", "RGBA"},
+                  {{"leaf.png", [] { return png_solid(8, 8, 3, "\x30\x80\x20"); }}}),
+      bad_species("SpeciesLeafImageOnePixel", with_images(R"("leaf": {"color": "leaf.png"})"),
+                  {"leaf.color", "leaf.png is 1x1", "minimum"}, {{"leaf.png", [] { return rgba_png(1); }}}),
+      bad_species("SpeciesLeafImage16384Squared", with_images(R"("leaf": {"color": "leaf.png"})"),
+                  {"leaf.color", "leaf.png", "16384x16384", "limit of 4096"},
+                  {{"leaf.png", [] { return png_lying_header(16'384, 16'384, 8, 6); }}}),
+      bad_species("SpeciesLeafImageNaN", with_images(R"("leaf": {"color": "leaf.exr"})"), {"leaf.color", "leaf.exr", "NaN"},
+                  {{"leaf.exr", [] { return float_image(".exr", 8, 8, nan_every_third(64)); }}}),
+      bad_species("SpeciesLeafNormalIsTheSpeciesFile", with_images(R"("leaf": {"color": "leaf.png", "normal": "bad.json"})"),
+                  {"leaf.normal", "bad.json"}, {{"leaf.png", [] { return rgba_png(8); }}}),
+      bad_species("SpeciesBarkImageInfinity", with_images(R"("bark": {"color": "bark.tif"})"), {"bark.color", "bark.tif", "Inf"},
+                  {{"bark.tif", [] {
+                      std::vector<float> v(64, 0.5f);
+                      v[9] = std::numeric_limits<float>::infinity();
+                      return float_image(".tif", 8, 8, v);
+                    }}}),
+      bad_species("SpeciesBarkImageIsAFolder", with_images(R"("bark": {"color": "bark/"})"), {"bark.color", "not a file"},
+                  {{"bark/", {}}}),
+      bad_species("SpeciesSeasonImageNotAColumn", with_images(R"("season": "season.png")"), {"season", "season.png is 8x8", "one column"},
+                  {{"season.png", [] { return png_solid(8, 8, 3, "\x30\x80\x20"); }}}),
+      bad_species("SpeciesSeasonImage16384Tall", with_images(R"("season": "season.png")"), {"season", "season.png", "1x16384"},
+                  {{"season.png", [] { return png_lying_header(1, 16'384, 8, 2); }}}),
       {.name = "SpeciesObjtJunk",
        .files = {{"scene.json", [] { return species_scene("bad.json"); }},
                  {"good.json", text(R"({"model": {"objt": "tree.objt"}})")},

@@ -72,6 +72,19 @@ std::string png_gray8(std::uint32_t width, std::uint32_t height, const std::func
   return out;
 }
 
+std::string png_solid(std::uint32_t width, std::uint32_t height, int channels, const std::string& value) {
+  static constexpr int kColorType[] = {0, 0, 4, 2, 6};  // PNG colour type by channel count
+  std::string pixel = value.substr(0, static_cast<std::size_t>(channels));
+  pixel.resize(static_cast<std::size_t>(channels), '\xff');
+  std::string row;
+  for (std::uint32_t x = 0; x < width; ++x) row += pixel;
+  std::string out(kPngSignature, 8);
+  png_chunk(out, "IHDR", png_ihdr(width, height, 8, kColorType[channels]));
+  png_chunk(out, "IDAT", deflate_rows(height, [&row](std::uint32_t) { return row; }));
+  png_chunk(out, "IEND", "");
+  return out;
+}
+
 std::string png_lying_header(std::uint32_t width, std::uint32_t height, int bit_depth, int color_type) {
   std::string out(kPngSignature, 8);
   png_chunk(out, "IHDR", png_ihdr(width, height, bit_depth, color_type));

@@ -13,6 +13,9 @@ namespace sylva::hostile {
 // `row(y)` returns (each `width` bytes, without the filter byte). Rows are compressed as they
 // come, so a 16384^2 picture costs a row of memory, not the picture.
 std::string png_gray8(std::uint32_t width, std::uint32_t height, const std::function<std::string(std::uint32_t)>& row);
+// A PNG of one colour: `channels` (1 grey, 2 grey+alpha, 3 RGB, 4 RGBA) 8-bit samples `value`
+// (its first `channels` bytes) in every pixel.
+std::string png_solid(std::uint32_t width, std::uint32_t height, int channels, const std::string& value);
 // A PNG that claims `width` x `height` but carries a few bytes of image data: the lying header.
 std::string png_lying_header(std::uint32_t width, std::uint32_t height, int bit_depth = 8, int color_type = 0);
 

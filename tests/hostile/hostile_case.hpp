@@ -40,6 +40,7 @@ std::vector<HostileCase> output_path_cases();
 std::vector<HostileCase> editor_script_cases();
 std::vector<HostileCase> bench_cases();
 std::vector<HostileCase> species_file_cases();
+std::vector<HostileCase> plant_file_cases();
 
 // A scene JSON of the built-in ground (small, fast) whose "maps" use `height_map` when given.
 std::string ground_scene(const std::string& height_map = "");

@@ -155,7 +155,7 @@ TEST_P(HostileRun, FailsCleanly) {
 std::vector<HostileCase> all_cases() {
   std::vector<HostileCase> all;
   for (auto table : {scene_file_cases, map_image_cases, elevation_raster_cases, player_command_line_cases, output_path_cases,
-                     editor_script_cases, bench_cases, species_file_cases}) {
+                     editor_script_cases, bench_cases, species_file_cases, plant_file_cases}) {
     for (HostileCase& c : table()) all.push_back(std::move(c));
   }
   return all;
