@@ -101,6 +101,7 @@ void EditorUi::frame(double dt) {
     message(session_.messages()[session_messages_shown_]);
   }
   poll_terrain_import();
+  if (import_.busy()) import_open_ = true;  // also when a script started it
   handle_shortcuts();
   menu_bar();
   const ImGuiViewport* vp = ImGui::GetMainViewport();

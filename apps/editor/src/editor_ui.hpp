@@ -29,6 +29,8 @@ class EditorUi {
   // The window's close button: asks about unsaved changes first.
   void request_quit();
   void message(std::string text);
+  // File > Import terrain...'s state (a --script run shares it: ScriptHooks::terrain_import).
+  TerrainImport& terrain_import() { return import_; }
 
  private:
   enum class Pending { kNone, kNew, kOpenDefault, kOpen, kQuit };

@@ -160,6 +160,7 @@ int run_window(const Options& o) {
           image->set_format(sylva::PixelFormat::kU8);
           return sylva::write_image(file, *image);
         };
+        hooks.terrain_import = &ui.terrain_import();
         hooks.after_command = [&] {
           draw_frame(1.0 / 30.0);
           context->swap_buffers();

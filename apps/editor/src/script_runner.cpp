@@ -32,7 +32,7 @@ struct RunState {
 };
 
 // import_terrain PATH [bake OUT [hold]]: reads the source (waiting for it), then uses it or
-// starts the bake.
+// starts the bake (with hold: returns once the bake is parked at its first progress report).
 Status import_terrain(EditorSession& s, const std::vector<std::string>& a, const std::filesystem::path& base,
                       std::ostream& out, TerrainImport& import) {
   SYLVA_TRY(import.start_read(s, resolve(base, a[0])));
@@ -40,17 +40,19 @@ Status import_terrain(EditorSession& s, const std::vector<std::string>& a, const
   if (!read || !read->ok()) return read ? Status(read->error()) : make_error(ErrorCode::kInvalidArgument, "nothing was read");
   out << "import: " << **read << "\n";
   if (a.size() == 1) return import.use_directly(s);
-  return import.start_bake(s, resolve(base, a[2]), a.size() == 4);
+  const bool hold = a.size() == 4;
+  SYLVA_TRY(import.start_bake(s, resolve(base, a[2]), hold));
+  if (hold) import.wait_until_held();
+  return {};
 }
 
 // wait_import [MAX_FRAMES]: frames go on while the bake runs (as in the window); progress is
 // written each time it passes another 10 %.
 Status wait_import(EditorSession& s, int max_frames, std::ostream& out, TerrainImport& import) {
-  if (!import.busy()) return make_error(ErrorCode::kInvalidArgument, "no import is running");
   import.release();
   int frames = 0, shown = -1;
-  std::optional<Result<std::string>> done;
-  for (; frames < max_frames && !(done = import.poll(s)); ++frames) {
+  for (; frames < max_frames && import.busy(); ++frames) {
+    if (import.poll(s)) break;
     const int decile = static_cast<int>(import.progress() * 10.0f);
     if (decile > shown) {
       shown = decile;
@@ -59,7 +61,9 @@ Status wait_import(EditorSession& s, int max_frames, std::ostream& out, TerrainI
     SYLVA_TRY(s.render_frame(1.0 / 30.0));
     std::this_thread::sleep_for(std::chrono::milliseconds(5));  // a window's frame pacing
   }
-  if (!done) return make_error(ErrorCode::kLimit, fmt::format("the bake did not finish within {} frames", max_frames));
+  if (import.busy()) return make_error(ErrorCode::kLimit, fmt::format("the bake did not finish within {} frames", max_frames));
+  auto done = import.take_last();
+  if (!done) return make_error(ErrorCode::kInvalidArgument, "no import is running");
   out << "import: " << frames << " frames drawn during the bake\n";
   if (!done->ok()) return done->error();
   out << "import: " << **done << "\n";
@@ -68,7 +72,11 @@ Status wait_import(EditorSession& s, int max_frames, std::ostream& out, TerrainI
 
 // cancel_import: the bake stops at its next chunk; the scene is left as it was.
 Status cancel_import(EditorSession& s, std::ostream& out, TerrainImport& import) {
-  if (!import.busy()) return make_error(ErrorCode::kInvalidArgument, "no import is running");
+  if (!import.busy()) {
+    auto done = import.take_last();
+    if (done && done->ok()) return make_error(ErrorCode::kInvalidArgument, "the import finished before the cancel: " + **done);
+    return make_error(ErrorCode::kInvalidArgument, "no import is running");
+  }
   import.cancel();
   auto done = import.wait(s);
   if (done && done->ok()) return make_error(ErrorCode::kInvalidArgument, "the import finished before the cancel: " + **done);
@@ -157,9 +165,11 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     out << "sylva-editor: " << *summary << "\n";
     return {};
   }
-  if (c.name == "import_terrain") return import_terrain(s, a, base, out, state.import);
-  if (c.name == "wait_import") return wait_import(s, a.empty() ? 100000 : c.count, out, state.import);
-  if (c.name == "cancel_import") return cancel_import(s, out, state.import);
+  // The window's importer when there is one, so a script's import shows in File > Import terrain...
+  TerrainImport& import = hooks.terrain_import ? *hooks.terrain_import : state.import;
+  if (c.name == "import_terrain") return import_terrain(s, a, base, out, import);
+  if (c.name == "wait_import") return wait_import(s, a.empty() ? 100000 : c.count, out, import);
+  if (c.name == "cancel_import") return cancel_import(s, out, import);
   if (c.name == "save") {
     if (a.empty()) return s.save();
     return s.save_as(resolve(base, a[0]));

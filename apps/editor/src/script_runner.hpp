@@ -14,11 +14,16 @@
 
 namespace sylva::editor {
 
+class TerrainImport;
+
 struct ScriptHooks {
   // screenshot_ui PATH: the whole window with its panels (null in headless runs: an error).
   std::function<Status(const std::filesystem::path&)> screenshot_ui;
   // Called after every command (the window mode redraws the UI so a viewer sees the script run).
   std::function<void()> after_command;
+  // The window's File > Import terrain... state (null: the run has its own), so a script's
+  // import_terrain shows in the window with its progress bar.
+  TerrainImport* terrain_import = nullptr;
 };
 
 struct ScriptOutcome {

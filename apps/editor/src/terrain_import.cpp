@@ -34,11 +34,12 @@ void settings_from_scene(T& settings, scene::Scene& scene, const std::string& pr
   }
 }
 
-// A path as the scene stores it: relative to the scene's folder, absolute for a scene without one.
+// A path as the scene stores it: relative to the scene file's folder (directory() "" is the
+// working directory), absolute for a scene without a file (save as rebases it).
 std::string scene_relative(const scene::SceneDocument& doc, const fs::path& file) {
   std::error_code ec;
   const fs::path abs = fs::absolute(file, ec).lexically_normal();
-  if (doc.directory().empty()) return abs.generic_string();
+  if (doc.file().empty()) return abs.generic_string();
   const fs::path rel = abs.lexically_relative(fs::absolute(doc.directory(), ec).lexically_normal());
   return rel.empty() ? abs.generic_string() : rel.generic_string();
 }
@@ -67,6 +68,11 @@ void TerrainImport::release() {
     hold_ = false;
   }
   hold_cv_.notify_all();
+}
+
+void TerrainImport::wait_until_held() {
+  std::unique_lock<std::mutex> lock(hold_mutex_);
+  hold_cv_.wait(lock, [this] { return held_ || done_ || state_ != State::kBaking; });
 }
 
 void TerrainImport::cancel() {
@@ -193,14 +199,20 @@ Status TerrainImport::start_bake(EditorSession& session, const fs::path& out, bo
   options.control.progress = [this](float f) {
     progress_ = f;
     std::unique_lock<std::mutex> lock(hold_mutex_);
+    if (!hold_) return;
+    held_ = true;
+    hold_cv_.notify_all();
     hold_cv_.wait(lock, [this] { return !hold_; });
+    held_ = false;
   };
   worker_ = std::thread([this, options] {
     Result<terrain::BakeReport> report = terrain::bake_chunk_file(std::move(raster_->field), out_, options);
     raster_.reset();
     job_status_ = report.ok() ? ok_status() : Status(report.error());
     if (report.ok()) progress_ = 1.0f;
+    std::lock_guard<std::mutex> lock(hold_mutex_);
     done_ = true;
+    hold_cv_.notify_all();
   });
   return ok_status();
 #endif
@@ -209,32 +221,44 @@ Status TerrainImport::start_bake(EditorSession& session, const fs::path& out, bo
 std::optional<Result<std::string>> TerrainImport::wait(EditorSession& session) {
   release();
   join();
-  return poll(session);
+  poll(session);
+  return take_last();
+}
+
+std::optional<Result<std::string>> TerrainImport::take_last() {
+  std::optional<Result<std::string>> last = std::move(last_);
+  last_.reset();
+  return last;
 }
 
 std::optional<Result<std::string>> TerrainImport::poll(EditorSession& session) {
   if (!busy() || !done_) return std::nullopt;
+  last_ = finish(session);
+  return last_;
+}
+
+Result<std::string> TerrainImport::finish(EditorSession& session) {
   join();
   const Status status = job_status_.value_or(make_error(ErrorCode::kInvalidArgument, "the import job ended without a result"));
   if (state_ == State::kReading) {
     if (!status.ok()) {
       reset();
-      return Result<std::string>(status.error());
+      return status.error();
     }
     state_ = State::kRead;
-    return Result<std::string>("read " + info_->summary());
+    return "read " + info_->summary();
   }
   state_ = State::kIdle;
   if (!status.ok()) {
     info_.reset();
-    return Result<std::string>(status.error());
+    return status.error();
   }
   std::error_code ec;
   const auto bytes = fs::file_size(out_, ec);
   const Status applied = apply(session, true);
   info_.reset();
-  if (!applied.ok()) return Result<std::string>(applied.error());
-  return Result<std::string>(fmt::format("baked {} ({:.1f} MB, 100 % in {:.1f} s); terrain.baked_file = {}", out_.string(),
+  if (!applied.ok()) return applied.error();
+  return std::string(fmt::format("baked {} ({:.1f} MB, 100 % in {:.1f} s); terrain.baked_file = {}", out_.string(),
                                          static_cast<double>(ec ? 0 : bytes) / 1e6, elapsed_s(),
                                          scene_relative(session.scene().document(), out_)));
 }

@@ -89,6 +89,9 @@ class TerrainImport {
   // cancel always lands in the middle of the bake.
   Status start_bake(EditorSession& session, const std::filesystem::path& out, bool hold = false);
   void release();
+  // Blocks until a held bake is parked at its first progress report (or has ended), so what a
+  // window draws next is the bake in progress (tests).
+  void wait_until_held();
   // Stops a running job (the bake at its next chunk); poll() then reports it.
   void cancel();
   // Drops the file read (State kRead -> kIdle); a running job is cancelled first.
@@ -98,8 +101,11 @@ class TerrainImport {
   // what to tell the user ("read ...", "baked ... and set terrain.baked_file", or the error).
   // nullopt while nothing finished.
   std::optional<Result<std::string>> poll(EditorSession& session);
-  // Blocks until the worker is done (scripts), then poll().
+  // Blocks until the worker is done (scripts), then poll() and take_last().
   std::optional<Result<std::string>> wait(EditorSession& session);
+  // The result the last poll() returned, once (nullopt when it was taken): the window polls every
+  // frame, so a script waiting on the same import may find its result already applied.
+  std::optional<Result<std::string>> take_last();
 
   State state() const { return state_; }
   bool busy() const { return state_ == State::kReading || state_ == State::kBaking; }
@@ -112,6 +118,7 @@ class TerrainImport {
 
  private:
   void join();
+  Result<std::string> finish(EditorSession& session);  // the worker's result, applied
   Status apply(EditorSession& session, bool baked);
 
   State state_ = State::kIdle;
@@ -122,6 +129,7 @@ class TerrainImport {
   std::mutex hold_mutex_;
   std::condition_variable hold_cv_;
   bool hold_ = false;
+  bool held_ = false;
   std::chrono::steady_clock::time_point started_;
 
   std::filesystem::path file_, out_;
@@ -130,6 +138,7 @@ class TerrainImport {
   std::optional<TerrainSourceInfo> info_;
   std::optional<ElevationRaster> raster_;  // kept between read and bake
   std::optional<Status> job_status_;       // set by the worker before done_
+  std::optional<Result<std::string>> last_;  // what poll() returned last, until taken
 };
 
 }  // namespace sylva::editor

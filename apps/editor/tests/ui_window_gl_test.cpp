@@ -127,16 +127,29 @@ bool is_text(const Rgb& p) { return p.r > 200 && p.g > 200 && p.b > 200; }
 // Widget frames of the dark style are blue (ImGuiCol_FrameBg 0.16, 0.29, 0.48 at 0.54 alpha).
 bool is_widget(const Rgb& p) { return p.b > p.r + 20 && p.b > 50; }
 
+// Without xvfb-run a window test fails when CI=true and is skipped elsewhere.
+void skip_without_xvfb() {
+  const char* ci = std::getenv("CI");
+  const std::string why = "xvfb-run not found on PATH: install the Debian packages xvfb and xauth (scripts/install-deps)";
+  if (ci && std::string(ci) == "true") FAIL() << why << "; CI=true, so this test may not be skipped";
+  GTEST_SKIP() << why;
+}
+
+// The editor in a kWidth x kHeight window under xvfb-run, running `script`.
+sylva::test::RunResult run_in_window(const fs::path& xvfb_run, const fs::path& script) {
+  // -a picks a free display number, starting from one of our own so parallel runs rarely race.
+  const std::string args = "-a -n " + std::to_string(100 + ::getpid() % 400) + " -s \"-screen 0 " +
+                           std::to_string(kWidth + 160) + "x" + std::to_string(kHeight + 160) + "x24\" " +
+                           SYLVA_EDITOR_EXE + " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) +
+                           " --script " + script.string();
+  return sylva::test::run_command(xvfb_run.string(), args);
+}
+
 }  // namespace
 
 TEST(EditorWindow, UiScriptPaintsSavesAndTheScreenshotShowsThePanels) {
   const auto xvfb_run = find_on_path("xvfb-run");
-  if (!xvfb_run) {
-    const char* ci = std::getenv("CI");
-    const std::string why = "xvfb-run not found on PATH: install the Debian packages xvfb and xauth (scripts/install-deps)";
-    if (ci && std::string(ci) == "true") FAIL() << why << "; CI=true, so this test may not be skipped";
-    GTEST_SKIP() << why;
-  }
+  if (!xvfb_run) return skip_without_xvfb();
   const fs::path dir = fs::temp_directory_path() / ("sylva_editor_ui_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -144,12 +157,7 @@ TEST(EditorWindow, UiScriptPaintsSavesAndTheScreenshotShowsThePanels) {
   ASSERT_TRUE(write_file_atomic(dir / "ui.sylva", script()).ok());
   ASSERT_TRUE(write_file_atomic(dir / "tree.lsys", kTreeGrammar).ok());
 
-  // -a picks a free display number, starting from one of our own so parallel runs rarely race.
-  const std::string args = "-a -n " + std::to_string(100 + ::getpid() % 400) + " -s \"-screen 0 " +
-                           std::to_string(kWidth + 160) + "x" + std::to_string(kHeight + 160) + "x24\" " +
-                           SYLVA_EDITOR_EXE + " --size " + std::to_string(kWidth) + "x" + std::to_string(kHeight) +
-                           " --script " + (dir / "ui.sylva").string();
-  const sylva::test::RunResult run = sylva::test::run_command(xvfb_run->string(), args);
+  const sylva::test::RunResult run = run_in_window(*xvfb_run, dir / "ui.sylva");
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_EQ(run.output.find("headless"), std::string::npos) << "the editor must run in a window: " << run.output;
 
@@ -221,5 +229,49 @@ TEST(EditorWindow, UiScriptPaintsSavesAndTheScreenshotShowsThePanels) {
   EXPECT_GT(share(*preview, window, exactly(kTrunk)) * area, 200.0) << "trunk pixels in the plant preview";
   EXPECT_GT(share(*preview, window, exactly(kLeaves)) * area, 200.0) << "leaf pixels in the plant preview";
   EXPECT_LT(share(ui, window, exactly(kTrunk)) * area, 10.0) << "trunk-coloured pixels before the preview opened";
+  if (!HasFailure()) fs::remove_all(dir);
+}
+
+// File > Import terrain... (issue 15) in the window: a script's bake, held at its first progress
+// report, shows the Import terrain window with its progress bar (the dark style's
+// PlotHistogram colour, nowhere before); Cancel removes the bar and leaves no file; a second bake
+// runs to its end and sets terrain.baked_file.
+TEST(EditorWindow, ImportTerrainShowsTheBakeWithAProgressBar) {
+  const auto xvfb_run = find_on_path("xvfb-run");
+  if (!xvfb_run) return skip_without_xvfb();
+  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_ui_import_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // An Esri ASCII grid (GDAL, metres): 65 x 65 samples 8 m apart.
+  std::ostringstream grid;
+  grid << "ncols 65\nnrows 65\nxllcorner 0\nyllcorner 0\ncellsize 8\nNODATA_value -9999\n";
+  for (int j = 0; j < 65; ++j) {
+    for (int i = 0; i < 65; ++i) grid << std::lround(100.0 + 60.0 * std::sin(i * 0.2) * std::cos(j * 0.15)) << (i < 64 ? " " : "\n");
+  }
+  ASSERT_TRUE(write_file_atomic(dir / "dem.asc", grid.str()).ok());
+  ASSERT_TRUE(write_file_atomic(dir / "terrain.json", R"({"camera": {"position": [0, 300, 300], "pitch_deg": -40},
+    "terrain": {"size": 512, "resolution": 65, "generator": "flat", "tree": {"leaf_dimension": 17}}})").ok());
+  ASSERT_TRUE(write_file_atomic(dir / "import.sylva",
+                                "load terrain.json\nscreenshot_ui before.png\n"
+                                "import_terrain dem.asc bake dem.sylvaterrain hold\nscreenshot_ui baking.png\n"
+                                "cancel_import\nscreenshot_ui cancelled.png\nexpect terrain.baked_file \"\"\n"
+                                "import_terrain dem.asc bake dem.sylvaterrain\nwait_import\n"
+                                "expect terrain.baked_file dem.sylvaterrain\nquit\n").ok());
+  const sylva::test::RunResult run = run_in_window(*xvfb_run, dir / "import.sylva");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("bake cancelled; nothing was written"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("terrain.baked_file = dem.sylvaterrain"), std::string::npos) << run.output;
+  EXPECT_TRUE(fs::exists(dir / "dem.sylvaterrain"));
+  // ImGuiCol_PlotHistogram of StyleColorsDark: (0.90, 0.70, 0.00).
+  auto bar = [](const Rgb& p) { return near(p, {230, 179, 0}, 4); };
+  const Region all{0, 0, kWidth, kHeight};
+  const double area = double(kWidth) * kHeight;
+  for (const char* shot : {"before.png", "baking.png", "cancelled.png"}) {
+    auto image = read_image(dir / shot);
+    ASSERT_TRUE(image.ok()) << image.error().message;
+    const double pixels = share(*image, all, bar) * area;
+    if (std::string(shot) == "baking.png") EXPECT_GT(pixels, 2000.0) << "the progress bar while baking";
+    else EXPECT_LT(pixels, 50.0) << shot;
+  }
   if (!HasFailure()) fs::remove_all(dir);
 }
