@@ -40,7 +40,8 @@ std::string scene_relative(const scene::SceneDocument& doc, const fs::path& file
   std::error_code ec;
   const fs::path abs = fs::absolute(file, ec).lexically_normal();
   if (doc.file().empty()) return abs.generic_string();
-  const fs::path rel = abs.lexically_relative(fs::absolute(doc.directory(), ec).lexically_normal());
+  const fs::path folder = doc.directory().empty() ? fs::current_path(ec) : fs::absolute(doc.directory(), ec);
+  const fs::path rel = abs.lexically_relative(folder.lexically_normal());
   return rel.empty() ? abs.generic_string() : rel.generic_string();
 }
 
