@@ -10,9 +10,10 @@
 //   remove_module NAME           remove a module section (undoable)
 //   set PATH VALUE | set PATH=VALUE   set a parameter (undoable), e.g. set grass.field.density 120
 //   brush KEY=VALUE...           brush settings: op, radius, strength, falloff, target, use_target,
-//                                spacing, noise_scale, seed (editor/brush.hpp)
+//                                spacing, noise_scale, seed, color=R,G,B (editor/brush.hpp)
 //   stroke MAP X,Z [X,Z ...]     paint one stroke through world points on a map ("ground.height"),
-//                                one undo entry
+//                                or on a colour map ("grass.tint": its _r, _g, _b maps towards
+//                                brush color), one undo entry
 //   undo [N] / redo [N]          N steps (default 1)
 //   camera X Y Z [YAW PITCH [FOV]]   place the camera (degrees)
 //   camera bookmark NAME         go to a bookmark of the scene

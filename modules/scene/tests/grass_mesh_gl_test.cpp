@@ -431,6 +431,45 @@ TEST_F(GrassMeshGl, UvDensityMapGrowsBladesOnlyOnTheWhiteHalf) {
   EXPECT_LT(left * 20, right) << "the black half shows (almost) no grass";
 }
 
+// The same quad as glTF: TEXCOORD_0 (glTF's v is already the image row) grows the OBJ's blades.
+TEST_F(GrassMeshGl, UvDensityMapOnAGltfQuadGrowsTheObjBlades) {
+  if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
+  scene::testing::TestDir dir("sylva_grass_mesh");
+  write_uv_quad_obj(dir.path / "quad.obj", true);
+  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
+  const float positions[12] = {-2, 0, -2, 2, 0, -2, 2, 0, 2, -2, 0, 2};
+  const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+  const std::uint32_t indices[6] = {0, 3, 2, 0, 2, 1};  // the OBJ face's fan
+  std::vector<unsigned char> bytes;
+  for (const auto& [data, size] : {std::pair<const void*, std::size_t>{positions, 48}, {uvs, 32}, {indices, 24}}) {
+    bytes.insert(bytes.end(), static_cast<const unsigned char*>(data), static_cast<const unsigned char*>(data) + size);
+  }
+  const nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"scenes", {{{"nodes", {0}}}}},
+      {"nodes", {{{"mesh", 0}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}, {"TEXCOORD_0", 1}}}, {"indices", 2}, {"mode", 4}}}}}}},
+      {"buffers", {{{"byteLength", bytes.size()}, {"uri", "data:application/octet-stream;base64," + base64(bytes)}}}},
+      {"bufferViews", {{{"buffer", 0}, {"byteOffset", 0}, {"byteLength", 48}},
+                       {{"buffer", 0}, {"byteOffset", 48}, {"byteLength", 32}},
+                       {{"buffer", 0}, {"byteOffset", 80}, {"byteLength", 24}}}},
+      {"accessors", {{{"bufferView", 0}, {"componentType", 5126}, {"count", 4}, {"type", "VEC3"},
+                      {"min", {-2.0, 0.0, -2.0}}, {"max", {2.0, 0.0, 2.0}}},
+                     {{"bufferView", 1}, {"componentType", 5126}, {"count", 4}, {"type", "VEC2"}},
+                     {{"bufferView", 2}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}},
+  };
+  std::ofstream(dir.path / "quad.gltf") << gltf.dump();
+  auto obj = scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir.path);
+  ASSERT_TRUE(obj.ok()) << obj.error().message;
+  auto made = scene::testing::scene_from_json(uv_stage("quad.gltf", "half.png"), dir.path);
+  if (!made.ok() && made.error().code == ErrorCode::kUnsupported) GTEST_SKIP() << made.error().message;
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  const Frame a = render_frame(**obj), b = render_frame(**made);
+  EXPECT_GT(b.roots.size(), 1000u);
+  EXPECT_EQ(a.roots, b.roots);
+}
+
 TEST_F(GrassMeshGl, UvDensityMapFileIsRebasedBySaveAs) {
   if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
   scene::testing::TestDir dir("sylva_grass_mesh");
