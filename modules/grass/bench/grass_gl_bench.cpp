@@ -309,8 +309,11 @@ BENCHMARK(BM_GrassLodError)
 // field, on a 1.6 km ground of 257^2 samples). Args: 0 = full regeneration (maps, every tile,
 // GrassField::create, FarField::create: what every dab cost before), 1 = the blades of a dab
 // (regenerate_tiles of a 1 m-radius dab's area plus GrassField::set_blades), 2 = the far field
-// alone (FarField::create), 3 = the dab's blades on the CPU only (regenerate_tiles).
-// One iteration = one dab with glFinish.
+// alone (FarField::create), 3 = the dab's blades on the CPU only (regenerate_tiles), 4 = the whole
+// dab: its blades as 1 plus the far field's tile-local update (FarField::update_region), what the
+// scene's grass module does per dab now, 5 = the far field's update alone.
+// One iteration = one dab with glFinish; the dab alternates between density 0.2 and 1 so that
+// every iteration changes the maps.
 void BM_GrassMapEdit(benchmark::State& state) {
   if (!context()) {
     state.SkipWithError("no headless GL context");
@@ -340,13 +343,19 @@ void BM_GrassMapEdit(benchmark::State& state) {
   // The dab: 1 m radius at (3, -7), the texels it writes grown by one texel (changed_world_area).
   const glm::dvec2 texel = rect.size() / glm::dvec2(96.0, 128.0);
   const Rect area{glm::dvec2(3.0, -7.0) - (1.0 + 2.0 * texel.x), glm::dvec2(3.0, -7.0) + (1.0 + 2.0 * texel.x)};
-  for (int j = 0; j < 128; ++j)
-    for (int i = 0; i < 96; ++i) {
-      const glm::dvec2 p = rect.min + (glm::dvec2(i, j) + 0.5) * texel;
-      if (glm::length(p - glm::dvec2(3.0, -7.0)) < 1.0) density.at(i, j) = 0.2f;
-    }
-  std::size_t blades = 0;
+  auto far_field = FarField::create(fs, bs, *maps, ground, origin, far);
+  if (!far_field) {
+    state.SkipWithError(far_field.error().message.c_str());
+    return;
+  }
+  std::size_t blades = 0, iteration = 0;
   for (auto _ : state) {
+    for (int j = 0; j < 128; ++j)
+      for (int i = 0; i < 96; ++i) {
+        const glm::dvec2 p = rect.min + (glm::dvec2(i, j) + 0.5) * texel;
+        if (glm::length(p - glm::dvec2(3.0, -7.0)) < 1.0) density.at(i, j) = iteration % 2 == 0 ? 0.2f : 1.0f;
+      }
+    ++iteration;
     auto m = GrassMaps::from_images(rect, &density, nullptr, nullptr);
     if (mode == 0) {
       auto s = generate_blades(fs, bs, *m, ground, origin);
@@ -354,11 +363,14 @@ void BM_GrassMapEdit(benchmark::State& state) {
       auto ff = FarField::create(fs, bs, *m, ground, origin, far);
       if (!f || !ff) state.SkipWithError("regeneration failed");
       blades = f->blade_count();
-    } else if (mode == 1 || mode == 3) {
+    } else if (mode == 1 || mode == 3 || mode == 4) {
       auto first = regenerate_tiles(*set, fs, bs, *m, ground, area);
       if (!first) state.SkipWithError(first.error().message.c_str());
-      if (mode == 1 && !field->set_blades(*set).ok()) state.SkipWithError("set_blades failed");
+      if (mode != 3 && !field->set_blades(*set).ok()) state.SkipWithError("set_blades failed");
+      if (mode == 4 && !far_field->update_region(fs, bs, *m, ground, {&area, 1}, false).ok()) state.SkipWithError("update_region failed");
       blades = set->blades.size();
+    } else if (mode == 5) {
+      if (!far_field->update_region(fs, bs, *m, ground, {&area, 1}, false).ok()) state.SkipWithError("update_region failed");
     } else {
       auto ff = FarField::create(fs, bs, *m, ground, origin, far);
       if (!ff) state.SkipWithError(ff.error().message.c_str());
@@ -367,6 +379,6 @@ void BM_GrassMapEdit(benchmark::State& state) {
   }
   state.counters["blades"] = static_cast<double>(blades);
 }
-BENCHMARK(BM_GrassMapEdit)->DenseRange(0, 3)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_GrassMapEdit)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace

@@ -35,6 +35,16 @@ void add_sheet(Mesh& m, int n, float s, float lift, bool flat) {
     }
 }
 
+// Appends `other` moved by `shift`; `flip` reverses its winding (its faces then face down).
+void append(Mesh& m, const Mesh& other, const glm::vec3& shift, bool flip) {
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  for (const glm::vec3& p : other.positions) m.positions.push_back(p + shift);
+  for (std::size_t t = 0; t < other.indices.size(); t += 3) {
+    m.indices.insert(m.indices.end(), {base + other.indices[t], base + other.indices[t + (flip ? 2 : 1)],
+                                       base + other.indices[t + (flip ? 1 : 2)]});
+  }
+}
+
 const MeshDensityAt kHalf = [](std::uint32_t, const glm::vec3&) { return 0.5f; };
 
 TEST(FarMeshHeightField, RollingGridIsAHeightFieldOnTheMesh) {
@@ -63,11 +73,7 @@ TEST(FarMeshHeightField, ABoxIsNotAHeightField) {
   add_sheet(m, 4, 2.0f, 3.0f, true);
   Mesh bottom;
   add_sheet(bottom, 4, 2.0f, 0.0f, true);
-  const auto base = static_cast<std::uint32_t>(m.positions.size());
-  m.positions.insert(m.positions.end(), bottom.positions.begin(), bottom.positions.end());
-  for (std::size_t t = 0; t < bottom.indices.size(); t += 3) {  // reversed winding: facing down
-    m.indices.insert(m.indices.end(), {base + bottom.indices[t], base + bottom.indices[t + 2], base + bottom.indices[t + 1]});
-  }
+  append(m, bottom, glm::vec3(0.0f), true);
   auto hf = mesh_height_field(m.positions, m.indices, {0.0, 0.0, 0.0}, 0.25, kHalf);
   ASSERT_FALSE(hf.ok());
   EXPECT_NE(hf.error().message.find("faces down"), std::string::npos) << hf.error().message;
@@ -88,9 +94,7 @@ TEST(FarMeshHeightField, UncoveredSamplesTakeTheNearestHeightAndNoDensity) {
   add_sheet(m, 2, 1.0f, 0.0f, true);
   Mesh right;
   add_sheet(right, 2, 1.0f, 2.0f, true);
-  const auto base = static_cast<std::uint32_t>(m.positions.size());
-  for (glm::vec3 p : right.positions) m.positions.push_back(p + glm::vec3(4.0f, 0.0f, 0.0f));
-  for (std::uint32_t i : right.indices) m.indices.push_back(base + i);
+  append(m, right, glm::vec3(4.0f, 0.0f, 0.0f), false);
   auto hf = mesh_height_field(m.positions, m.indices, {0.0, 0.0, 0.0}, 0.5, kHalf);
   ASSERT_TRUE(hf.ok()) << hf.error().message;
   // x = 1.5 (column 5) lies in the gap, nearer the left square; x = 2.5 (column 7) nearer the right.
