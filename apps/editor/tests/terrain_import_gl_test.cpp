@@ -155,6 +155,13 @@ TEST_F(TerrainImportGl, BrokenSourcesAreErrorsNamingTheFileAndChangeNothing) {
     EXPECT_EQ(session_->scene().document().to_json(), before) << file;
     EXPECT_EQ(session_->history().size(), 0u) << file;
   }
+  // Unsaved painting of the ground would hide the raster: refused, the stroke kept.
+  const std::string painted = run("brush op=raise radius=30 strength=5\nstroke terrain.height 0,0\nimport_terrain dem.tif\n");
+  EXPECT_NE(painted.find("terrain.height has unsaved painting"), std::string::npos) << painted;
+  EXPECT_EQ(param("terrain.elevation.file"), "");
+  EXPECT_EQ(session_->history().size(), 1u) << "only the stroke";
+  EXPECT_GT(session_->scene().ground()->sample(32, 32), 0.0f) << "the stroke is still there";
+  ASSERT_EQ(run("undo\n").find("ERROR"), std::string::npos);
   // Baking over the source itself is refused before anything runs.
   EXPECT_NE(run("import_terrain dem.tif bake dem.tif\n").find("name another file"), std::string::npos);
   EXPECT_EQ(session_->scene().document().to_json(), before);
