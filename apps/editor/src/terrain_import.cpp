@@ -298,7 +298,8 @@ Status TerrainImport::apply(EditorSession& session, bool baked) {
     }
     if (section_ == "terrain") after["baked_file"] = baked ? scene_relative(scene.document(), out_) : "";
     if (baked) {
-      // The bake's field starts at (0, 0); the scene centres its ground on `center`.
+      // The bake's field starts at (0, 0) and the ground comes from the file's heights; centred
+      // there, the raster (elevation.file) lies where the baked terrain did once baked_file is cleared.
       after["center"] = {0.5 * (info_->columns - 1) * info_->spacing, 0.5 * (info_->rows - 1) * info_->spacing};
     }
   }

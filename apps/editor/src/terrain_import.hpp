@@ -17,10 +17,12 @@
 //  - raster, use directly: `<section>.elevation.file`, `baked_file` cleared, `maps.height` dropped
 //    (a height map file would win over the raster). Section: "terrain", else "ground", else a
 //    new "terrain" section.
-//  - raster, bake: the same plus `terrain.baked_file` = OUT and `terrain.center` = the middle of
-//    the baked field (sylva-bake keeps a raster's origin at (0, 0); modules/terrain/README.md
-//    "Baked terrain in a scene"), so the ground matches the file. Needs a "terrain" section
-//    (added when the scene has no ground section; refused beside a "ground" one).
+//  - raster, bake: the same plus `terrain.baked_file` = OUT (the scene's ground then comes from
+//    the file's own heights; modules/terrain/README.md "Baked terrain in a scene") and
+//    `terrain.center` = the middle of the baked field (the bake keeps a raster's origin at
+//    (0, 0)), so the raster named by elevation.file lies where the baked terrain did if
+//    baked_file is cleared later. Needs a "terrain" section (added when the scene has no ground
+//    section; refused beside a "ground" one).
 //  - mesh: `model_terrain.file` (the section is added when missing).
 //
 // Failure (the scene is unchanged, nothing is pushed on the undo stack): the reader's error,
