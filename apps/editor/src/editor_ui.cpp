@@ -102,6 +102,8 @@ void EditorUi::frame(double dt) {
   }
   poll_terrain_import();
   if (import_.busy()) import_open_ = true;  // also when a script started it
+  // A raster read and not used is held in memory (4 bytes a sample): closing the window drops it.
+  if (!import_open_ && import_.state() == TerrainImport::State::kRead) import_.reset();
   handle_shortcuts();
   menu_bar();
   const ImGuiViewport* vp = ImGui::GetMainViewport();
