@@ -62,9 +62,7 @@ Result<std::unique_ptr<TerrainRenderer>> TerrainRenderer::create(std::unique_ptr
 TerrainRenderer::~TerrainRenderer() = default;
 
 Result<RegionRebuild> TerrainRenderer::apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1) {
-  if (streamer_) {
-    return make_error(ErrorCode::kInvalidArgument, "terrain: a streamed terrain cannot be edited in place");
-  }
+  if (streamer_) return apply_streamed_edit(field, x0, z0, x1, z1);
   // Copy-on-write: the chunk meshes are copied (a few MB at 257^2, milliseconds), the expensive
   // triangulation runs only for the chunks the edit reaches.
   auto tree = std::make_shared<ChunkTree>(*tree_);
@@ -85,6 +83,30 @@ Result<RegionRebuild> TerrainRenderer::apply_height_edit(const HeightField& fiel
     gpu_.erase(it);
   }
   seams_.invalidate(dirty);
+  update_height_textures(field, x0, z0, x1, z1);
+  return changed;
+}
+
+// A streamed terrain (streaming.hpp apply_height_edit): rebuilt chunks replace the file's in the
+// streamer; morph data may change in any chunk (a raised root bound), so every GPU mesh and seam
+// is dropped and re-made from the streamer's meshes as they are drawn.
+Result<RegionRebuild> TerrainRenderer::apply_streamed_edit(const HeightField& field, int x0, int z0, int x1, int z1) {
+  auto changed = streamer_->apply_height_edit(field, x0, z0, x1, z1);
+  if (!changed.ok()) return changed.error();
+  tree_ = std::shared_ptr<const ChunkTree>(std::shared_ptr<const ChunkTree>{}, &streamer_->tree());
+  meshes_ = streamer_->meshes();
+  selector_ = std::make_unique<LodSelector>(*tree_);
+  shadow_selector_ = std::make_unique<LodSelector>(*tree_);
+  selection_ = &empty_selection_;
+  shadow_selection_ = &empty_selection_;
+  gpu_.clear();
+  gpu_bytes_ = 0;
+  seams_ = SeamCache();
+  update_height_textures(field, x0, z0, x1, z1);
+  return changed;
+}
+
+void TerrainRenderer::update_height_textures(const HeightField& field, int x0, int z0, int x1, int z1) {
   if (has_heights_) {
     auto heights = make_height_texture(field);
     if (heights.ok()) {
@@ -96,7 +118,6 @@ Result<RegionRebuild> TerrainRenderer::apply_height_edit(const HeightField& fiel
     }
   }
   if (shape_) update_shape_texture(shape_, field, shape_radius_m_, x0, z0, x1, z1);
-  return changed;
 }
 
 Status TerrainRenderer::init(const HeightField* field) {

@@ -1,5 +1,7 @@
 #include <sylva/terrain/streaming.hpp>
 
+#include "stream_edits.hpp"
+
 #include <sylva/core/log.hpp>
 
 #include <algorithm>
@@ -14,6 +16,7 @@ std::size_t ChunkStreamer::bytes_of(const ChunkMesh& m) {
 
 ChunkStreamer::ChunkStreamer(std::shared_ptr<const ChunkFile> file, const StreamingSettings& settings)
     : file_(std::move(file)),
+      tree_(&file_->tree()),
       budget_(static_cast<std::size_t>(settings.memory_budget_mb * 1024.0 * 1024.0)),
       failed_(file_->tree().chunk_count(), 0) {
   stats_.budget_bytes = budget_;
@@ -91,6 +94,7 @@ void ChunkStreamer::update() {
     done.swap(done_);
     current_frame_ = ++frame_;
   }
+  bool edited_nodes = false;
   for (auto& [chunk, mesh] : done) {
     if (!mesh.ok()) {
       if (!failed_[chunk]) log_warn("terrain streaming: {}", mesh.error().message);
@@ -100,7 +104,12 @@ void ChunkStreamer::update() {
       continue;
     }
     if (resident_.count(chunk)) continue;
-    const std::size_t bytes = bytes_of(*mesh);
+    std::shared_ptr<const ChunkMesh> loaded = std::make_shared<const ChunkMesh>(std::move(mesh).value());
+    if (edits_) {
+      loaded = edits_->resolve(chunk, std::move(loaded));  // the edited field's chunk
+      edited_nodes = true;
+    }
+    const std::size_t bytes = bytes_of(*loaded);
     if (resident_bytes_ + bytes > budget_) {
       // Evict least recently used chunks not used in this or the previous frame (never the root).
       std::vector<std::pair<std::uint64_t, std::uint32_t>> candidates;
@@ -118,11 +127,35 @@ void ChunkStreamer::update() {
       ++stats_.dropped;
       continue;
     }
-    resident_[chunk] = Resident{std::make_shared<const ChunkMesh>(std::move(mesh).value()), bytes, frame_};
+    resident_[chunk] = Resident{std::move(loaded), bytes, frame_};
     resident_bytes_ += bytes;
     ++stats_.loads;
   }
+  if (edited_nodes) edits_->refresh_nodes();  // the resolved chunks' height ranges
 }
+
+Result<RegionRebuild> ChunkStreamer::apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1) {
+  return apply_height_edit(field, std::vector<SampleRect>{{x0, z0, x1, z1}});
+}
+
+Result<RegionRebuild> ChunkStreamer::apply_height_edit(const HeightField& field, const std::vector<SampleRect>& rects) {
+  if (!edits_) edits_ = std::make_unique<detail::StreamEdits>(file_->tree());
+  auto changed = edits_->apply(field, rects);  // unchanged on error
+  if (!changed.ok()) return changed.error();
+  // Every resident chunk becomes the edited field's: rebuilt ones swapped, the others re-patched
+  // (their heights and triangles stay the file's, only morph data and height range change).
+  resident_bytes_ = 0;
+  for (auto& [id, r] : resident_) {
+    r.mesh = edits_->resolve(id, r.mesh);
+    r.bytes = bytes_of(*r.mesh);
+    resident_bytes_ += r.bytes;
+  }
+  edits_->refresh_nodes();
+  tree_ = &edits_->tree();
+  return changed;
+}
+
+std::size_t ChunkStreamer::edited_chunks() const { return edits_ ? edits_->rebuilt_count() : 0; }
 
 Residency ChunkStreamer::residency() {
   Residency r;

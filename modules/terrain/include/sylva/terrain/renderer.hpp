@@ -93,8 +93,10 @@ class TerrainRenderer final : public render::Drawable {
   // is replaced by a copy updated with ChunkTree::rebuild_region (the old tree may be shared, so
   // it is never modified); only the rebuilt/updated chunks' GPU meshes are dropped (re-uploaded
   // on their next draw) and only the seams touching them rebuilt; the height texture is
-  // re-uploaded. Errors: a streamed renderer (kInvalidArgument) and rebuild_region's; the
-  // renderer is unchanged on error. Needs the renderer's GL context current.
+  // re-uploaded. A streamed renderer hands the edit to ChunkStreamer::apply_height_edit (the
+  // chunks it reaches rebuilt from `field` by the bake's code, issue 15) and drops every GPU mesh
+  // and seam. Errors: rebuild_region's or the streamer's; the renderer is unchanged on error.
+  // Needs the renderer's GL context current.
   Result<RegionRebuild> apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1);
 
   void update(const render::FrameContext& frame) override;
@@ -129,6 +131,8 @@ class TerrainRenderer final : public render::Drawable {
     std::uint64_t last_used = 0;
   };
   GpuMesh* gpu_mesh(std::uint32_t chunk);
+  Result<RegionRebuild> apply_streamed_edit(const HeightField& field, int x0, int z0, int x1, int z1);
+  void update_height_textures(const HeightField& field, int x0, int z0, int x1, int z1);
   void set_frame_uniforms(const render::Program& program, const glm::mat4& view_projection) const;
   struct BatchVertex;
   // shadow: the unculled caster selection and its batch; cull: chunk boxes outside are skipped.

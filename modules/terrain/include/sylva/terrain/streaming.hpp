@@ -12,6 +12,7 @@
 
 #include <sylva/core/params.hpp>
 #include <sylva/terrain/chunk_file.hpp>
+#include <sylva/terrain/edit_layer.hpp>
 #include <sylva/terrain/seams.hpp>
 #include <sylva/terrain/selection.hpp>
 
@@ -25,6 +26,10 @@
 #include <vector>
 
 namespace sylva::terrain {
+
+namespace detail {
+class StreamEdits;  // stream_edits.hpp
+}  // namespace detail
 
 struct StreamingSettings {
   double memory_budget_mb = 256.0;  // resident chunk meshes [MiB]
@@ -59,7 +64,8 @@ class ChunkStreamer {
   ChunkStreamer(const ChunkStreamer&) = delete;
   ChunkStreamer& operator=(const ChunkStreamer&) = delete;
 
-  const ChunkTree& tree() const { return file_->tree(); }
+  // The file's tree, or after height edits the edited field's (errors, bounds, height ranges).
+  const ChunkTree& tree() const { return *tree_; }
   // Integrates finished loads and evicts; call once per frame before selecting.
   void update();
   Residency residency();
@@ -72,6 +78,20 @@ class ChunkStreamer {
   // Blocks until no request is pending or loading, then integrates (tests, warm-up).
   void wait_idle();
   StreamingStats stats() const;
+
+  // Height edits (issue 15, painting a streamed terrain; stream_edits.hpp): the samples
+  // [x0, x1) x [z0, z1) of `field`, the whole edited field of the file's grid, changed. The chunks
+  // the edit reaches are rebuilt from `field` by the bake's code and substituted for the file's,
+  // every other chunk gets its morph data recomputed when it becomes resident, and the resident
+  // chunks are updated at once, so every resident chunk equals ChunkTree::build(field)'s. tree()
+  // may then be another object: re-create selectors. Errors (kInvalidArgument): another grid, a
+  // non-RTIN file, NaN/Inf samples; nothing changes then. Main thread only.
+  Result<RegionRebuild> apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1);
+  // The same for several edited rectangles at once (one pass over the field: opening a scene
+  // with an edit layer, one rectangle per edited tile).
+  Result<RegionRebuild> apply_height_edit(const HeightField& field, const std::vector<SampleRect>& rects);
+  // Chunks rebuilt from edits so far (0 without edits).
+  std::size_t edited_chunks() const;
   // Adds a frame's substituted chunks (SelectionStats::substituted) to stats().misses; the
   // renderer calls it after each selection.
   void count_misses(std::uint32_t substituted) { stats_.misses += substituted; }
@@ -92,6 +112,8 @@ class ChunkStreamer {
   };
 
   std::shared_ptr<const ChunkFile> file_;
+  const ChunkTree* tree_ = nullptr;            // file_->tree(), or edits_->tree()
+  std::unique_ptr<detail::StreamEdits> edits_;  // main thread only; null until the first edit
   std::size_t budget_ = 0;
   std::uint64_t frame_ = 1;
   std::unordered_map<std::uint32_t, Resident> resident_;  // main thread only

@@ -1,0 +1,122 @@
+// Height edits of a streamed terrain (stream_edits.hpp).
+#include "stream_edits.hpp"
+
+#include "parallel.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace sylva::terrain::detail {
+
+StreamEdits::StreamEdits(const ChunkTree& file_tree) : tree_(file_tree) {}
+
+Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::vector<SampleRect>& rects) {
+  RegionRebuild out;
+  if (tree_.settings().tessellation != Tessellation::kRtin) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      "terrain.tree.tessellation: only RTIN chunk files can be painted (re-bake with the default)");
+  }
+  if (field.columns() != tree_.field_columns() || field.rows() != tree_.field_rows() ||
+      field.spacing() != tree_.spacing() || field.origin() != tree_.origin()) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("terrain: the edited ground is {}x{} samples {} m apart from ({}, {}), the baked file "
+                                  "{}x{} samples {} m apart from ({}, {}): it cannot be painted",
+                                  field.columns(), field.rows(), field.spacing(), field.origin().x, field.origin().y,
+                                  tree_.field_columns(), tree_.field_rows(), tree_.spacing(), tree_.origin().x,
+                                  tree_.origin().y));
+  }
+  // Each rectangle in root-grid points (inclusive). Padding points copy the nearest sample, so an
+  // edit on the last column/row reaches the padding beyond it.
+  const std::int64_t rn = tree_.root_intervals();
+  std::vector<std::array<std::int64_t, 4>> edits;
+  for (const SampleRect& r : rects) {
+    const int x0 = std::max(r.x0, 0), z0 = std::max(r.z0, 0);
+    const int x1 = std::min(r.x1, field.columns()), z1 = std::min(r.z1, field.rows());
+    if (x0 >= x1 || z0 >= z1) continue;
+    edits.push_back({x0, z0, x1 == field.columns() ? rn : x1 - 1, z1 == field.rows() ? rn : z1 - 1});
+  }
+  if (edits.empty()) return out;
+
+  // The bake's own grids of the edited field (chunk_build.hpp); validates NaN/Inf.
+  ChunkTreeSettings settings = tree_.settings();
+  settings.keep_meshes = true;  // the rebuilt meshes are what the overlay is for
+  auto grids = ChunkTreeBuilder::prepare(HeightField(field), settings, {});
+  if (!grids.ok()) return grids.error();
+
+  // The chunks rebuild_region re-triangulates: the square grown by half a chunk meets an edit (a
+  // point on a chunk edge has an error diamond reaching half a chunk into the neighbour, rtin.hpp).
+  std::vector<std::uint32_t>& rebuild = out.rebuilt;
+  for (std::uint32_t i = 0; i < tree_.chunk_count(); ++i) {
+    const Chunk& c = tree_.chunk(i);
+    if (!c.present) continue;
+    const std::int64_t size = tree_.chunk_size(c.key.level), half = size / 2;
+    const std::int64_t cx0 = static_cast<std::int64_t>(c.key.x) * size - half, cx1 = cx0 + size + 2 * half;
+    const std::int64_t cz0 = static_cast<std::int64_t>(c.key.z) * size - half, cz1 = cz0 + size + 2 * half;
+    for (const auto& e : edits) {
+      if (cx0 <= e[2] && e[0] <= cx1 && cz0 <= e[3] && e[1] <= cz1) {
+        rebuild.push_back(i);
+        break;
+      }
+    }
+  }
+  std::vector<Chunk> built(rebuild.size());
+  const TreeGrids& g = **grids;
+  parallel_for(rebuild.size(), resolve_threads(settings.threads), [&](std::size_t k) {
+    built[k] = g.tree.chunk(rebuild[k]);
+    ChunkTreeBuilder::build_chunk(g, built[k]);
+  });
+
+  // Committed: metadata of the rebuilt chunks, then bounds, report and nodes of the whole tree.
+  grids_ = std::move(*grids);
+  for (std::size_t k = 0; k < rebuild.size(); ++k) {
+    auto mesh = std::make_shared<ChunkMesh>(std::move(built[k].mesh));
+    built[k].mesh = ChunkMesh{};
+    ChunkTreeBuilder::chunk(tree_, rebuild[k]) = std::move(built[k]);
+    meshes_[rebuild[k]] = std::move(mesh);
+  }
+  ChunkTreeBuilder::finish(tree_);
+  // Every rebuilt mesh (of this and earlier edits) takes the new morph data: targets near this
+  // edit and bounds anywhere may have changed (a pure function of the grids and bounds, so
+  // recomputing an unchanged value gives the same float).
+  for (auto& [index, mesh] : meshes_) {
+    auto copy = std::make_shared<ChunkMesh>(*mesh);
+    patch(index, *copy);
+    mesh = std::move(copy);
+  }
+  ChunkTreeBuilder::finish(tree_);
+  return out;
+}
+
+void StreamEdits::patch(std::uint32_t index, ChunkMesh& mesh) {
+  float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  for (ChunkVertex& v : mesh.vertices) {
+    if (v.intro_level > 0) {
+      v.morph_target = static_cast<float>(level_surface_height(
+          grids_->rule, grids_->heights, v.intro_level - 1, Pt{static_cast<std::int32_t>(v.gx), static_cast<std::int32_t>(v.gz)}));
+    }
+    v.morph_error = ChunkTreeBuilder::morph_error(tree_, v);
+    lo = std::min({lo, v.height, v.morph_target});
+    hi = std::max({hi, v.height, v.morph_target});
+  }
+  Chunk& c = ChunkTreeBuilder::chunk(tree_, index);
+  if (!mesh.vertices.empty()) {
+    c.min_y = lo;
+    c.max_y = hi;
+  }
+}
+
+std::shared_ptr<const ChunkMesh> StreamEdits::resolve(std::uint32_t index, std::shared_ptr<const ChunkMesh> file_mesh) {
+  if (auto it = meshes_.find(index); it != meshes_.end()) return it->second;
+  if (!grids_ || !file_mesh) return file_mesh;
+  auto copy = std::make_shared<ChunkMesh>(*file_mesh);
+  patch(index, *copy);
+  return copy;
+}
+
+void StreamEdits::refresh_nodes() { ChunkTreeBuilder::finish(tree_); }
+
+}  // namespace sylva::terrain::detail

@@ -1,0 +1,162 @@
+// Painting a streamed (baked) terrain (issue 15; stream_edits.hpp): after height edits, every
+// chunk the ChunkStreamer makes resident - resident before the edit (re-patched at once) or loaded
+// after it (patched on load), rebuilt or read from the file - equals the chunk ChunkTree::build
+// of the edited field gives, bit for bit, with the same error, bound, height range and selection
+// node; an edit back to the old heights (undo) gives the file's chunks again.
+#include <sylva/terrain/chunk_file.hpp>
+#include <sylva/terrain/streaming.hpp>
+
+#include "support/terrain_test_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+namespace sylva::terrain {
+namespace {
+
+using namespace testing;
+namespace fs = std::filesystem;
+
+ChunkTreeSettings tree_settings() {
+  ChunkTreeSettings s;
+  s.leaf_dimension = 17;
+  return s;
+}
+
+// A smooth bump of `amount` metres on sample (cx, cz), radius r; returns its sample rectangle.
+SampleRect bump(HeightField& f, int cx, int cz, int r, float amount) {
+  SampleRect rect{std::max(cx - r, 0), std::max(cz - r, 0), std::min(cx + r + 1, f.columns()),
+                  std::min(cz + r + 1, f.rows())};
+  for (int z = rect.z0; z < rect.z1; ++z) {
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      const double d = std::hypot(x - cx, z - cz) / (r + 1);
+      if (d < 1.0) f.sample(x, z) += amount * static_cast<float>(1.0 - d * d);
+    }
+  }
+  f.update_range();
+  return rect;
+}
+
+// Makes every present chunk resident (budget large enough for all).
+void load_all(ChunkStreamer& s) {
+  for (int round = 0; round < 8; ++round) {
+    s.update();
+    Residency r = s.residency();
+    bool missing = false;
+    for (std::uint32_t i = 0; i < s.tree().chunk_count(); ++i) {
+      if (!s.tree().chunk(i).present || s.resident(i)) continue;
+      r.request(i, 1.0 + i);
+      missing = true;
+    }
+    if (!missing) return;
+    s.wait_idle();
+  }
+}
+
+// The streamer's chunks == the in-memory build of `field`: meshes, metadata, nodes.
+void expect_streamer_equals_build(ChunkStreamer& s, const HeightField& field) {
+  const ChunkTree built = ChunkTree::build(field, tree_settings()).value();
+  load_all(s);
+  const ChunkTree& t = s.tree();
+  ASSERT_EQ(t.chunk_count(), built.chunk_count());
+  std::size_t compared = 0;
+  for (std::uint32_t i = 0; i < t.chunk_count(); ++i) {
+    const Chunk &a = t.chunk(i), &b = built.chunk(i);
+    ASSERT_EQ(a.present, b.present) << i;
+    if (!a.present) continue;
+    EXPECT_EQ(a.error, b.error) << "chunk " << i;
+    EXPECT_EQ(a.error_bound, b.error_bound) << "chunk " << i;
+    EXPECT_EQ(a.min_y, b.min_y) << "chunk " << i;
+    EXPECT_EQ(a.max_y, b.max_y) << "chunk " << i;
+    EXPECT_EQ(a.triangle_count, b.triangle_count) << "chunk " << i;
+    const ChunkNode &na = t.nodes()[i], &nb = built.nodes()[i];
+    EXPECT_TRUE(na.lo == nb.lo && na.hi == nb.hi && na.error_bound == nb.error_bound &&
+                na.parent_bound == nb.parent_bound)
+        << "node " << i;
+    const ChunkMesh* m = s.mesh(i);
+    ASSERT_NE(m, nullptr) << "chunk " << i << " not resident";
+    EXPECT_TRUE(same_bytes(m->vertices, b.mesh.vertices)) << "chunk " << i << " vertices";
+    EXPECT_EQ(m->indices, b.mesh.indices) << "chunk " << i;
+    EXPECT_EQ(m->edges, b.mesh.edges) << "chunk " << i;
+    ++compared;
+  }
+  EXPECT_GT(compared, 80u);
+}
+
+struct Baked {
+  HeightField field = fbm_field(257, 201, 2.0, 120.0f, 61);  // padded, non-square
+  fs::path path = unique_temp("stream_edits.sylvaterrain");
+  Baked() {
+    const ChunkTree tree = ChunkTree::build(field, tree_settings()).value();
+    EXPECT_TRUE(save_chunk_file(path, tree, 0, &field).ok());
+  }
+  ~Baked() { fs::remove(path); }
+  std::unique_ptr<ChunkStreamer> open() {
+    auto file = ChunkFile::open(path);
+    EXPECT_TRUE(file.ok());
+    return std::move(ChunkStreamer::create(*file, StreamingSettings{}).value());
+  }
+};
+
+TEST(StreamEdits, EveryChunkEqualsTheInMemoryBuildOfTheEditedField) {
+  Baked b;
+  auto s = b.open();
+  // Some chunks resident before the edit (re-patched at once), the rest loaded after it.
+  Residency r = s->residency();
+  for (std::uint32_t i = 1; i < 30; ++i) r.request(i, 1.0);
+  s->wait_idle();
+  s->update();
+  HeightField edited = b.field;
+  const SampleRect rect = bump(edited, 60, 70, 9, 35.0f);
+  auto changed = s->apply_height_edit(edited, rect.x0, rect.z0, rect.x1, rect.z1);
+  ASSERT_TRUE(changed.ok()) << changed.error().describe();
+  EXPECT_GT(changed->rebuilt.size(), 4u);
+  EXPECT_LT(changed->rebuilt.size(), 60u) << "only the chunks the edit reaches";
+  EXPECT_EQ(s->edited_chunks(), changed->rebuilt.size());
+  expect_streamer_equals_build(*s, edited);
+
+  // A second stroke at the padded far corner, with everything resident.
+  const SampleRect corner = bump(edited, 255, 199, 6, -20.0f);
+  ASSERT_TRUE(s->apply_height_edit(edited, corner.x0, corner.z0, corner.x1, corner.z1).ok());
+  expect_streamer_equals_build(*s, edited);
+}
+
+TEST(StreamEdits, UndoGivesTheFilesChunksBack) {
+  Baked b;
+  auto s = b.open();
+  HeightField edited = b.field;
+  const SampleRect rect = bump(edited, 128, 100, 12, 50.0f);
+  ASSERT_TRUE(s->apply_height_edit(edited, rect.x0, rect.z0, rect.x1, rect.z1).ok());
+  load_all(*s);
+  ASSERT_TRUE(s->apply_height_edit(b.field, rect.x0, rect.z0, rect.x1, rect.z1).ok());  // undo
+  expect_streamer_equals_build(*s, b.field);
+  // And the file's own chunks.
+  auto file = ChunkFile::open(b.path).value();
+  for (std::uint32_t i = 0; i < file->tree().chunk_count(); ++i) {
+    if (!file->tree().chunk(i).present) continue;
+    const ChunkMesh m = file->read_chunk(i).value();
+    EXPECT_TRUE(same_bytes(m.vertices, s->mesh(i)->vertices)) << "chunk " << i;
+  }
+}
+
+TEST(StreamEdits, AnotherGridOrNanIsRefusedAndChangesNothing) {
+  Baked b;
+  auto s = b.open();
+  HeightField other = fbm_field(129, 129, 2.0, 10.0f, 1);
+  auto e = s->apply_height_edit(other, 0, 0, 10, 10);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("cannot be painted"), std::string::npos) << e.error().message;
+  HeightField nan = b.field;
+  nan.sample(3, 4) = std::nanf("");
+  e = s->apply_height_edit(nan, 0, 0, 10, 10);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("NaN"), std::string::npos) << e.error().message;
+  EXPECT_EQ(s->edited_chunks(), 0u);
+  expect_streamer_equals_build(*s, b.field);
+}
+
+}  // namespace
+}  // namespace sylva::terrain
