@@ -15,9 +15,11 @@ namespace sylva::scene {
 // Whether `file` starts like a Sylva chunk file (its 8-byte magic); false when unreadable.
 bool is_chunk_file(const std::filesystem::path& file);
 
-// Grounds above this many samples are read every 2nd, 4th, ... sample (8193^2 floats = 256 MiB,
-// the generator's largest ground): a 16385^2 bake gives a 4 m ground of a 2 m field.
-inline constexpr std::uint64_t kMaxBakedGroundSamples = std::uint64_t{8193} * 8193;
+// Grounds above this many samples are read every 2nd, 4th, ... sample (4097^2 floats = 64 MiB):
+// an 8193^2 bake gives a 4 m ground of a 2 m field, a 16385^2 bake an 8 m one. Why not more: a
+// ground that matches the chunk grid also shades the terrain, and the renderer's height and
+// shape textures of an 8193^2 ground took 15 s to the first frame on llvmpipe (README).
+inline constexpr std::uint64_t kMaxBakedGroundSamples = std::uint64_t{4097} * 4097;
 
 // The file's ground heights [m] as a height grid. Errors name the file (and the height tile):
 // kNotFound, kCorrupt, kUnsupported (another version: "re-bake it with `sylva-bake terrain`", or a
