@@ -8,7 +8,8 @@
 //  (c) depth tint: deep water has lost more red (over the bed's colour) than shallow water and
 //      is darker;
 //  (d) no NaN/Inf, also with extreme settings and at the horizon;
-//  (e) water off (absent, or enabled and switched off again) draws the same bits as no water.
+//  (e) water off (absent, or enabled and switched off again) draws the same bits as no water;
+//  (f) model_terrain.water (the general-model terrain's section) draws the same plane.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
@@ -253,4 +254,64 @@ TEST_F(WaterGl, OffDrawsTheSameBitsAsNoWater) {
   EXPECT_FALSE(same_bits(render_frame(*off, view).color, reference.color)) << "the water shows at 30 m";
   set(*off, "terrain.water.enabled", "false");
   EXPECT_TRUE(same_bits(render_frame(*off, view).color, reference.color)) << "(e) switched off again";
+}
+
+// The same renderer under the general-model terrain (model_terrain.water): a mesh terrain alone
+// (a 400 m square sheet at y = 0 from an OBJ file), switched on from the editor's path, is covered
+// where it lies under the level and the picture stays finite.
+TEST_F(WaterGl, ModelTerrainWaterDraws) {
+  scene::testing::TestDir dir("water_gl_model");
+  std::ofstream(dir.path / "sheet.obj") << "v -200 0 -200\nv 200 0 -200\nv 200 0 200\nv -200 0 200\nf 1 3 2\nf 1 4 3\n";
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "sylva_scene": 1,
+    "camera": {"position": [0, 30, 120], "yaw_deg": 0, "pitch_deg": -30, "fov_deg": 60},
+    "sun": {"fog_density": 0.0},
+    "render": {"msaa_samples": 1, "tone_map": false, "shadows": {"enabled": false}},
+    "model_terrain": {"file": "sheet.obj", "tree": {"levels": 1}}})");
+  std::ofstream(dir.path / "sheet.json") << j.dump(2);
+  auto scene = scene::testing::open_scene_file(dir.path / "sheet.json");
+  ASSERT_TRUE(scene);
+  const CameraView view = scene->document().camera;
+  const Frame dry = render_frame(*scene, view);
+  set(*scene, "model_terrain.water.level", "2");
+  set(*scene, "model_terrain.water.enabled", "true");
+  const Frame wet = render_frame(*scene, view);
+  EXPECT_EQ(non_finite(wet.color), 0);
+  int changed = 0, sheet = 0;
+  for (int y = 0; y < kSize.y; ++y) {
+    for (int x = 0; x < kSize.x; ++x) {
+      if (std::isnan(ground_y(dry, x, y))) continue;  // the sky
+      ++sheet;
+      changed += rgb(wet.color, x, y) != rgb(dry.color, x, y) ? 1 : 0;
+    }
+  }
+  ASSERT_GT(sheet, 3000);
+  EXPECT_EQ(changed, sheet) << "model_terrain.water covers the sheet 2 m under it";
+}
+
+// The editor's Properties panel is generated from Scene::describe_params() (param_widgets.hpp):
+// every water key is listed with help text and a finite range, the level in metres; a value
+// outside the range is refused naming the key.
+TEST_F(WaterGl, EditorListsTheWaterKeysWithHelpRangeAndUnit) {
+  Fixture fx;
+  ASSERT_TRUE(fx.scene);
+  int listed = 0;
+  for (const ParamDescriptor& p : fx.scene->describe_params()) {
+    if (p.path.rfind("terrain.water.", 0) != 0) continue;
+    ++listed;
+    EXPECT_STRNE(p.info.help, "") << p.path;
+    if (p.type_name() != "bool") {
+      EXPECT_TRUE(std::isfinite(p.info.min) && std::isfinite(p.info.max)) << p.path;
+    }
+    if (p.path == "terrain.water.level") {
+      EXPECT_STREQ(p.info.unit, "m");
+    }
+    if (p.path == "terrain.water.absorption") {
+      EXPECT_STREQ(p.info.unit, "1/m");
+    }
+  }
+  EXPECT_EQ(listed, 9) << "enabled, level, color, absorption, shore_fade_m, ripple_*, sun_glint";
+  const Status bad = fx.scene->set_param("terrain.water.ripple_strength", "5");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("terrain.water.ripple_strength"), std::string::npos) << bad.error().message;
 }

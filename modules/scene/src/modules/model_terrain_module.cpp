@@ -21,6 +21,7 @@
 #include <sylva/terrain/model_renderer.hpp>
 #include <sylva/terrain/model_tree.hpp>
 #include <sylva/terrain/subdivision.hpp>
+#include <sylva/terrain/water.hpp>
 
 #include <fmt/format.h>
 
@@ -35,6 +36,7 @@ struct ModelTerrainSectionSettings {
   terrain::SubdivisionSettings subdivision{.level = 0};  // off unless a level is set
   terrain::ModelTreeSettings tree;
   terrain::ModelRenderSettings render;
+  terrain::WaterSettings water;  // a water plane (terrain/water.hpp), off by default
 
   template <class V>
   void visit(V& v) {
@@ -46,6 +48,7 @@ struct ModelTerrainSectionSettings {
     v(subdivision, "subdivision");  // a control cage refined before the tree is built (level 0: off)
     v(tree, "tree");
     v(render, "render");
+    v(water, "water");
   }
 };
 
@@ -59,7 +62,10 @@ class ModelTerrainInstance final : public ModuleInstance {
     return std::unique_ptr<ModuleInstance>(std::move(inst));
   }
 
-  std::vector<render::Drawable*> drawables() override { return {renderer_.get()}; }
+  std::vector<render::Drawable*> drawables() override {
+    if (water_) return {renderer_.get(), water_.get()};
+    return {renderer_.get()};
+  }
 
   void sync_settings() override {
     const terrain::ModelRenderSettings& wanted = settings().render;
@@ -74,6 +80,7 @@ class ModelTerrainInstance final : public ModuleInstance {
       live.wireframe = live.wireframe || ctx_.debug->wireframe;
     }
     if (ctx_.environment != nullptr) renderer_->set_climate({ctx_.environment->latitude_deg, ctx_.environment->season});
+    terrain::sync_water(water_, settings().water, "model_terrain.water");
   }
 
   Status rebuild(Rebuild what) override {
@@ -166,6 +173,7 @@ class ModelTerrainInstance final : public ModuleInstance {
 
   ModuleBuildContext ctx_;
   std::unique_ptr<terrain::ModelRenderer> renderer_;
+  std::unique_ptr<terrain::WaterRenderer> water_;  // created when model_terrain.water.enabled is first set
   std::size_t vertices_ = 0, triangles_ = 0;
   double load_ms_ = 0.0;
 };
