@@ -7,6 +7,7 @@
 #include "suites.hpp"
 #ifdef SYLVA_BENCH_WITH_SCENE
 #include "with_scene/paper_runs.hpp"
+#include "with_scene/species_suite.hpp"
 #endif
 #include "svg_plot.hpp"
 
@@ -188,7 +189,17 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
     merge(run_and_write(spec, o.embed_images, out, err));
   }
 
-  if (o.suite) {
+  if (o.suite && *o.suite == "species") {  // its own rows, not an error/time sweep (species_suite.hpp)
+#ifdef SYLVA_BENCH_WITH_SCENE
+    SpeciesSuiteOptions so{.warmup = o.warmup, .overrides = o.overrides, .out = out_dir};
+    if (o.size) so.size = *o.size;
+    if (o.frames) so.frames = *o.frames;
+    merge(run_species_suite(so, out, err));
+#else
+    err << "sylva-bench: suite species: module not available: it needs the scene module, which is not part of this build\n";
+    merge(kExitUnavailable);
+#endif
+  } else if (o.suite) {
     const std::vector<std::string> names = *o.suite == "all" ? suite_names() : std::vector<std::string>{*o.suite};
     std::vector<SuiteOutcome> outcomes;
     for (const std::string& name : names) {

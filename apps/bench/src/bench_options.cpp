@@ -94,10 +94,10 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
       if (!a.ok()) return a.error();
       (name == "--set" ? o.overrides : o.reference).push_back(std::move(*a));
     } else if (name == "--suite") {
-      SYLVA_BENCH_VALUE(v, "terrain, grass, trees, voxel, model or all");
-      if (*v != "terrain" && *v != "grass" && *v != "trees" && *v != "voxel" && *v != "model" && *v != "all") {
+      SYLVA_BENCH_VALUE(v, "terrain, grass, trees, voxel, model, species or all");
+      if (*v != "terrain" && *v != "grass" && *v != "trees" && *v != "voxel" && *v != "model" && *v != "species" && *v != "all") {
         return make_error(ErrorCode::kInvalidArgument,
-                          fmt::format("--suite: \"{}\" is not terrain, grass, trees, voxel, model or all", *v));
+                          fmt::format("--suite: \"{}\" is not terrain, grass, trees, voxel, model, species or all", *v));
       }
       o.suite = *v;
     } else if (name == "--paper") {
@@ -229,7 +229,8 @@ std::string bench_usage() {
          "  --reference path=v     the maximum-quality setting errors are measured against (repeatable);\n"
          "                         without it the scene as loaded is the reference\n"
          "  --set path=value       applied to every setting and to the reference\n"
-         "  --suite NAME           curated sweeps: terrain, grass, trees, voxel, model or all\n"
+         "  --suite NAME           curated sweeps: terrain, grass, trees, voxel, model or all; species: load +\n"
+         "                         bake of species files, plants/s of grammars, mixed vs one-species forest\n"
          "  --paper THESIS         the thesis's experiments: per table the thesis's numbers beside Sylva's\n"
          "                         (DIR/paper-THESIS/paper.md, paper.json, a sweep report per row)\n"
          "  --quick                with --paper: the first row of each table at 256x144, 2 frames (for CI)\n"

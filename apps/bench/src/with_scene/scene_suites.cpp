@@ -3,6 +3,7 @@
 // and flies a camera path that shows what the settings change.
 #include "suites.hpp"
 #include "with_scene/scene_target.hpp"
+#include "with_scene/shipped_files.hpp"
 
 #include <sylva/scene/module_registry.hpp>
 
@@ -269,21 +270,11 @@ constexpr const char* kModelScene = R"json({
   }
 })json";
 
-// The folder holding model_terrain.obj: scenes/ under the working directory or under an
-// ancestor of the executable.
+// The folder holding model_terrain.obj (shipped_files.hpp).
 Result<std::filesystem::path> shipped_scenes_dir() {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  std::vector<fs::path> starts = {fs::current_path(ec)};
-  if (const fs::path exe = fs::read_symlink("/proc/self/exe", ec); !ec) starts.push_back(exe.parent_path());
-  for (fs::path dir : starts) {
-    for (int up = 0; up < 6 && !dir.empty(); ++up, dir = dir.parent_path()) {
-      if (fs::exists(dir / "scenes" / "model_terrain.obj", ec)) return dir / "scenes";
-      if (dir == dir.parent_path()) break;
-    }
-  }
-  return make_error(ErrorCode::kNotFound, "the model suite reads the shipped scenes/model_terrain.obj, found neither "
-                                          "under the working directory nor above the executable");
+  auto obj = find_shipped_file("scenes/model_terrain.obj", "the model suite");
+  if (!obj.ok()) return obj.error();
+  return obj->parent_path();
 }
 
 Result<SuiteSpec> model_suite() {

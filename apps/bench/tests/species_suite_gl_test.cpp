@@ -1,0 +1,114 @@
+// sylva-bench --suite species (issue #16, "Benchmarks") at a tiny size: its rows are printed and
+// written to results.csv with sane values: every shipped species file loads cold and cached, the
+// user's grammar table (given with --set, as a user would) grows plants of the expected block
+// count, and the mixed forest and each of its species alone have the same tree count. No timing
+// is compared; times only have to be positive.
+#include "bench_exe.hpp"
+
+#include <sylva/core/atomic_file.hpp>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+#ifdef SYLVA_BENCH_WITH_SCENE
+
+using sylva::bench::testing::run_bench;
+
+// The lines of `output` starting with `prefix`.
+std::vector<std::string> lines_of(const std::string& output, const std::string& prefix) {
+  std::vector<std::string> found;
+  std::size_t at = 0;
+  while (at < output.size()) {
+    const std::size_t end = output.find('\n', at);
+    const std::string line = output.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    if (line.rfind(prefix, 0) == 0) found.push_back(line);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return found;
+}
+
+// The number after "key=" in `line` (NaN when absent).
+double field(const std::string& line, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(line, m, std::regex(key + "=([-0-9.e+]+)"))) return std::nan("");
+  return std::stod(m[1].str());
+}
+
+TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
+  const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-species-test", "rows");
+  // A user's grammar table: a pillar doubled per derivation, 3 derivations = 8 blocks a plant.
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "pillar.lsys", "0 0 1\nU\nU > UU\n").ok());
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "plants.json",
+                                       R"({"species": [{"name": "pillar", "grammar": "pillar.lsys", "derivations": [3, 3],
+                                       "size": [1, 1], "blocks": {"0": "glowstone"}, "biomes": {"plains": {"spacing": 5, "chance": 1}}}]})")
+                  .ok());
+  std::string output;
+  const int code = run_bench("--suite species --size 64x36 --frames 1 --warmup 0 --set render.shadows.enabled=false --set voxel.flora.species_file='" +
+                                 (dir / "plants.json").string() + "' --out '" + (dir / "out").string() + "'",
+                             dir / "log.txt", output);
+  ASSERT_EQ(code, 0) << output;
+
+  const auto loads = lines_of(output, "species load: ");
+  ASSERT_EQ(loads.size(), 3u) << output;
+  std::set<std::string> files;
+  for (const std::string& l : loads) {
+    EXPECT_GT(field(l, "cold_ms"), 0.0) << l;
+    EXPECT_GT(field(l, "cached_ms"), 0.0) << l;
+    EXPECT_GT(field(l, "ground_ms"), 0.0) << l;
+    files.insert(l.substr(14, l.find(' ', 14) - 14));
+  }
+  EXPECT_EQ(files, (std::set<std::string>{"painted_birch.json", "slender_conifer.json", "sapling.json"})) << output;
+
+  const auto grammars = lines_of(output, "grammar: ");
+  ASSERT_EQ(grammars.size(), 1u) << output;
+  EXPECT_NE(grammars[0].find("pillar (pillar.lsys #0)"), std::string::npos) << grammars[0];
+  EXPECT_EQ(field(grammars[0], "plants"), 1000.0) << grammars[0];
+  EXPECT_EQ(field(grammars[0], "blocks_per_plant"), 8.0) << grammars[0];
+  EXPECT_GT(field(grammars[0], "plants_per_s"), 0.0) << grammars[0];
+
+  const auto forests = lines_of(output, "forest: ");
+  ASSERT_EQ(forests.size(), 5u) << output;  // mixed, three alone, the ratio
+  ASSERT_NE(forests[0].find("forest: mixed species=3"), std::string::npos) << forests[0];
+  const double trees = field(forests[0], "trees");
+  EXPECT_GT(trees, 0.0) << forests[0];
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(field(forests[static_cast<std::size_t>(k)], "trees"), trees) << forests[static_cast<std::size_t>(k)];
+    EXPECT_GT(field(forests[static_cast<std::size_t>(k)], "ms_per_frame"), 0.0) << forests[static_cast<std::size_t>(k)];
+    if (k > 0) {
+      EXPECT_NE(forests[static_cast<std::size_t>(k)].find("species=1"), std::string::npos);
+    }
+  }
+
+  auto csv = sylva::read_file(dir / "out" / "results.csv");
+  ASSERT_TRUE(csv.ok());
+  EXPECT_EQ(csv->rfind("kind,name,count,value,unit\n", 0), 0u) << *csv;
+  EXPECT_EQ(lines_of(*csv, "load_cold,").size(), 3u) << *csv;
+  EXPECT_EQ(lines_of(*csv, "grammar,").size(), 1u) << *csv;
+  EXPECT_EQ(lines_of(*csv, "forest_one,").size(), 3u) << *csv;
+  fs::remove_all(dir);
+}
+
+TEST(BenchSpeciesSuite, RefusesASetPathItsScenesLack) {
+  const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-species-test", "set");
+  std::string output;
+  const int code = run_bench("--suite species --set grass.field.density=3 --out '" + dir.string() + "'", dir / "log.txt", output);
+  EXPECT_EQ(code, 2) << output;
+  EXPECT_NE(output.find("--set grass.field.density=3:"), std::string::npos) << output;
+  EXPECT_EQ(output.find("species load:"), std::string::npos) << "nothing is measured after a bad --set\n" << output;
+  fs::remove_all(dir);
+}
+
+#endif
+
+}  // namespace
