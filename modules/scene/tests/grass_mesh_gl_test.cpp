@@ -14,10 +14,14 @@
 //    where the same section on the ground surface (the default) has none;
 //  - saving the scene into another folder rebases grass.mesh.file ("../box.obj"), and the saved
 //    scene grows the same blades;
+//  - with grass.far_field on, a gently rolling height-field OBJ gets the seed-003 far field
+//    (clumps placed and drawn, far grass in the picture where blades end), while the box (its
+//    bottom faces down) gets none, with a warning and stats far_field_off naming the file;
 //  - a missing file, a broken OBJ, an unknown extension, a colour above 1, a vertex without a
 //    colour among coloured ones and "mesh" without a file give errors naming grass.mesh.file and
 //    the file (and line).
 #include <sylva/core/image.hpp>
+#include <sylva/core/log.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
 #include <sylva/render/testing.hpp>
@@ -30,6 +34,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -509,4 +514,94 @@ TEST_F(GrassMeshGl, UvDensityMapErrorsNameTheSettingAndTheFile) {
     std::printf("%s\n", made.error().message.c_str());
     for (const std::string& s : c.expected) EXPECT_NE(made.error().message.find(s), std::string::npos) << made.error().message;
   }
+}
+
+namespace {
+
+// A 60 x 60 m grid of 30 x 30 quads at y = 1 + 0.8 sin(0.15 x) cos(0.1 z), wound to face up: a
+// height field.
+void write_rolling_obj(const fs::path& file) {
+  constexpr int n = 30;
+  std::ofstream out(file);
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = -30.0 + 2.0 * i, z = -30.0 + 2.0 * j;
+      out << "v " << x << ' ' << 1.0 + 0.8 * std::sin(0.15 * x) * std::cos(0.1 * z) << ' ' << z << '\n';
+    }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i + 1, b = a + 1, d = a + n + 1, c = d + 1;
+      out << "f " << a << ' ' << d << ' ' << b << "\nf " << b << ' ' << d << ' ' << c << '\n';
+    }
+}
+
+// The rolling mesh seen from 5 m above its +z edge; blades end 8 m from the camera.
+nlohmann::json rolling_stage(bool far_field) {
+  nlohmann::json j = stage({{"surface", "mesh"}, {"mesh", {{"file", "rolling.obj"}}}, {"far_field", far_field},
+                            {"area_min", {-30.0, -30.0}}, {"area_max", {30.0, 30.0}},
+                            {"field", {{"density", 4.0}}}, {"render", {{"cull", {{"near_distance", 8.0}}}}}});
+  j["camera"]["position"] = {0.0, 6.0, 34.0};
+  j["camera"]["pitch_deg"] = -12.0;
+  return j;
+}
+
+}  // namespace
+
+TEST_F(GrassMeshGl, HeightFieldMeshGetsAFarField) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  scene::testing::TestDir dir("sylva_grass_mesh");
+  write_rolling_obj(dir.path / "rolling.obj");
+  auto far = scene::testing::scene_from_json(rolling_stage(true), dir.path);
+  ASSERT_TRUE(far.ok()) << far.error().message;
+  auto near_only = scene::testing::scene_from_json(rolling_stage(false), dir.path);
+  ASSERT_TRUE(near_only.ok()) << near_only.error().message;
+  const Frame ff = render_frame(**far), fn = render_frame(**near_only);
+  std::printf("rolling mesh: %s\n", ff.stats.dump().c_str());
+  EXPECT_FALSE(ff.stats.contains("far_field_off"));
+  ASSERT_TRUE(ff.stats.contains("clumps"));
+  EXPECT_GT(ff.stats["clumps"].get<std::uint64_t>(), 1000u);
+  EXPECT_GT(ff.stats["clumps_drawn"].get<std::uint64_t>(), 0u);
+  EXPECT_GT(ff.stats["ground_chunks_drawn"].get<std::uint64_t>(), 0u);
+  EXPECT_FALSE(fn.stats.contains("clumps"));
+  // Below the horizon the picture looks at the mesh from 5.5 m on, nearly all beyond the blades'
+  // 8 m: the far field's clumps and ground layer change most of it.
+  std::size_t changed = 0;
+  for (int y = 0; y < kSize.y; ++y)
+    for (int x = 0; x < kSize.x; ++x) {
+      float d = 0.0f;
+      for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(ff.image.at(x, y, c) - fn.image.at(x, y, c)));
+      changed += d > 0.02f ? 1 : 0;
+    }
+  std::printf("%zu of %d pixels changed by the far field\n", changed, kSize.x * kSize.y);
+  EXPECT_GT(changed, static_cast<std::size_t>(kSize.x * kSize.y / 3));
+}
+
+TEST_F(GrassMeshGl, MeshThatIsNoHeightFieldGetsNoFarFieldAndAWarning) {
+  if (!find_module("grass") || !find_module("ground") || !find_module("model_terrain")) {
+    GTEST_SKIP() << "needs the grass, ground and terrain modules";
+  }
+  scene::testing::TestDir dir("sylva_grass_mesh");
+  write_box_obj(dir.path / "box.obj", 8);
+  nlohmann::json extra = on_mesh("box.obj");
+  extra["far_field"] = true;
+  std::vector<std::string> warnings;
+  set_log_sink([&](LogLevel level, std::string_view m) {
+    if (level == LogLevel::kWarn) warnings.emplace_back(m);
+  });
+  auto made = scene::testing::scene_from_json(stage(extra), dir.path);
+  set_log_sink(nullptr);
+  ASSERT_TRUE(made.ok()) << made.error().message;
+  const Frame f = render_frame(**made);
+  std::printf("box: far_field_off \"%s\"\n", f.stats.value("far_field_off", "").c_str());
+  EXPECT_FALSE(f.stats.contains("clumps"));
+  EXPECT_GT(f.stats["blades"].get<std::uint64_t>(), 0u) << "the blades are still grown";
+  const std::string off = f.stats.value("far_field_off", "");
+  EXPECT_NE(off.find("box.obj"), std::string::npos) << off;
+  EXPECT_NE(off.find("faces down"), std::string::npos) << off;
+  const bool warned = std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("grass.far_field") != std::string::npos && w.find("box.obj") != std::string::npos;
+  });
+  EXPECT_TRUE(warned) << "a warning names the setting and the file";
 }

@@ -43,9 +43,12 @@ constexpr const char* kStage = R"json({
 
 constexpr glm::ivec2 kSize(96, 64);
 
-std::unique_ptr<Scene> make_scene(const char* text = kStage) {
+// The stage, with `patch` merged into its JSON (RFC 7386).
+std::unique_ptr<Scene> make_scene(const nlohmann::json& patch = nlohmann::json::object()) {
   std::vector<std::string> warnings;
-  auto doc = SceneDocument::from_text(text, "grass tile edit stage", warnings);
+  nlohmann::json json = nlohmann::json::parse(kStage);
+  json.merge_patch(patch);
+  auto doc = SceneDocument::from_json(json, "grass tile edit stage", warnings);
   EXPECT_TRUE(doc.ok()) << doc.error().message;
   if (!doc.ok()) return nullptr;
   auto made = Scene::create(std::move(*doc));
@@ -129,23 +132,13 @@ TEST_F(GrassTileEditGl, ADabRegeneratesItsTilesAndEqualsAFullRegeneration) {
 // The stage with blades only within 4 m of the camera (which stands 8.5 m from the field): the
 // picture shows the far field alone (clumps from 4 m on, the ground layer), with a clump margin and
 // wide billboards, so their tile-local update is what the picture compares.
-constexpr const char* kFarStage = R"json({
-  "sylva_scene": 1,
-  "name": "grass far edit stage",
-  "camera": {"position": [0.0, 6.0, 30.0], "height_mode": "absolute", "yaw_deg": 0.0, "pitch_deg": -15.0, "fov_deg": 60.0},
-  "sun": {"follow_clock": false, "azimuth_deg": 200.0, "elevation_deg": 35.0, "fog_density": 0.0},
-  "wind": {"strength": 0.0, "gust_amplitude": 0.0},
-  "ground": {"resolution": 65, "size": 128, "height": 12, "generator": "fbm", "noise": {"frequency": 0.02}},
-  "grass": {"area_min": [-20.0, -24.0], "area_max": [20.0, 24.0],
-            "field": {"density": 30.0, "tile_size": 2.0},
-            "render": {"simulate": false, "cull": {"near_distance": 4.0}},
-            "far": {"clump_margin": 6.0, "ground_margin": 20.0, "wide_billboards": true, "wide_distance": 30.0}},
-  "render": {"shadows": {"enabled": false}, "msaa_samples": 1}
-})json";
+const nlohmann::json kFarOnly = nlohmann::json::parse(R"json({"grass": {
+  "render": {"cull": {"near_distance": 4.0}},
+  "far": {"clump_margin": 6.0, "ground_margin": 20.0, "wide_billboards": true, "wide_distance": 30.0}}})json");
 
 TEST_F(GrassTileEditGl, FarFieldAfterDabsLooksLikeAFullRegeneration) {
   if (!find_module("grass")) GTEST_SKIP() << "grass is built out";
-  std::unique_ptr<Scene> scene = make_scene(kFarStage);
+  std::unique_ptr<Scene> scene = make_scene(kFarOnly);
   ASSERT_TRUE(scene);
   const Image before = frames(*scene, 1);
   const std::uint64_t full_before = stat(*scene, "regenerations");

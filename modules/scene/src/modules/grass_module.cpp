@@ -22,7 +22,8 @@
 // rebuilds everything.
 //
 // surface = "mesh" (issue 16, grass on any mesh): the blades grow on every triangle of
-// mesh.file instead (see mesh_blades), with no far field; a map edit rebuilds them whole.
+// mesh.file instead (see mesh_blades), with a far field when the mesh is a height field (mesh_far);
+// a map edit rebuilds them whole.
 
 #include "modules/module_factories.hpp"
 
@@ -30,6 +31,7 @@
 #include <sylva/grass/generator.hpp>
 #include <sylva/grass/grass_field.hpp>
 #include <sylva/grass/maps.hpp>
+#include <sylva/grass/mesh_height_field.hpp>
 #include <sylva/grass/settings.hpp>
 #include <sylva/grass/uv_density_map.hpp>
 #include <sylva/core/log.hpp>
@@ -120,7 +122,7 @@ struct GrassSectionSettings {
   template <class V>
   void visit(V& v) {
     v(surface, "surface", {.help = "What the blades grow on: \"ground\" (the scene's ground over the area) or \"mesh\" "
-      "(every triangle of mesh.file, along its normal; density as mesh.density_source; no far field)",
+      "(every triangle of mesh.file, along its normal; density as mesh.density_source; a far field where the mesh is a height field)",
       .rebuild = Rebuild::kOffline});
     v(mesh, "mesh");
     v(area_min, "area_min", {.min = -1.0e8, .max = 1.0e8, .unit = "m", .help = "Corner of the grass area (x, z)", .rebuild = Rebuild::kOffline});
@@ -335,6 +337,7 @@ class GrassInstance final : public ModuleInstance {
                         {"far_tile_updates", far_tile_updates_},
                         {"max_blade_height", field_->max_height()},
                         {"blade_triangles", blades_.last_primitives()}};
+    if (!far_off_.empty()) j["far_field_off"] = far_off_;
     if (settings().surface == GrassSurface::kMesh) {
       j["surface"] = "mesh";
       j["mesh_triangles"] = mesh_triangles_;
@@ -478,11 +481,13 @@ class GrassInstance final : public ModuleInstance {
     return in;
   }
 
-  // The far field stands on a height field, so it is off on a mesh surface (a mesh that is a
-  // height field is grown as surface "ground" through a terrain section instead).
-  Result<std::optional<grass::FarField>> make_far(const Inputs& in) const {
+  // The far field stands on a height field: the scene's ground, or on a mesh surface the mesh
+  // rasterised into one when it is a height field (mesh_far).
+  Result<std::optional<grass::FarField>> make_far(const Inputs& in) {
     const GrassSectionSettings& s = settings();
-    if (!s.far_field || s.surface == GrassSurface::kMesh) return std::optional<grass::FarField>();
+    far_off_.clear();
+    if (!s.far_field) return std::optional<grass::FarField>();
+    if (s.surface == GrassSurface::kMesh) return mesh_far();
     auto f = grass::FarField::create(s.field, s.blade, in.maps, *in.ground, in.origin, s.far);
     if (!f.ok()) return make_error(f.error().code, "grass.far: " + f.error().message);
     return std::optional<grass::FarField>(std::move(*f));
@@ -599,6 +604,7 @@ class GrassInstance final : public ModuleInstance {
     auto set = grass::generate_blades_on_mesh(s.field, s.blade, {positions, {}, mesh.indices, density}, origin,
                                               uv ? &*uv : nullptr);
     if (!set.ok()) return make_error(set.error().code, fmt::format("{} ({}): {}", key, path.string(), set.error().message));
+    keep_mesh_surface(path, origin, std::move(positions), mesh, std::move(density), *uv_map);
     return set;
 #else
     (void)maps;
@@ -659,6 +665,65 @@ class GrassInstance final : public ModuleInstance {
     return j;
   }
 
+  // What mesh_far needs of the mesh mesh_blades grew blades on: positions relative to origin,
+  // triangles, per-vertex density or the UV density map with the corners' UVs.
+  struct MeshSurface {
+    std::string file;
+    glm::dvec3 origin{0.0};
+    std::vector<glm::vec3> positions;
+    std::vector<std::uint32_t> indices;
+    std::vector<float> density;
+    std::vector<glm::vec2> corner_uvs;
+    std::optional<grass::UvDensityMap> uv_map;
+  };
+#ifdef SYLVA_HAS_TERRAIN
+  void keep_mesh_surface(const std::filesystem::path& file, const glm::dvec3& origin, std::vector<glm::vec3> positions,
+                         const terrain::TriangleMesh& mesh, std::vector<float> density,
+                         const std::optional<grass::UvDensityMap>& uv_map) {
+    mesh_surface_ = MeshSurface{file.string(), origin, std::move(positions), mesh.indices, std::move(density),
+                                uv_map ? mesh.corner_uvs : std::vector<glm::vec2>{}, uv_map};
+  }
+#endif
+
+  // The far field on a mesh surface (issue 16): the mesh rasterised into a height field and a
+  // density map (grass::mesh_height_field) at the finer of far.ground_spacing and 1/64 of the
+  // mesh's size, when it is one; margins are 0 (there is no surface beyond the mesh). A mesh that
+  // is no height field gets none: a warning names the file and why, and stats "far_field_off".
+  Result<std::optional<grass::FarField>> mesh_far() {
+    const GrassSectionSettings& s = settings();
+    if (!mesh_surface_) return std::optional<grass::FarField>();
+    const MeshSurface& m = *mesh_surface_;
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (const glm::vec3& p : m.positions) {
+      lo = glm::min(lo, p);
+      hi = glm::max(hi, p);
+    }
+    const double size = std::max(static_cast<double>(hi.x - lo.x), static_cast<double>(hi.z - lo.z));
+    const double spacing = std::max(std::min(static_cast<double>(s.far.ground_spacing), size / 64.0), size / 2048.0);
+    auto density = [&m](std::uint32_t t, const glm::vec3& w) {
+      if (m.uv_map) {
+        const glm::vec2* uv = &m.corner_uvs[3 * static_cast<std::size_t>(t)];
+        return m.uv_map->sample(w.x * uv[0] + w.y * uv[1] + w.z * uv[2]);
+      }
+      const std::uint32_t* v = &m.indices[3 * static_cast<std::size_t>(t)];
+      return w.x * m.density[v[0]] + w.y * m.density[v[1]] + w.z * m.density[v[2]];
+    };
+    auto raster = grass::mesh_height_field(m.positions, m.indices, m.origin, spacing, density);
+    if (!raster.ok()) {
+      far_off_ = fmt::format("{}: {}", m.file, raster.error().message);
+      log_warn("{}.far_field: no far field on {}", ctx_.section->name, far_off_);
+      return std::optional<grass::FarField>();
+    }
+    auto maps = grass::GrassMaps::from_images(raster->rect, &raster->density, nullptr, nullptr);
+    if (!maps.ok()) return make_error(maps.error().code, "grass.far: " + maps.error().message);
+    grass::FarFieldSettings far = s.far;
+    far.clump_margin = 0.0f;
+    far.ground_margin = 0.0f;
+    auto f = grass::FarField::create(s.field, s.blade, *maps, raster->heights, m.origin, far);
+    if (!f.ok()) return make_error(f.error().code, fmt::format("grass.far ({}): {}", m.file, f.error().message));
+    return std::optional<grass::FarField>(std::move(*f));
+  }
+
   Status rebuild_far() {
     auto in = inputs();
     if (!in.ok()) return in.error();
@@ -682,6 +747,8 @@ class GrassInstance final : public ModuleInstance {
   std::uint64_t last_tiles_regenerated_ = 0;
   std::uint64_t far_tile_updates_ = 0;  // edits the far field took tile-locally (update_region)
   std::uint64_t mesh_triangles_ = 0;    // of grass.mesh.file (surface "mesh")
+  std::optional<MeshSurface> mesh_surface_;  // the mesh of surface "mesh" (mesh_far)
+  std::string far_off_;                 // why a requested far field is not drawn (a mesh that is no height field)
   nlohmann::json up_axes_;              // count_up_axes of the mesh blades
 };
 
