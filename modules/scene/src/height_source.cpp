@@ -1,5 +1,6 @@
 #include <sylva/scene/height_source.hpp>
 
+#include "baked_edits.hpp"
 #include "baked_ground.hpp"
 
 #include <sylva/core/assert.hpp>
@@ -71,7 +72,7 @@ Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optio
                                  const std::optional<std::filesystem::path>& elevation_file,
                                  const std::optional<std::filesystem::path>& control_file) {
   const std::optional<std::filesystem::path>& source_file = control_file ? control_file : elevation_file;
-  if (map_file && source_file) {
+  if (map_file && source_file && !is_edit_layer_file(*map_file)) {
     log_info("{}: the painted height map is used; {} is not read", map_file->string(), source_file->string());
   } else if (control_file && elevation_file) {
     log_info("{}: the control texture's heights are used; the elevation raster {} is not read", control_file->string(),
@@ -82,6 +83,8 @@ Result<MapGrid> make_height_grid(const HeightSourceSettings& s, const std::optio
     // chunks were baked from wins over every other height key.
     auto grid = read_baked_ground(*elevation_file);
     if (!grid.ok()) return make_error(grid.error().code, grid.error().message + " (the ground of terrain.baked_file)");
+    // Its painted heights: the scene's edit layer (baked_edits.hpp); a bad layer is a warning.
+    if (map_file && is_edit_layer_file(*map_file)) apply_edit_layer_file(*grid, *map_file);
     return grid;
   }
   if (!map_file && control_file) return read_control_grid(s, *control_file);

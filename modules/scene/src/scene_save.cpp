@@ -4,6 +4,9 @@
 //  - an edited map is written into the saved scene's own map folder, "<stem>_maps/<module>_<slot>
 //    .<exr|png>": a user's source image is never overwritten, and a "save as" never writes into
 //    the original scene's maps;
+//  - the painted ground of a baked terrain (terrain.baked_file) is saved as its edit layer,
+//    "<stem>_maps/terrain_height.sylvaedits": only the 256^2 tiles that differ from the baked
+//    heights (baked_edits.hpp), not a whole-field image;
 //  - on a "save as" (another file than the one the document came from) every unedited map given
 //    by a relative path is copied byte for byte into the new scene's own map folder, so the two
 //    scenes share no map file that either could later overwrite;
@@ -16,6 +19,8 @@
 // after the commit succeeded.
 
 #include <sylva/scene/scene.hpp>
+
+#include "baked_edits.hpp"
 
 #include <sylva/core/file_transaction.hpp>
 #include <sylva/core/image.hpp>
@@ -98,7 +103,13 @@ Status Scene::save(const std::filesystem::path& file) {
     if (!document_->module(map.module)) continue;
     MapPlan plan;
     const SceneMap* m = &map;
-    if (map.unsaved()) {
+    if (map.unsaved() && map.slot == "height" && baked_ground_file(*document_, map.module)) {
+      // The painted ground of a baked terrain: the sparse edit layer (baked_edits.hpp).
+      plan.path = own_map_path(file, map.module, map.slot, kEditLayerExtension);
+      plan.write = [m, baked = *baked_ground_file(*document_, map.module)](const fs::path& temp, const fs::path& target) {
+        return write_edit_layer_file(m->grid, baked, temp, target);
+      };
+    } else if (map.unsaved()) {
       plan.path = own_map_path(file, map.module, map.slot, default_extension(map.kind));
       plan.write = [m](const fs::path& temp, const fs::path& target) {
         if (m->grid.empty()) {

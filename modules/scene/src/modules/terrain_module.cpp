@@ -30,8 +30,11 @@
 // height, Scene::ground_height) is the baked field, where its chunks are (../baked_ground.hpp;
 // every 2nd/4th... sample above 8193^2). The section checks the ground on the grid and the root
 // chunk's vertices (exact field samples): when they match, the ground also shades the terrain
-// (normals, materials); a coarser ground shades from the triangles. Painting does not change a
-// baked terrain. Streaming numbers are in stats() ("stream_*").
+// (normals, materials); a coarser ground shades from the triangles. Painting a baked terrain
+// rebuilds the chunks a stroke reaches from the painted ground (ChunkStreamer::apply_height_edit,
+// terrain/stream_edits.hpp); the scene saves the painted tiles as its edit layer
+// (../baked_edits.hpp), and opening applies them before the first frame. Streaming numbers are in
+// stats() ("stream_*"; "stream_edited_chunks").
 
 #include "modules/module_factories.hpp"
 
@@ -40,6 +43,7 @@
 #include <sylva/scene/module_instance.hpp>
 #include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
+#include <sylva/terrain/edit_layer.hpp>
 #include <sylva/terrain/renderer.hpp>
 #include <sylva/terrain/settings.hpp>
 #include <sylva/terrain/streaming.hpp>
@@ -147,7 +151,6 @@ class TerrainInstance final : public ModuleInstance {
 
   Status on_map_changed(const std::string& map_id, const WorldArea& area) override {
     (void)map_id;
-    if (renderer_->streamer() != nullptr) return {};  // a baked terrain is not painted (header)
     // The changed samples, grown by one sample each way so rounding never leaves one out.
     const HeightField& f = *ctx_.ground;
     const auto lo = glm::floor((area.min - f.origin()) / f.spacing()) - 1.0;
@@ -208,6 +211,7 @@ class TerrainInstance final : public ModuleInstance {
       out["stream_evictions"] = st.evictions;
       out["stream_dropped"] = st.dropped;
       out["stream_failures"] = st.failures;
+      out["stream_edited_chunks"] = streamer->edited_chunks();
       out["baked_file_bytes"] = baked_bytes_;
       out["baked_ground_matches"] = ground_matches_ ? 1 : 0;
     }
@@ -259,6 +263,7 @@ class TerrainInstance final : public ModuleInstance {
     baked_bytes_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
     auto streamer = terrain::ChunkStreamer::create(*file, s.stream);
     if (!streamer.ok()) return fail(Error{streamer.error().code, fmt::format("{}: {}", path.string(), streamer.error().message)});
+    apply_painted_ground(**file, **streamer);
     const std::string mismatch = ground_mismatch(**streamer);
     const HeightField* field = mismatch.empty() ? ctx_.ground : nullptr;
     if (field != nullptr) {
@@ -273,11 +278,39 @@ class TerrainInstance final : public ModuleInstance {
     auto renderer = terrain::TerrainRenderer::create(std::move(*streamer), field, s.render);
     if (!renderer.ok()) return make_error(renderer.error().code, "terrain: " + renderer.error().message);
     renderer_ = std::move(*renderer);
+    stale_ = false;  // a rebuild starts from the ground as it is now
     tree_cache_ = terrain::TreeCacheOutcome::kOff;
     cache_load_ms_ = cache_save_ms_ = 0.0;
     ++rebuilds_;
     last_build_ms_ = watch.elapsed_ms();
     return {};
+  }
+
+  // A painted ground (the scene's edit layer, or strokes before this rebuild) over a baked file:
+  // the chunks of the tiles where it differs from the baked heights are rebuilt from it
+  // (ChunkStreamer::apply_height_edit), so the first frame already shows the edits.
+  void apply_painted_ground(const terrain::ChunkFile& file, terrain::ChunkStreamer& streamer) {
+    bool painted = ctx_.section->maps.count("height") != 0;  // an edit layer
+    if (ctx_.maps != nullptr) {
+      const auto map = ctx_.maps->find("terrain.height");
+      painted = painted || (map != ctx_.maps->end() && map->second.unsaved());
+    }
+    const HeightField& f = *ctx_.ground;
+    const terrain::ChunkTree& t = file.tree();
+    if (!painted || f.columns() != t.field_columns() || f.rows() != t.field_rows() || f.spacing() != t.spacing() ||
+        f.origin() != t.origin()) {
+      return;
+    }
+    auto baked = file.read_heights(1);
+    if (!baked.ok()) return;  // the ground came from the same heights; read errors were reported then
+    const terrain::EditLayer layer = terrain::diff_edit_layer(baked->samples(), f.samples(), f.columns(), f.rows());
+    if (layer.tiles.empty()) return;
+    auto changed = streamer.apply_height_edit(f, terrain::edit_layer_rects(layer));
+    if (!changed.ok()) {
+      log_warn("terrain: the painted ground is not drawn: {}", changed.error().message);
+      return;
+    }
+    chunks_rebuilt_ = changed->rebuilt.size();
   }
 
   // Why the scene's ground is not the field the file was baked from ("" when it is): same grid,
@@ -320,6 +353,20 @@ class TerrainInstance final : public ModuleInstance {
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
   void apply_edit() {
     Stopwatch watch;
+    if (renderer_->streamer() != nullptr) {
+      // A baked terrain: the chunks the edit reaches are rebuilt from the painted ground
+      // (terrain/streaming.hpp). No full-rebuild fallback: that would reopen the file unpainted.
+      auto changed = renderer_->apply_height_edit(*ctx_.ground, dirty_[0], dirty_[1], dirty_[2], dirty_[3]);
+      if (!changed.ok()) {
+        log_warn("terrain: the stroke is not drawn on the baked terrain: {}", changed.error().message);
+        return;
+      }
+      ++partial_rebuilds_;
+      chunks_rebuilt_ = changed->rebuilt.size();
+      chunks_updated_ = 0;
+      last_build_ms_ = watch.elapsed_ms();
+      return;
+    }
     if (settings().tree.tessellation != terrain::Tessellation::kRtin) {
       // The seed's hq grids have no partial rebuild (chunk_tree.hpp): rebuild the whole tree.
       Status s = build();

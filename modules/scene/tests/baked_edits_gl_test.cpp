@@ -1,0 +1,233 @@
+// Painting a baked terrain through the scene (issue 15, "painting a streamed terrain works"): the
+// test bakes a scene's 513^2 ground (as `sylva-bake terrain`), opens a scene streaming it, paints
+// a bump into the ground map (Scene::map and map_changed, the editor brush's path) and draws the
+// terrain alone on magenta: the streamed picture equals the in-memory terrain painted the same way,
+// pixel for pixel, with no hole pixel, from three poses. Saving writes the painted tiles as the
+// scene's edit layer (<stem>_maps/terrain_height.sylvaedits); reopening gives the same ground
+// samples and the same picture. Undo (the old texels back) gives the unpainted ground and picture
+// bit for bit. A damaged layer: a warning naming the file and tile, the scene opens unpainted and
+// the file is left as it was.
+#if SYLVA_HAS_TERRAIN
+#include <sylva/core/log.hpp>
+#include <sylva/render/testing.hpp>
+#include <sylva/scene/module_registry.hpp>
+#include <sylva/scene/scene.hpp>
+#include <sylva/terrain/bake.hpp>
+#include <sylva/terrain/renderer.hpp>
+#include <sylva/terrain/streaming.hpp>
+
+#include "support/gl_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+using namespace sylva;
+using namespace sylva::scene;
+namespace fs = std::filesystem;
+using terrain::testing::GlTarget;
+using terrain::testing::is_color;
+using terrain::testing::kMagenta;
+
+namespace {
+
+using BakedEditsGl = render::GlTest;
+
+// 1024 m, 513^2 samples 2 m apart, 33-sample leaves (5 levels, 341 chunks).
+std::string scene_text(const std::string& baked_file) {
+  std::string terrain = R"("size": 1024, "resolution": 513, "height": 140, "generator": "fbm",
+      "noise": {"frequency": 0.004, "octaves": 6, "seed": 23}, "tree": {"leaf_dimension": 33})";
+  if (!baked_file.empty()) terrain += R"(, "baked_file": ")" + baked_file + R"(", "stream": {"budget_mb": 64})";
+  return R"({"terrain": {)" + terrain + R"(}, "render": {"shadows": {"enabled": false}}})";
+}
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("sylva_baked_edits_" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+std::unique_ptr<Scene> load_scene(const fs::path& file) {
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::load(file, warnings);
+  EXPECT_TRUE(doc.ok()) << doc.error().message;
+  if (!doc.ok()) return nullptr;
+  auto scene = Scene::create(std::move(*doc));
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  return scene.ok() ? std::move(*scene) : nullptr;
+}
+
+std::unique_ptr<Scene> write_and_load(const fs::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+  return load_scene(file);
+}
+
+terrain::TerrainRenderer* terrain_of(Scene& scene) {
+  ModuleInstance* m = scene.module("terrain");
+  return m == nullptr ? nullptr : dynamic_cast<terrain::TerrainRenderer*>(m->drawables().front());
+}
+
+std::string read_bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::size_t holes(const Image& image) {
+  std::size_t n = 0;
+  for (int y = image.height() / 2; y < image.height(); ++y)
+    for (int x = 0; x < image.width(); ++x) n += is_color(image, x, y, kMagenta) ? 1 : 0;
+  return n;
+}
+
+std::size_t differing_pixels(const Image& a, const Image& b) {
+  std::size_t n = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x)
+      for (int c = 0; c < 3; ++c)
+        if (a.at(x, y, c) != b.at(x, y, c)) {
+          ++n;
+          break;
+        }
+  return n;
+}
+
+// The samples a stroke of radius r on (cx, cz) writes, clipped to the 513^2 ground.
+TexelRect stroke_rect(int cx, int cz, int r) {
+  return {std::max(cx - r, 0), std::max(cz - r, 0), std::min(cx + r + 1, 513), std::min(cz + r + 1, 513)};
+}
+
+// A bump of `amount` metres of radius r samples on sample (cx, cz) of the scene's ground map, as
+// a brush stroke: texels written, then map_changed. Returns the rectangle.
+TexelRect paint(Scene& scene, int cx, int cz, int r, float amount) {
+  SceneMap* map = scene.map("terrain.height");
+  const TexelRect rect = stroke_rect(cx, cz, r);
+  for (int z = rect.y0; z < rect.y1; ++z) {
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      const double d = std::hypot(x - cx, z - cz) / (r + 1);
+      if (d < 1.0) map->grid.at(x, z) += amount * static_cast<float>(1.0 - d * d);
+    }
+  }
+  EXPECT_TRUE(scene.map_changed("terrain.height", rect).ok());
+  return rect;
+}
+
+std::vector<CameraView> poses() {
+  std::vector<CameraView> v(3);
+  v[0].position = {0.0, 320.0, 150.0};
+  v[0].pitch_deg = -60.0f;
+  v[1].position = {-150.0, 160.0, -40.0};
+  v[1].yaw_deg = -60.0f;
+  v[1].pitch_deg = -35.0f;
+  v[2].position = {120.0, 90.0, -60.0};
+  v[2].yaw_deg = 80.0f;
+  v[2].pitch_deg = -30.0f;
+  return v;
+}
+
+// The scene's terrain from each pose, drawn once the streamer has caught up (frames with
+// wait_idle until no chunk is drawn for a missing child; at most 40). Every frame: no hole.
+std::vector<Image> pictures(Scene& scene, GlTarget& target) {
+  std::vector<Image> out;
+  terrain::TerrainRenderer* r = terrain_of(scene);
+  for (const CameraView& view : poses()) {
+    const render::Camera camera = scene.make_camera(view, target.size());
+    scene.update(camera, 0.0, 0.0f, target.size());  // settings sync: applies a pending edit
+    Image image;
+    for (int f = 0; f < 40; ++f) {
+      image = target.render(*r, camera, kMagenta);
+      EXPECT_EQ(holes(image), 0u) << "frame " << f;
+      if (r->streamer() == nullptr || r->frame_stats().selection.substituted == 0) break;
+      r->streamer()->wait_idle();
+    }
+    out.push_back(std::move(image));
+  }
+  return out;
+}
+
+void expect_same_pictures(const std::vector<Image>& a, const std::vector<Image>& b, const char* what) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) EXPECT_EQ(differing_pixels(a[i], b[i]), 0u) << what << ", pose " << i;
+}
+
+TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainted) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  TempDir dir;
+  auto memory = write_and_load(dir.path / "memory.json", scene_text(""));
+  ASSERT_TRUE(memory);
+  terrain::BakeOptions options;
+  options.tree.leaf_dimension = 33;
+  ASSERT_TRUE(terrain::bake_chunk_file(*memory->ground(), dir.path / "valley.sylvaterrain", options).ok());
+  auto baked = write_and_load(dir.path / "baked.json", scene_text("valley.sylvaterrain"));
+  ASSERT_TRUE(baked);
+  ASSERT_NE(terrain_of(*baked)->streamer(), nullptr);
+  const std::vector<float> unpainted = baked->ground()->samples();
+  GlTarget target = GlTarget::create(192, 108);
+  const std::vector<Image> before = pictures(*baked, target);
+
+  // The same strokes on the in-memory terrain and on the baked one; the second reaches the
+  // field's east edge (the last column and the padding beyond it) and two more tiles.
+  const TexelRect first = stroke_rect(256, 200, 20), second = stroke_rect(508, 300, 9);
+  const std::vector<float> undo_first = baked->map("terrain.height")->grid.copy_rect(first);
+  const std::vector<float> undo_second = baked->map("terrain.height")->grid.copy_rect(second);
+  for (Scene* s : {memory.get(), baked.get()}) {
+    paint(*s, 256, 200, 20, 40.0f);
+    paint(*s, 508, 300, 9, -25.0f);
+  }
+  const std::vector<Image> painted = pictures(*baked, target);
+  expect_same_pictures(painted, pictures(*memory, target), "painted: streamed vs in-memory");
+  EXPECT_GT(differing_pixels(before[0], painted[0]), 100u) << "the bump is in view";
+  const nlohmann::json stats = baked->module_stats()["terrain"];
+  EXPECT_GT(stats["stream_edited_chunks"].get<std::size_t>(), 4u);
+  EXPECT_LT(stats["stream_edited_chunks"].get<std::size_t>(), 120u) << "only the chunks the strokes reach";
+  const std::vector<float> painted_ground = baked->ground()->samples();
+
+  // Save: the painted tiles as the scene's edit layer; reopen: the same ground and picture.
+  ASSERT_TRUE(baked->save(dir.path / "painted.json").ok());
+  const fs::path layer = dir.path / "painted_maps" / "terrain_height.sylvaedits";
+  ASSERT_TRUE(fs::exists(layer));
+  // Tiles (0, 0), (1, 0), (1, 1) and the 1-column edge tile (2, 1) of the 3 x 3.
+  EXPECT_EQ(fs::file_size(layer), 40u + 4u * 24u + (3u * 256u * 256u + 256u) * 4u) << "sparse: the painted tiles";
+  {
+    auto reopened = load_scene(dir.path / "painted.json");
+    ASSERT_TRUE(reopened);
+    EXPECT_TRUE(reopened->ground()->samples() == painted_ground) << "edit layer: bit-exact heights";
+    expect_same_pictures(pictures(*reopened, target), painted, "reopened");
+  }
+
+  // Undo the first stroke, then the second (the editor's undo pastes the old texels back).
+  baked->map("terrain.height")->grid.paste_rect(first, undo_first);
+  ASSERT_TRUE(baked->map_changed("terrain.height", first).ok());
+  (void)pictures(*baked, target);
+  baked->map("terrain.height")->grid.paste_rect(second, undo_second);
+  ASSERT_TRUE(baked->map_changed("terrain.height", second).ok());
+  EXPECT_TRUE(baked->ground()->samples() == unpainted);
+  expect_same_pictures(pictures(*baked, target), before, "undone");
+
+  // A damaged layer: the scene opens unpainted with a warning naming the file and tile; the file
+  // stays as it was.
+  std::string bytes = read_bytes(layer);
+  bytes[40 + 24 + 1000] = static_cast<char>(bytes[40 + 24 + 1000] ^ 0x40);  // the first tile's heights
+  std::ofstream(layer, std::ios::binary | std::ios::trunc) << bytes;
+  std::vector<std::string> warnings;
+  set_log_sink([&](LogLevel level, std::string_view m) {
+    if (level >= LogLevel::kWarn) warnings.emplace_back(m);
+  });
+  auto damaged = load_scene(dir.path / "painted.json");
+  set_log_sink(nullptr);
+  ASSERT_TRUE(damaged) << "a bad layer does not stop the scene";
+  std::string all;
+  for (const std::string& w : warnings) all += w + "\n";
+  EXPECT_NE(all.find("terrain_height.sylvaedits: tile (0, 0): checksum mismatch"), std::string::npos) << all;
+  EXPECT_NE(all.find("opens without these edits"), std::string::npos) << all;
+  EXPECT_TRUE(damaged->ground()->samples() == unpainted);
+  expect_same_pictures(pictures(*damaged, target), before, "damaged layer");
+  EXPECT_EQ(read_bytes(layer), bytes) << "a failed load never rewrites the layer";
+}
+
+}  // namespace
+#endif
