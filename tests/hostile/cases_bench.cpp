@@ -31,6 +31,25 @@ std::vector<HostileCase> bench_cases() {
       bench("BenchOutIsTheScene", kSweep + "--out scene.json", 1, {"scene.json"}),
       bench("BenchOutUnderAFile", kSweep + "--out scene.json/results", 1, {"scene.json/results"}),
       bench("BenchOutUnwritable", kSweep + "--out /proc/sylva_hostile", 1, {"/proc/sylva_hostile"}),
+      // --suite species with the user's files (issue 16): a junk species file fails its load and
+      // forest rows naming it (exit 1), a grammar that would explode is left out of the grammar
+      // rows; the shipped species and the pillar still measure.
+      {.name = "BenchSpeciesSuiteJunkSpeciesAndExplodingGrammar",
+       .tool = Tool::kBench,
+       .files = {{"junk.json", [] { return junk(2000); }},
+                 {"plants.json", [] {
+                    return std::string(R"({"species": [)"
+                                       R"({"name": "boom", "grammar": "boom.lsys", "derivations": [30, 30], "size": [1, 1], "blocks": {"0": "oak_log"}, "biomes": {"plains": {"spacing": 5, "chance": 1}}},)"
+                                       R"({"name": "pillar", "grammar": "pillar.lsys", "derivations": [3, 3], "size": [1, 1], "blocks": {"0": "glowstone"}, "biomes": {"plains": {"spacing": 5, "chance": 1}}}]})");
+                  }},
+                 {"boom.lsys", [] { return std::string("0 0 1\nU\nU > UUUUUUUUUU\n"); }},
+                 {"pillar.lsys", [] { return std::string("0 0 1\nU\nU > UU\n"); }}},
+       .args = "--suite species --size 32x18 --frames 1 --warmup 0 --set render.shadows.enabled=false "
+               "--set vegetation.species_files.1.file=junk.json --set voxel.flora.species_file=plants.json --out out",
+       .exit_code = 1,
+       .words = {"vegetation.species_files.0.file", "junk.json:1:", "junk.json: vegetation.species_files: no species left",
+                 "species[0].derivations: boom.lsys:1", "left out",
+                 "grammar: pillar (pillar.lsys #0) plants=1000"}},
   };
 }
 

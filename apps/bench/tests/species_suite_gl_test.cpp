@@ -82,13 +82,18 @@ TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
   ASSERT_NE(forests[0].find("forest: mixed species=3"), std::string::npos) << forests[0];
   const double trees = field(forests[0], "trees");
   EXPECT_GT(trees, 0.0) << forests[0];
-  for (int k = 0; k < 4; ++k) {
-    EXPECT_EQ(field(forests[static_cast<std::size_t>(k)], "trees"), trees) << forests[static_cast<std::size_t>(k)];
-    EXPECT_GT(field(forests[static_cast<std::size_t>(k)], "ms_per_frame"), 0.0) << forests[static_cast<std::size_t>(k)];
+  // The mixed forest holds all three species; each alone has the mixed forest's tree count.
+  for (const char* name : {"painted birch: ", "slender conifer: ", "sapling: "}) {
+    EXPECT_NE(forests[0].find(name), std::string::npos) << forests[0];
+  }
+  for (std::size_t k = 0; k < 4; ++k) {
+    EXPECT_EQ(field(forests[k], "trees"), trees) << forests[k];
+    EXPECT_GT(field(forests[k], "ms_per_frame"), 0.0) << forests[k];
     if (k > 0) {
-      EXPECT_NE(forests[static_cast<std::size_t>(k)].find("species=1"), std::string::npos);
+      EXPECT_NE(forests[k].find("species=1"), std::string::npos) << forests[k];
     }
   }
+  EXPECT_NE(forests[4].find("forest: mixed / composition-weighted one-species = "), std::string::npos) << forests[4];
 
   auto csv = sylva::read_file(dir / "out" / "results.csv");
   ASSERT_TRUE(csv.ok());
@@ -96,6 +101,7 @@ TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
   EXPECT_EQ(lines_of(*csv, "load_cold,").size(), 3u) << *csv;
   EXPECT_EQ(lines_of(*csv, "grammar,").size(), 1u) << *csv;
   EXPECT_EQ(lines_of(*csv, "forest_one,").size(), 3u) << *csv;
+  EXPECT_EQ(lines_of(*csv, "forest_mixed_ratio,").size(), 1u) << *csv;
   fs::remove_all(dir);
 }
 

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <map>
 #include <cmath>
 #include <ostream>
 #include <system_error>
@@ -131,6 +132,7 @@ Result<Built> build(const std::string& scene, glm::ivec2 size, const std::vector
 struct Frame {
   double ms = 0.0;
   double trees = 0.0;
+  std::map<std::string, double> per_species;  // trees by species name (the module's stats)
 };
 Result<Frame> render_frame(BenchTarget& target, const render::Framebuffer& fb, double time) {
   auto pose = target.camera_pose("start", 0, 1);
@@ -140,8 +142,13 @@ Result<Frame> render_frame(BenchTarget& target, const render::Framebuffer& fb, d
   SYLVA_TRY(target.render({0, time, 1.0f / 30.0f, *pose}, fb, out));
   glFinish();
   const double ms = wall.elapsed_ms();
-  const auto trees = out.metrics.find("vegetation.trees");
-  return Frame{ms, trees == out.metrics.end() ? 0.0 : trees->second};
+  Frame frame{ms, 0.0, {}};
+  const std::string per_species = "vegetation.trees_per_species.";
+  for (const auto& [key, value] : out.metrics) {
+    if (key == "vegetation.trees") frame.trees = value;
+    if (key.rfind(per_species, 0) == 0) frame.per_species[key.substr(per_species.size())] = value;
+  }
+  return frame;
 }
 
 struct Row {
@@ -161,25 +168,29 @@ class Suite {
     fs::remove_all(cache_, ec);
   }
 
-  // Cold and cached builds of each species alone, and the ground without trees.
+  // Cold and cached builds of each species alone, and the ground without trees. A file that
+  // fails does not stop the others; the first failure is returned.
   Status load_rows(const SuiteFiles& files) {
     auto ground = build(forest_scene({}, cache_), o_.size, files.scene_settings);
     if (!ground.ok()) return ground.error();
+    Status first_failure;
     for (const fs::path& file : files.species) {
       std::error_code ec;
       fs::remove_all(cache_, ec);
       const std::string scene = forest_scene({file}, cache_);
       auto cold = build(scene, o_.size, files.scene_settings);
-      if (!cold.ok()) return cold.error();
-      auto cached = build(scene, o_.size, files.scene_settings);
-      if (!cached.ok()) return cached.error();
+      auto cached = cold.ok() ? build(scene, o_.size, files.scene_settings) : Result<Built>(cold.error());
+      if (!cached.ok()) {
+        if (first_failure.ok()) first_failure = make_error(cached.error().code, fmt::format("{}: {}", file.string(), cached.error().message));
+        continue;
+      }
       print(fmt::format("species load: {} cold_ms={:.1f} cached_ms={:.1f} ground_ms={:.1f}\n", file.filename().string(),
                         cold->build_ms, cached->build_ms, ground->build_ms));
       rows_.push_back({"load_cold", file.filename().string(), 1, cold->build_ms, "ms"});
       rows_.push_back({"load_cached", file.filename().string(), 1, cached->build_ms, "ms"});
     }
     rows_.push_back({"load_ground", "no trees", 0, ground->build_ms, "ms"});
-    return {};
+    return first_failure;
   }
 
   // The mixed forest and each species alone, `rounds` times in turn, `frames` frames each.
@@ -189,13 +200,16 @@ class Suite {
     std::vector<Built> built;
     for (const auto& forest : forests) {
       auto b = build(forest_scene(forest, cache_), o_.size, files.scene_settings);
-      if (!b.ok()) return b.error();
+      if (!b.ok()) {
+        const std::string which = forest.size() == 1 ? forest.front().string() : "the mixed forest";
+        return make_error(b.error().code, fmt::format("{}: {}", which, b.error().message));
+      }
       built.push_back(std::move(*b));
     }
     auto fb = render::Framebuffer::create({.width = o_.size.x, .height = o_.size.y, .color_formats = {GL_RGBA8}});
     if (!fb.ok()) return fb.error();
     std::vector<double> total_ms(built.size(), 0.0);
-    std::vector<double> trees(built.size(), 0.0);
+    std::vector<Frame> counts(built.size());  // the trees of each forest (the same every frame)
     const int warmup = o_.warmup;
     for (std::size_t k = 0; k < built.size(); ++k) {
       for (int w = 0; w < warmup; ++w) {
@@ -209,20 +223,37 @@ class Suite {
           auto f = render_frame(*built[k].target, *fb, (warmup + round * o_.frames + i) / 30.0);
           if (!f.ok()) return f.error();
           total_ms[k] += f->ms;
-          trees[k] = f->trees;
+          counts[k] = std::move(*f);
         }
       }
     }
     const double frames = static_cast<double>(o_.rounds) * o_.frames;
+    std::map<std::string, double> one_ms;  // each species alone, by name
     for (std::size_t k = 0; k < built.size(); ++k) {
       const std::string name = k == 0 ? "mixed" : forests[k].front().filename().string();
       const double ms = total_ms[k] / frames;
-      print(fmt::format("forest: {} species={} trees={} ms_per_frame={:.2f}\n", name, forests[k].size(), trees[k], ms));
-      rows_.push_back({k == 0 ? "forest_mixed" : "forest_one", name, trees[k], ms, "ms/frame"});
+      std::string mix;
+      for (const auto& [species, n] : counts[k].per_species) mix += fmt::format("{}{}: {}", mix.empty() ? "" : ", ", species, n);
+      print(fmt::format("forest: {} species={} trees={} ({}) ms_per_frame={:.2f}\n", name, forests[k].size(), counts[k].trees,
+                        mix, ms));
+      rows_.push_back({k == 0 ? "forest_mixed" : "forest_one", name, counts[k].trees, ms, "ms/frame"});
+      if (k > 0 && counts[k].per_species.size() == 1) one_ms[counts[k].per_species.begin()->first] = ms;
     }
-    double one_ms = 0.0;
-    for (std::size_t k = 1; k < built.size(); ++k) one_ms += total_ms[k] / frames / static_cast<double>(built.size() - 1);
-    print(fmt::format("forest: mixed / mean of one = {:.3f}\n", total_ms[0] / frames / one_ms));
+    // What the mixed forest would cost if a tree cost what it costs in its one-species forest:
+    // the one-species times weighted by the mixed forest's composition. The ratio is the price
+    // of mixing (per-species draws, state changes, textures).
+    double expected = 0.0;
+    for (const auto& [species, n] : counts[0].per_species) {
+      const auto alone = one_ms.find(species);
+      if (alone == one_ms.end() || counts[0].trees <= 0.0) {
+        return make_error(ErrorCode::kNotFound, fmt::format("the mixed forest has trees of \"{}\", but no one-species forest has "
+                                                            "(two species files of the same name?)", species));
+      }
+      expected += n / counts[0].trees * alone->second;
+    }
+    const double ratio = total_ms[0] / frames / expected;
+    print(fmt::format("forest: mixed / composition-weighted one-species = {:.3f} (expected {:.2f} ms)\n", ratio, expected));
+    rows_.push_back({"forest_mixed_ratio", "mixed / weighted one-species", counts[0].trees, ratio, "ratio"});
     return {};
   }
 
