@@ -210,6 +210,15 @@ std::vector<HostileCase> plant_file_cases() {
       grass_mesh("GrassMeshFaceOutOfRange", "m.obj", text("v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 99999999999\n"), {"m.obj:4"}),
       grass_mesh("GrassMeshIsAnImage", "m.obj", [] { return png_solid(8, 8, 3, "\x80\x80\x80"); }, {}),
       grass_mesh("GrassMeshUnknownFormat", "m.xyz", text("v 0 0 0\n"), {}),
+      // A glTF whose accessor claims 10^9 vertices over a 36-byte view: refused from the claim.
+      grass_mesh("GrassMeshGltfClaimsABillionVertices", "m.gltf",
+                 text(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+                    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+                    "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAAAAAAIA/AAABAAIAAAA="}],
+                    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+                    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 1000000000, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 1]},
+                                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})"),
+                 {"accessors[0]", "1000000000"}),
       // Its density image over the UVs (grass.mesh.density_source "uv_map").
       uv_density_map("GrassUvDensityMissing", "d.png", nullptr, {"no such file"}),
       uv_density_map("GrassUvDensityNaN", "d.exr", [] { return float_image(".exr", 8, 8, every_third(kNaN)); }, {"NaN"}),
