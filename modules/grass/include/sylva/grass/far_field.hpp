@@ -89,7 +89,9 @@
 // density and tint textures (glTextureSubImage2D) and, after a ground edit, the ground layer's
 // changed vertices (glNamedBufferSubData of the changed range). Clumps are a function of their
 // tile alone (world-anchored sampler), so the result equals create() with the same inputs bit for
-// bit (grass_tile_edit_gl_test compares records, GPU buffers, textures and pictures).
+// bit (far_field_edit_gl_test compares records, GPU buffers and textures; the scene's
+// grass_tile_edit_gl_test the pictures). A tint map that appears, or maps of another size or
+// rectangle, need create() again.
 
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/image.hpp>
