@@ -311,7 +311,8 @@ BENCHMARK(BM_GrassLodError)
 // (regenerate_tiles of a 1 m-radius dab's area plus GrassField::set_blades), 2 = the far field
 // alone (FarField::create), 3 = the dab's blades on the CPU only (regenerate_tiles), 4 = the whole
 // dab: its blades as 1 plus the far field's tile-local update (FarField::update_region), what the
-// scene's grass module does per dab now, 5 = the far field's update alone.
+// scene's grass module does per dab now, 5 = the far field's update alone, 6 = the far field's
+// update after a ground dab instead (the 3 x 3 ground samples around the dab up and down by 1 m).
 // One iteration = one dab with glFinish; the dab alternates between density 0.2 and 1 so that
 // every iteration changes the maps.
 void BM_GrassMapEdit(benchmark::State& state) {
@@ -369,6 +370,12 @@ void BM_GrassMapEdit(benchmark::State& state) {
       if (mode != 3 && !field->set_blades(*set).ok()) state.SkipWithError("set_blades failed");
       if (mode == 4 && !far_field->update_region(fs, bs, *m, ground, {&area, 1}, false).ok()) state.SkipWithError("update_region failed");
       blades = set->blades.size();
+    } else if (mode == 6) {
+      const int ci = static_cast<int>((3.0 + 800.0) / 6.25), cj = static_cast<int>((-7.0 + 800.0) / 6.25);
+      for (int j = cj - 1; j <= cj + 1; ++j)
+        for (int i = ci - 1; i <= ci + 1; ++i) ground.sample(i, j) += iteration % 2 == 0 ? 1.0f : -1.0f;
+      const Rect ground_area{{-800.0 + 6.25 * (ci - 2), -800.0 + 6.25 * (cj - 2)}, {-800.0 + 6.25 * (ci + 2), -800.0 + 6.25 * (cj + 2)}};
+      if (!far_field->update_region(fs, bs, *m, ground, {&ground_area, 1}, true).ok()) state.SkipWithError("update_region failed");
     } else if (mode == 5) {
       if (!far_field->update_region(fs, bs, *m, ground, {&area, 1}, false).ok()) state.SkipWithError("update_region failed");
     } else {
@@ -379,6 +386,6 @@ void BM_GrassMapEdit(benchmark::State& state) {
   }
   state.counters["blades"] = static_cast<double>(blades);
 }
-BENCHMARK(BM_GrassMapEdit)->DenseRange(0, 5)->Unit(benchmark::kMillisecond)->Iterations(5);
+BENCHMARK(BM_GrassMapEdit)->DenseRange(0, 6)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
