@@ -42,6 +42,7 @@ const std::map<std::string, Arity, std::less<>>& commands() {
       {"save", {0, 1, "save [PATH]"}},
       {"copy_file", {2, 2, "copy_file FROM TO"}},
       {"wait_reload", {1, 2, "wait_reload FILE [MAX_FRAMES]"}},
+      {"wait_stream", {0, 1, "wait_stream [MAX_FRAMES]"}},
       {"print_stats", {1, 1, "print_stats MODULE"}},
       {"preview", {0, -1, "preview [KEY=VALUE...]"}},
       {"expect", {2, 2, "expect PATH VALUE"}},
@@ -170,7 +171,7 @@ Result<std::vector<ScriptCommand>> parse_script(std::string_view text, std::stri
                    (c.args[1] != "bake" || n < 3 || (n == 4 && c.args[3] != "hold"))) {
           fail("import_terrain: expected import_terrain PATH [bake OUT [hold]]");
         } else if ((c.name == "undo" || c.name == "redo" || c.name == "frames" || c.name == "wait_reload" ||
-                    c.name == "wait_import") &&
+                    c.name == "wait_import" || c.name == "wait_stream") &&
                    n == (c.name == "wait_reload" ? 2 : 1)) {
           auto count = parse_count(c.args.back(), 1, 1000000);
           if (!count.ok()) fail(fmt::format("{}: {}", c.name, count.error().message));

@@ -45,6 +45,9 @@
 //   wait_reload FILE [MAX_FRAMES]  render frames until the editor's file watcher has reloaded FILE
 //                                (again, since the last wait_reload of it); fails after MAX_FRAMES
 //                                (default 600). Reload messages are written to the output as they come
+//   wait_stream [MAX_FRAMES]     render frames until the streamed (baked) terrain has every chunk its
+//                                view asks for (stats stream_pending and stream_misses_frame 0), so a
+//                                screenshot is the settled picture; fails after MAX_FRAMES (default 2000)
 //   quit                         stop (unsaved changes are discarded: scripts are explicit)
 //
 // Parsing checks every line before anything runs: unknown commands, wrong argument counts and

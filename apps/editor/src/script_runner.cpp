@@ -191,6 +191,19 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     seen = s.reloads(file);
     return {};
   }
+  if (c.name == "wait_stream") {
+    const int max_frames = a.size() == 1 ? c.count : 2000;
+    const auto settled = [&] {
+      const nlohmann::json t = s.scene().module_stats().value("terrain", nlohmann::json::object());
+      return t.value("stream_pending", 0) == 0 && t.value("stream_misses_frame", 0) == 0;
+    };
+    for (int k = 0; k < max_frames; ++k) {
+      SYLVA_TRY(s.render_frame(1.0 / 30.0));
+      if (settled()) return {};
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));  // the loader thread reads meanwhile
+    }
+    return make_error(ErrorCode::kLimit, fmt::format("wait_stream: the terrain still streams after {} frames", max_frames));
+  }
   if (c.name == "print_stats") {
     const nlohmann::json stats = s.scene().module_stats();
     if (!stats.contains(a[0])) return make_error(ErrorCode::kNotFound, fmt::format("the scene has no module \"{}\"", a[0]));
