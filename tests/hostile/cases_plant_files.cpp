@@ -164,6 +164,20 @@ std::vector<HostileCase> plant_file_cases() {
                              {"species[1].derivations"}),
       voxel_species_left_out("VoxelSpeciesDerivationsHuge", species_with_grammar("pillar.lsys", "[3, 1e300]"),
                              {"species[1].derivations"}),
+      // The editor's path: a script names a junk species table and a missing palette on a world
+      // that plays; the warnings reach the editor's messages and the world still draws.
+      {.name = "EditorSetsAJunkVoxelSpeciesTableAndAMissingPalette",
+       .tool = Tool::kEditor,
+       .files = {{"s.txt", text("load scene.json\nset voxel.flora.species_file junk.json\nset voxel.blocks.palette_file gone.json\n"
+                                "frames 1\nscreenshot shot.png 32x18\nquit\n")},
+                 {"scene.json", [] { return voxel_scene("{}"); }},
+                 {"junk.json", [] { return junk(3000); }}},
+       .args = "--script s.txt --size 32x18",
+       .exit_code = 0,
+       .words = {"voxel.flora.species_file", "junk.json:1:", "the shipped species are used", "voxel.blocks.palette_file",
+                 "gone.json", "the standard palette is used"},
+       .needs_module = "voxel",
+       .picture = "shot.png"},
       // Block palettes: the whole palette fails, the standard one stands in.
       voxel_palette("VoxelPaletteMissing", nullptr, {"no such file"}),
       voxel_palette("VoxelPaletteJunk", [] { return junk(3000); }, {"blocks.json:1:"}),
