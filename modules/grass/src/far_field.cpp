@@ -469,6 +469,26 @@ std::vector<Image> coverage_preserving_mips(const Image& level0) {
   return levels;
 }
 
+namespace {
+
+// The ground layer's vertex on height-field sample `sample` (9 floats: position lifted along the
+// normal by ground_offset, normal, field colour) written to `out`; returns the position.
+glm::vec3 ground_layer_vertex(const GrassFieldSettings& field, const BladeSettings& blade, const HeightField& ground,
+                              const glm::dvec3& origin, const FarFieldSettings& far, glm::ivec2 sample, float* out) {
+  const double sp = ground.spacing();
+  const double wx = ground.origin().x + sample.x * sp, wz = ground.origin().y + sample.y * sp;
+  const glm::vec3 n = ground.sample_normal(sample.x, sample.y);
+  const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(static_cast<double>(ground.sample(sample.x, sample.y)) - origin.y),
+                    static_cast<float>(wz - origin.z));
+  const glm::vec3 q = p + n * far.ground_offset;
+  const glm::vec3 col = field_color(wx, wz, blade, field.seed);
+  const float v[kGroundVertexFloats] = {q.x, q.y, q.z, n.x, n.y, n.z, col.r, col.g, col.b};
+  std::copy(std::begin(v), std::end(v), out);
+  return q;
+}
+
+}  // namespace
+
 Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, const BladeSettings& blade, const GrassMaps& maps,
                                            const HeightField& ground, const glm::dvec3& origin, const FarFieldSettings& far) {
   SYLVA_TRY(validate_params(far, "grass.far"));
@@ -501,16 +521,11 @@ Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, cons
   }
   // Appends the vertex on height-field sample (global fine-grid index gi, gj) and returns its index.
   auto vertex = [&](int gi, int gj, glm::vec3& lo, glm::vec3& hi) {
-    const int si = std::min(gi0 + gi * k, gi1);
-    const int sj = std::min(gj0 + gj * k, gj1);
-    const double wx = ground.origin().x + si * sp, wz = ground.origin().y + sj * sp;
-    const glm::vec3 n = ground.sample_normal(si, sj);
-    const glm::vec3 p(static_cast<float>(wx - origin.x), static_cast<float>(static_cast<double>(ground.sample(si, sj)) - origin.y),
-                      static_cast<float>(wz - origin.z));
-    const glm::vec3 q = p + n * far.ground_offset;
-    const glm::vec3 col = field_color(wx, wz, blade, field.seed);
+    const glm::ivec2 sample(std::min(gi0 + gi * k, gi1), std::min(gj0 + gj * k, gj1));
     const auto id = static_cast<std::uint32_t>(vertices.size() / kGroundVertexFloats);
-    vertices.insert(vertices.end(), {q.x, q.y, q.z, n.x, n.y, n.z, col.r, col.g, col.b});
+    vertices.resize(vertices.size() + kGroundVertexFloats);
+    mesh.samples.push_back(sample);
+    const glm::vec3 q = ground_layer_vertex(field, blade, ground, origin, far, sample, &vertices[id * kGroundVertexFloats]);
     lo = glm::min(lo, q);
     hi = glm::max(hi, q);
     return id;
@@ -520,6 +535,7 @@ Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, cons
     gc.bounds_min = lo - glm::vec3(0.1f);
     gc.bounds_max = hi + glm::vec3(0.1f);
   };
+  auto vertex_count = [&] { return static_cast<std::uint32_t>(vertices.size() / kGroundVertexFloats); };
   // A grid of (kQuads + 1)^2 vertices every `step` fine quads from fine index (gi, gj); quads
   // [q0, q1)^2 of it are indexed. Split along the (i + 1, j) - (i, j + 1) diagonal, like the scene's
   // ground mesh.
@@ -541,9 +557,11 @@ Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, cons
     for (int i = 0; i < cx; ++i) {
       GroundChunk gc;
       gc.first_index = static_cast<std::uint32_t>(indices.size());
+      gc.first_vertex = vertex_count();
       glm::vec3 lo = kLo, hi = kHi;
       patch(i * kQuads, j * kQuads, 1, 0, kQuads, lo, hi);
       finish(gc, lo, hi);
+      gc.vertex_count = vertex_count() - gc.first_vertex;
       mesh.chunks.push_back(gc);
     }
   }
@@ -559,6 +577,7 @@ Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, cons
       glm::vec3 lo = kLo, hi = kHi;
       const int gi = I * f * kQuads, gj = J * f * kQuads;
       cc.interior.first_index = static_cast<std::uint32_t>(indices.size());
+      cc.interior.first_vertex = vertex_count();
       const std::uint32_t base = patch(gi, gj, f, 1, kQuads - 1, lo, hi);
       cc.interior.index_count = static_cast<std::uint32_t>(indices.size()) - cc.interior.first_index;
       auto coarse_id = [&](int a, int b) { return base + static_cast<std::uint32_t>(b * (kQuads + 1) + a); };
@@ -619,6 +638,7 @@ Result<GroundLayerMesh> build_ground_layer(const GrassFieldSettings& field, cons
       }
       cc.interior.bounds_min = lo - glm::vec3(0.1f);
       cc.interior.bounds_max = hi + glm::vec3(0.1f);
+      cc.interior.vertex_count = vertex_count() - cc.interior.first_vertex;
       for (auto& side : cc.sides)
         for (GroundChunk& v : side) {
           v.bounds_min = cc.interior.bounds_min;
@@ -716,6 +736,7 @@ Result<FarField> FarField::create(const GrassFieldSettings& field, const BladeSe
   if (indices.empty()) indices.assign(3, 0u);
   f.ground_vertices_ = render::Buffer::immutable(std::span<const float>(vertices), true);  // update_region
   f.ground_vertex_data_ = std::move(vertices);
+  f.ground_samples_ = std::move(layer->samples);
   f.ground_indices_ = render::Buffer::immutable(std::span<const std::uint32_t>(indices));
   f.ground_vao_ = render::VertexArray::create();
   f.ground_vao_.attribute(0, 0, 3, GL_FLOAT, 0);
@@ -880,27 +901,64 @@ Status FarField::update_region(const GrassFieldSettings& field, const BladeSetti
   refresh_texels(density_image_, density_, density);
   refresh_texels(tint_image_, tint_, tint);
 
-  if (ground_changed) {
-    // The layer's vertices sit on the ground's samples: remade on the CPU (a few ms), and only the
-    // range that changed goes to the GPU; the chunks' bounds follow.
-    auto layer = build_ground_layer(field, blade, maps, ground, origin_, far);
-    if (!layer) return layer.error();
-    if (layer->vertices.size() != ground_vertex_data_.size()) {
-      return make_error(ErrorCode::kInvalidArgument, "grass far field: the ground layer's size changed; it needs a full rebuild");
-    }
-    const auto bits = [](float x, float y) { return std::bit_cast<std::uint32_t>(x) == std::bit_cast<std::uint32_t>(y); };
-    const auto lo = std::mismatch(layer->vertices.begin(), layer->vertices.end(), ground_vertex_data_.begin(), bits);
-    if (lo.first != layer->vertices.end()) {
-      const auto hi = std::mismatch(layer->vertices.rbegin(), layer->vertices.rend(), ground_vertex_data_.rbegin(), bits);
-      const auto a = static_cast<std::size_t>(lo.first - layer->vertices.begin());
-      const auto b = layer->vertices.size() - static_cast<std::size_t>(hi.first - layer->vertices.rbegin());
-      ground_vertices_.update(a * sizeof(float), (b - a) * sizeof(float), layer->vertices.data() + a);
-      ground_vertex_data_ = std::move(layer->vertices);
-    }
-    chunks_ = std::move(layer->chunks);
-    coarse_chunks_ = std::move(layer->coarse);
-  }
+  if (ground_changed) update_ground_layer(field, blade, ground, areas);
   return {};
+}
+
+void FarField::update_ground_layer(const GrassFieldSettings& field, const BladeSettings& blade, const HeightField& ground,
+                                   std::span<const Rect> areas) {
+  // The layer's vertices stand on the ground's samples: those within two samples of an edit (their
+  // normals are central differences) are remade, the changed range is uploaded and the chunks
+  // holding changed vertices get their bounds again (min/max over the same vertices: exact).
+  std::vector<glm::ivec4> boxes;  // sample ranges [x0, x1] x [z0, z1]
+  const double sp = ground.spacing();
+  for (const Rect& a : areas) {
+    if (a.empty()) continue;
+    boxes.emplace_back(static_cast<int>(std::floor((a.min.x - ground.origin().x) / sp)) - 2,
+                       static_cast<int>(std::ceil((a.max.x - ground.origin().x) / sp)) + 2,
+                       static_cast<int>(std::floor((a.min.y - ground.origin().y) / sp)) - 2,
+                       static_cast<int>(std::ceil((a.max.y - ground.origin().y) / sp)) + 2);
+  }
+  std::size_t first = ground_samples_.size(), last = 0;
+  float v[kGroundVertexFloats];
+  for (std::size_t i = 0; i < ground_samples_.size(); ++i) {
+    const glm::ivec2 s = ground_samples_[i];
+    const bool reached = std::any_of(boxes.begin(), boxes.end(), [s](const glm::ivec4& b) {
+      return s.x >= b.x && s.x <= b.y && s.y >= b.z && s.y <= b.w;
+    });
+    if (!reached) continue;
+    ground_layer_vertex(field, blade, ground, origin_, built_, s, v);
+    float* held = &ground_vertex_data_[i * kGroundVertexFloats];
+    if (std::memcmp(v, held, sizeof(v)) == 0) continue;
+    std::copy(std::begin(v), std::end(v), held);
+    first = std::min(first, i);
+    last = i;
+  }
+  if (first > last) return;
+  ground_vertices_.update(first * kGroundVertexFloats * sizeof(float), (last + 1 - first) * kGroundVertexFloats * sizeof(float),
+                          &ground_vertex_data_[first * kGroundVertexFloats]);
+  auto refresh_bounds = [&](GroundChunk& c) {
+    if (c.first_vertex > last || c.first_vertex + c.vertex_count <= first) return false;
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(std::numeric_limits<float>::lowest());
+    for (std::uint32_t i = c.first_vertex; i < c.first_vertex + c.vertex_count; ++i) {
+      const glm::vec3 q(ground_vertex_data_[i * kGroundVertexFloats], ground_vertex_data_[i * kGroundVertexFloats + 1],
+                        ground_vertex_data_[i * kGroundVertexFloats + 2]);
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+    c.bounds_min = lo - glm::vec3(0.1f);
+    c.bounds_max = hi + glm::vec3(0.1f);
+    return true;
+  };
+  for (GroundChunk& c : chunks_) refresh_bounds(c);
+  for (CoarseGroundChunk& cc : coarse_chunks_) {
+    if (!refresh_bounds(cc.interior)) continue;
+    for (auto& side : cc.sides)
+      for (GroundChunk& c : side) {
+        c.bounds_min = cc.interior.bounds_min;
+        c.bounds_max = cc.interior.bounds_max;
+      }
+  }
 }
 
 std::vector<Clump> FarField::read_clump_buffer() const {

@@ -3,7 +3,8 @@
 // ground dab, applied one by one to a far field with every generated level on (clump margin,
 // wide billboards, the overcrowding guard's extra clumps, the coarse ground sub-level), leave it
 // equal bit for bit to a far field created from the final maps and ground: clump records, tiles,
-// wide groups, the density and tint images and the ground layer's vertices on the CPU, and the
+// wide groups, the density and tint images and the ground layer's vertices and chunk bounds on the
+// CPU, and the
 // clump buffer, the ground vertex buffer and the density/tint textures read back from the GPU.
 #include <sylva/core/height_field.hpp>
 #include <sylva/grass/far_field.hpp>
@@ -91,6 +92,26 @@ std::size_t differing_tiles(const std::vector<GrassTile>& a, const std::vector<G
   return n;
 }
 
+// Ground chunks whose index range or bounds differ (coarse chunks: interior and sides).
+std::size_t differing_chunks(const FarField& a, const FarField& b) {
+  auto same = [](const GroundChunk& x, const GroundChunk& y) {
+    return x.first_index == y.first_index && x.index_count == y.index_count && x.bounds_min == y.bounds_min &&
+           x.bounds_max == y.bounds_max && x.first_vertex == y.first_vertex && x.vertex_count == y.vertex_count;
+  };
+  const auto &ca = a.ground_chunks(), &cb = b.ground_chunks();
+  const auto &ka = a.coarse_ground_chunks(), &kb = b.coarse_ground_chunks();
+  if (ca.size() != cb.size() || ka.size() != kb.size()) return std::max(ca.size(), cb.size()) + std::max(ka.size(), kb.size());
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < ca.size(); ++i) n += same(ca[i], cb[i]) ? 0 : 1;
+  for (std::size_t i = 0; i < ka.size(); ++i) {
+    bool all = same(ka[i].interior, kb[i].interior);
+    for (int s = 0; s < 4; ++s)
+      for (int v = 0; v < 2; ++v) all = all && same(ka[i].sides[s][v], kb[i].sides[s][v]);
+    n += all ? 0 : 1;
+  }
+  return n;
+}
+
 }  // namespace
 
 TEST_F(GrassFarFieldEditGl, UpdatesAfterDabsEqualACreateFromTheFinalMaps) {
@@ -134,6 +155,7 @@ TEST_F(GrassFarFieldEditGl, UpdatesAfterDabsEqualACreateFromTheFinalMaps) {
   EXPECT_EQ(differing(far->density_image(), fresh->density_image()), 0u);
   EXPECT_EQ(differing(far->tint_image(), fresh->tint_image()), 0u);
   EXPECT_EQ(differing(far->ground_vertices(), fresh->ground_vertices()), 0u);
+  EXPECT_EQ(differing_chunks(*far, *fresh), 0u) << "ground chunks' bounds follow the ground";
   // GPU data.
   EXPECT_EQ(differing(far->read_clump_buffer(), fresh->read_clump_buffer()), 0u);
   EXPECT_EQ(differing(far->read_clump_buffer(), far->clump_records()), 0u);

@@ -87,9 +87,9 @@
 // edit reaches: the clumps of the tiles (and wide-billboard groups) whose maps changed, the texels
 // of the margin-extended maps (extend_maps) whose samples lie in the edit, the changed texels of the
 // density and tint textures (glTextureSubImage2D) and, after a ground edit, the ground layer's
-// changed vertices (glNamedBufferSubData of the changed range). Clumps are a function of their
-// tile alone (world-anchored sampler), so the result equals create() with the same inputs bit for
-// bit (far_field_edit_gl_test compares records, GPU buffers and textures; the scene's
+// vertices within two samples of it (glNamedBufferSubData of the changed range) and the bounds of
+// the chunks holding them. Clumps are a function of their tile alone (world-anchored sampler), so
+// the result equals create() with the same inputs bit for bit (far_field_edit_gl_test compares records, GPU buffers and textures; the scene's
 // grass_tile_edit_gl_test the pictures). A tint map that appears, or maps of another size or
 // rectangle, need create() again.
 
@@ -307,6 +307,10 @@ struct GroundChunk {
   std::uint32_t first_index = 0;
   std::uint32_t index_count = 0;
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};
+  // The vertices its bounds are taken over (a coarse chunk's interior: its own and its stitched
+  // sides'), so an edit can refresh them.
+  std::uint32_t first_vertex = 0;
+  std::uint32_t vertex_count = 0;
 };
 struct CoarseGroundChunk {
   GroundChunk interior;  // bounds: the whole coarse chunk
@@ -316,6 +320,7 @@ struct CoarseGroundChunk {
 };
 struct GroundLayerMesh {
   std::vector<float> vertices;
+  std::vector<glm::ivec2> samples;  // per vertex: the height-field sample it stands on
   std::vector<std::uint32_t> indices;
   std::vector<GroundChunk> chunks;
   std::vector<CoarseGroundChunk> coarse;
@@ -357,14 +362,16 @@ class FarField : public render::Drawable {
                        const HeightField& ground, std::span<const Rect> areas, bool ground_changed);
 
   // What the far field holds, for tests comparing an update with a rebuild. CPU: the clump records
-  // (small clumps, then wide billboards), tiles, the density and tint images of the textures and the
-  // ground layer's vertices; GPU: the same read back (first clump_records().size() records).
+  // (small clumps, then wide billboards), tiles, the density and tint images of the textures, the
+  // ground layer's vertices and chunks; GPU: the same read back (first clump_records().size() records).
   const std::vector<Clump>& clump_records() const { return clump_records_; }
   const std::vector<GrassTile>& clump_tiles() const { return clump_tiles_; }
   const std::vector<GrassTile>& wide_tiles() const { return wide_tiles_; }
   const Image& density_image() const { return density_image_; }
   const Image& tint_image() const { return tint_image_; }
   const std::vector<float>& ground_vertices() const { return ground_vertex_data_; }
+  const std::vector<GroundChunk>& ground_chunks() const { return chunks_; }
+  const std::vector<CoarseGroundChunk>& coarse_ground_chunks() const { return coarse_chunks_; }
   std::vector<Clump> read_clump_buffer() const;
   std::vector<float> read_ground_vertex_buffer() const;
   Image read_density_texture() const;
@@ -396,6 +403,9 @@ class FarField : public render::Drawable {
   // The clump buffer holds clump_records_ in room for clump_capacity_ records (an edit that adds
   // clumps re-uploads from its first changed record without reallocating).
   void upload_clumps(std::size_t first_changed);
+  // update_region's ground edit: the ground layer's vertices within reach of `areas`.
+  void update_ground_layer(const GrassFieldSettings& field, const BladeSettings& blade, const HeightField& ground,
+                           std::span<const Rect> areas);
 
   FarFieldSettings settings_;
   FarFieldSettings built_;  // the settings create() generated with (update_region uses them)
@@ -406,6 +416,7 @@ class FarField : public render::Drawable {
   Image density_image_;
   Image tint_image_;
   std::vector<float> ground_vertex_data_;
+  std::vector<glm::ivec2> ground_samples_;  // GroundLayerMesh::samples
   float near_distance_ = 50.0f;
   float wind_response_ = 6.0f;
   float mean_stiffness_ = 60.0f;
