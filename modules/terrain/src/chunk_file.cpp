@@ -327,13 +327,26 @@ Result<HeightField> ChunkFile::read_heights(int stride) const {
   const detail::HeightTiles tiles = height_tiles(tree_, height_tile_);
   const int columns = (tiles.columns - 1) / stride + 1, rows = (tiles.rows - 1) / stride + 1;
   HeightField field(columns, rows, tree_.spacing() * stride, tree_.origin());
-  std::vector<float> tile;
-  for (std::uint32_t t = 0; t < tiles.count(); ++t) {
-    const detail::HeightTiles::Rect r = tiles.rect(t);
+  // Tiles read in file order under the stream's lock, verified and copied on every thread (the
+  // checksum is most of the time); each tile writes its own samples of the field.
+  std::vector<std::optional<Error>> failed(tiles.count());
+  std::atomic<bool> bad{false};
+  detail::parallel_for(tiles.count(), detail::resolve_threads(0), [&](std::size_t i) {
+    if (bad.load(std::memory_order_relaxed)) return;
+    const auto t = static_cast<std::uint32_t>(i);
+    std::vector<float> tile;
+    Status status = ok_status();
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      SYLVA_TRY(detail::read_height_tile(in_, kHeaderBytes, tiles, height_table_, t, path_.string(), tile));
+      status = detail::read_height_tile_bytes(in_, kHeaderBytes, tiles, t, path_.string(), tile);
     }
+    if (status.ok()) status = detail::verify_height_tile(tiles, height_table_, t, path_.string(), tile);
+    if (!status.ok()) {
+      failed[i] = status.error();
+      bad = true;
+      return;
+    }
+    const detail::HeightTiles::Rect r = tiles.rect(t);
     // Samples of this tile on the stride's grid (multiples of `stride` from 0).
     const int fx = (r.x0 + stride - 1) / stride * stride, fz = (r.z0 + stride - 1) / stride * stride;
     for (int z = fz; z < r.z0 + r.height && z / stride < rows; z += stride) {
@@ -342,7 +355,9 @@ Result<HeightField> ChunkFile::read_heights(int stride) const {
             tile[static_cast<std::size_t>(z - r.z0) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(x - r.x0)];
       }
     }
-  }
+  }, nullptr, 1);
+  for (const std::optional<Error>& e : failed)
+    if (e) return *e;  // the first in file order of the bad tiles found
   field.update_range();
   return field;
 }

@@ -79,9 +79,8 @@ Result<std::vector<std::uint64_t>> read_height_table(std::istream& in, std::uint
   return table;
 }
 
-Status read_height_tile(std::istream& in, std::uint64_t at, const HeightTiles& layout,
-                        const std::vector<std::uint64_t>& table, std::uint32_t t, const std::string& file,
-                        std::vector<float>& out) {
+Status read_height_tile_bytes(std::istream& in, std::uint64_t at, const HeightTiles& layout, std::uint32_t t,
+                              const std::string& file, std::vector<float>& out) {
   const HeightTiles::Rect r = layout.rect(t);
   out.resize(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
   in.clear();
@@ -91,10 +90,22 @@ Status read_height_tile(std::istream& in, std::uint64_t at, const HeightTiles& l
     return make_error(ErrorCode::kCorrupt, fmt::format("{}: {}: cannot read it (file changed or truncated)", file,
                                                        layout.describe(t)));
   }
-  if (fnv1a64(out.data(), out.size() * sizeof(float)) != table[t]) {
+  return ok_status();
+}
+
+Status verify_height_tile(const HeightTiles& layout, const std::vector<std::uint64_t>& table, std::uint32_t t,
+                          const std::string& file, const std::vector<float>& samples) {
+  if (fnv1a64(samples.data(), samples.size() * sizeof(float)) != table[t]) {
     return make_error(ErrorCode::kCorrupt, fmt::format("{}: {}: checksum mismatch", file, layout.describe(t)));
   }
   return ok_status();
+}
+
+Status read_height_tile(std::istream& in, std::uint64_t at, const HeightTiles& layout,
+                        const std::vector<std::uint64_t>& table, std::uint32_t t, const std::string& file,
+                        std::vector<float>& out) {
+  SYLVA_TRY(read_height_tile_bytes(in, at, layout, t, file, out));
+  return verify_height_tile(layout, table, t, file, out);
 }
 
 Status HeightTileRows::operator()(int z, int x0, int width, float* out) {

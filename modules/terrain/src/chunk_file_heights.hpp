@@ -60,6 +60,11 @@ Result<std::vector<std::uint64_t>> read_height_table(std::istream& in, std::uint
 Status read_height_tile(std::istream& in, std::uint64_t at, const HeightTiles& layout,
                         const std::vector<std::uint64_t>& table, std::uint32_t t, const std::string& file,
                         std::vector<float>& out);
+// The two halves of read_height_tile, so a caller can read under its lock and verify outside it.
+Status read_height_tile_bytes(std::istream& in, std::uint64_t at, const HeightTiles& layout, std::uint32_t t,
+                              const std::string& file, std::vector<float>& out);
+Status verify_height_tile(const HeightTiles& layout, const std::vector<std::uint64_t>& table, std::uint32_t t,
+                          const std::string& file, const std::vector<float>& samples);
 
 // Rows served from the verified tiles of a section (the merge copies a share's section through
 // it): one tile in memory, each tile read once when rows are asked for tile by tile.
