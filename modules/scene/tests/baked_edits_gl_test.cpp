@@ -16,16 +16,17 @@
 #include <sylva/terrain/renderer.hpp>
 #include <sylva/terrain/streaming.hpp>
 
+#include "scene_test_files.hpp"
 #include "support/gl_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 using namespace sylva;
 using namespace sylva::scene;
@@ -33,6 +34,8 @@ namespace fs = std::filesystem;
 using terrain::testing::GlTarget;
 using terrain::testing::is_color;
 using terrain::testing::kMagenta;
+using sylva::scene::testing::open_scene_file;
+using sylva::scene::testing::TestDir;
 
 namespace {
 
@@ -46,25 +49,9 @@ std::string scene_text(const std::string& baked_file) {
   return R"({"terrain": {)" + terrain + R"(}, "render": {"shadows": {"enabled": false}}})";
 }
 
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("sylva_baked_edits_" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
-
-std::unique_ptr<Scene> load_scene(const fs::path& file) {
-  std::vector<std::string> warnings;
-  auto doc = SceneDocument::load(file, warnings);
-  EXPECT_TRUE(doc.ok()) << doc.error().message;
-  if (!doc.ok()) return nullptr;
-  auto scene = Scene::create(std::move(*doc));
-  EXPECT_TRUE(scene.ok()) << scene.error().message;
-  return scene.ok() ? std::move(*scene) : nullptr;
-}
-
 std::unique_ptr<Scene> write_and_load(const fs::path& file, const std::string& text) {
   std::ofstream(file) << text;
-  return load_scene(file);
+  return open_scene_file(file);
 }
 
 terrain::TerrainRenderer* terrain_of(Scene& scene) {
@@ -156,7 +143,7 @@ void expect_same_pictures(const std::vector<Image>& a, const std::vector<Image>&
 
 TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainted) {
   if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
-  TempDir dir;
+  TestDir dir("sylva_baked_edits");
   auto memory = write_and_load(dir.path / "memory.json", scene_text(""));
   ASSERT_TRUE(memory);
   terrain::BakeOptions options;
@@ -185,6 +172,12 @@ TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainte
   EXPECT_GT(stats["stream_edited_chunks"].get<std::size_t>(), 4u);
   EXPECT_LT(stats["stream_edited_chunks"].get<std::size_t>(), 120u) << "only the chunks the strokes reach";
   const std::vector<float> painted_ground = baked->ground()->samples();
+  const nlohmann::json in_memory = memory->module_stats()["terrain"];
+  std::printf("two strokes, applied at the next frame as their bounding rectangle: streamed %s chunks rebuilt in "
+              "%.1f ms (%s edited so far); in memory %s rebuilt + %s updated in %.1f ms\n",
+              stats["chunks_rebuilt"].dump().c_str(), stats["tree_build_ms"].get<double>(),
+              stats["stream_edited_chunks"].dump().c_str(), in_memory["chunks_rebuilt"].dump().c_str(),
+              in_memory["chunks_updated"].dump().c_str(), in_memory["tree_build_ms"].get<double>());
 
   // Save: the painted tiles as the scene's edit layer; reopen: the same ground and picture.
   ASSERT_TRUE(baked->save(dir.path / "painted.json").ok());
@@ -193,7 +186,7 @@ TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainte
   // Tiles (0, 0), (1, 0), (1, 1) and the 1-column edge tile (2, 1) of the 3 x 3.
   EXPECT_EQ(fs::file_size(layer), 40u + 4u * 24u + (3u * 256u * 256u + 256u) * 4u) << "sparse: the painted tiles";
   {
-    auto reopened = load_scene(dir.path / "painted.json");
+    auto reopened = open_scene_file(dir.path / "painted.json");
     ASSERT_TRUE(reopened);
     EXPECT_TRUE(reopened->ground()->samples() == painted_ground) << "edit layer: bit-exact heights";
     expect_same_pictures(pictures(*reopened, target), painted, "reopened");
@@ -217,7 +210,7 @@ TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainte
   set_log_sink([&](LogLevel level, std::string_view m) {
     if (level >= LogLevel::kWarn) warnings.emplace_back(m);
   });
-  auto damaged = load_scene(dir.path / "painted.json");
+  auto damaged = open_scene_file(dir.path / "painted.json");
   set_log_sink(nullptr);
   ASSERT_TRUE(damaged) << "a bad layer does not stop the scene";
   std::string all;
