@@ -4,7 +4,8 @@
 // the GPU) equal those of a full regeneration of the same maps bit for bit. The far field updates
 // tile-locally with them (stats far_tile_updates; grass far_field_edit_gl_test compares its data
 // bit for bit): the picture of clumps and ground layer after density, tint, height and ground dabs
-// equals that of a full regeneration pixel for pixel.
+// (one of them beside the grass area, under the ground layer's margin) equals that of a full
+// regeneration pixel for pixel.
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/readback.hpp>
 #include <sylva/render/testing.hpp>
@@ -153,6 +154,9 @@ TEST_F(GrassTileEditGl, FarFieldAfterDabsLooksLikeAFullRegeneration) {
   dab(*scene, "grass.height", 20, 118, 4, [](int, int, float) { return 0.2f; });
   const glm::dvec2 t = scene->map("ground.height")->grid.texel({-8.0, 18.0});
   dab(*scene, "ground.height", static_cast<int>(t.x), static_cast<int>(t.y), 1, [](int, int, float v) { return v + 1.0f; });
+  // A ground dab beside the grass area (x < -20), under the ground layer's 20 m margin.
+  const glm::dvec2 u = scene->map("ground.height")->grid.texel({-25.0, -8.0});
+  dab(*scene, "ground.height", static_cast<int>(u.x), static_cast<int>(u.y), 1, [](int, int, float v) { return v + 1.0f; });
   const Image local = frames(*scene, 2);
   EXPECT_EQ(stat(*scene, "far_tile_updates"), 2u);
   EXPECT_EQ(stat(*scene, "regenerations"), full_before + 3) << "no full regeneration";

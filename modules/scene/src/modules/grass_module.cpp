@@ -311,12 +311,16 @@ class GrassInstance final : public ModuleInstance {
 
   Status on_map_changed(const std::string& map_id, const WorldArea& area) override {
     const GrassSectionSettings& s = settings();
-    if (area.max.x < s.area_min.x || area.min.x > s.area_max.x || area.max.y < s.area_min.y || area.min.y > s.area_max.y) {
+    // Not one of this section's maps: the ground, which the far field's clumps and ground layer
+    // also stand on beyond the area, out to their margins.
+    const bool ground = map_id.rfind(ctx_.section->name + ".", 0) != 0;
+    const double margin = ground && far_ ? std::max(s.far.clump_margin, s.far.ground_margin) : 0.0;
+    const glm::dvec2 lo = s.area_min - margin, hi = s.area_max + margin;
+    if (area.max.x < lo.x || area.min.x > hi.x || area.max.y < lo.y || area.min.y > hi.y) {
       return {};  // the edit is outside the field
     }
-    const grass::Rect r{glm::max(area.min, s.area_min), glm::min(area.max, s.area_max)};
-    // Not one of this section's maps: the ground under it (the far field's ground layer follows).
-    if (map_id.rfind(ctx_.section->name + ".", 0) != 0) ground_edited_ = true;
+    const grass::Rect r{glm::max(area.min, lo), glm::min(area.max, hi)};
+    if (ground) ground_edited_ = true;
     if (edits_.size() < kMaxEditsPerFrame) {
       edits_.push_back(r);
     } else {  // a flood of edits in one frame: their union
