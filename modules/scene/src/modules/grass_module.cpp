@@ -703,7 +703,8 @@ class GrassInstance final : public ModuleInstance {
       hi = glm::max(hi, p);
     }
     const double size = std::max(static_cast<double>(hi.x - lo.x), static_cast<double>(hi.z - lo.z));
-    const double spacing = std::max(std::min(static_cast<double>(s.far.ground_spacing), size / 64.0), size / 2048.0);
+    // At most 2001 samples a side: within mesh_height_field's 2^22 samples.
+    const double spacing = std::max(std::min(static_cast<double>(s.far.ground_spacing), size / 64.0), size / 2000.0);
     auto density = [&m](std::uint32_t t, const glm::vec3& w) {
       if (m.uv_map) {
         const glm::vec2* uv = &m.corner_uvs[3 * static_cast<std::size_t>(t)];
