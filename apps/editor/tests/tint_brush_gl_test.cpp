@@ -3,9 +3,12 @@
 // falloff, as ONE undo step. Driven through the editor's script commands in process
 // (`brush color=1,0,0 ...`, `stroke grass.tint X,Z`), checked on the three maps, on the
 // rendered grass (redder in the patch, not a pixel changed outside), on undo/redo (bit-exact) and on a
-// save and reload (the 16-bit PNG maps within their quantisation).
+// save and reload (the 16-bit PNG maps within their quantisation). And the other grass file of
+// issue 16 the editor follows: grass.mesh.density_file (density over a mesh's UVs) is watched
+// like every `*_file` setting, and rewriting it while the scene runs regrows the blades.
 #include "editor_session.hpp"
 #include "script_runner.hpp"
+#include "source_watcher.hpp"
 
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/image.hpp>
@@ -15,7 +18,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -148,5 +153,45 @@ TEST_F(TintBrushGl, ColourStrokePaintsTheThreeTintMapsAsOneUndoStep) {
     for (std::size_t k = 0; k < after[c].size(); ++k) worst = std::max(worst, std::abs(reloaded[c][k] - after[c][k]));
     EXPECT_LE(worst, 0.5f / 65535.0f + 1e-7f) << "channel " << c << " (16-bit PNG)";
   }
+  fs::remove_all(dir);
+}
+
+TEST_F(TintBrushGl, RewritingTheMeshUvDensityFileRegrowsTheBlades) {
+  if (!scene::find_module("grass") || !scene::find_module("model_terrain")) GTEST_SKIP() << "needs grass and terrain";
+  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_uv_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A 4 x 4 m quad with UVs 0..1 and a density image black on its left half.
+  ASSERT_TRUE(write_file_atomic(dir / "quad.obj", "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\n"
+                                                  "vt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nf 1/1 4/4 3/3 2/2\n").ok());
+  auto density = [&](bool left_black) {
+    Image image(32, 32, 1);
+    for (int j = 0; j < 32; ++j)
+      for (int i = 0; i < 32; ++i) image.at(i, j) = left_black && i < 16 ? 0.0f : 1.0f;
+    return write_image(dir / "moss.png", image, PixelFormat::kU8);
+  };
+  ASSERT_TRUE(density(true).ok());
+  ASSERT_TRUE(write_file_atomic(dir / "rock.json", R"({"grass": {"surface": "mesh", "far_field": false,
+      "mesh": {"file": "quad.obj", "density_source": "uv_map", "density_file": "moss.png"},
+      "field": {"density": 100.0}, "render": {"simulate": false}}})").ok());
+  auto session = EditorSession::create({64, 36});
+  ASSERT_TRUE(session.ok()) << session.error().message;
+  EditorSession& s = **session;
+  ASSERT_TRUE(s.load(dir / "rock.json").ok());
+  const auto sources = scene_sources(s.scene().document());
+  EXPECT_NE(std::find(sources.begin(), sources.end(),
+                      WatchedSource{"grass.mesh.density_file", fs::weakly_canonical(dir / "moss.png")}),
+            sources.end());
+  const auto half = s.scene().module_stats()["grass"]["blades"].get<std::uint64_t>();
+  ASSERT_TRUE(density(false).ok());
+  fs::last_write_time(dir / "moss.png", fs::last_write_time(dir / "moss.png") + std::chrono::seconds(2));
+  s.poll_sources(true);
+  const auto full = s.scene().module_stats()["grass"]["blades"].get<std::uint64_t>();
+  std::printf("blades: %llu with the left half black, %llu after rewriting moss.png white\n",
+              static_cast<unsigned long long>(half), static_cast<unsigned long long>(full));
+  EXPECT_NEAR(static_cast<double>(half), 800.0, 80.0);
+  EXPECT_NEAR(static_cast<double>(full), 1600.0, 80.0);
+  ASSERT_FALSE(s.messages().empty());
+  EXPECT_NE(s.messages().back().find("grass.mesh.density_file"), std::string::npos) << s.messages().back();
   fs::remove_all(dir);
 }

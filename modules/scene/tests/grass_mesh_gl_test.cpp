@@ -408,14 +408,19 @@ std::size_t blade_pixels(const Image& im, int x0, int x1) {
   return n;
 }
 
+// quad.obj (with UVs) and half.png written into `dir`, and the scene growing grass on them.
+Result<std::unique_ptr<Scene>> uv_quad_scene(const fs::path& dir) {
+  write_uv_quad_obj(dir / "quad.obj", true);
+  SYLVA_TRY(write_image(dir / "half.png", half_black_half_white(), PixelFormat::kU8));
+  return scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir);
+}
+
 }  // namespace
 
 TEST_F(GrassMeshGl, UvDensityMapGrowsBladesOnlyOnTheWhiteHalf) {
   if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
   scene::testing::TestDir dir("sylva_grass_mesh");
-  write_uv_quad_obj(dir.path / "quad.obj", true);
-  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
-  auto made = scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir.path);
+  auto made = uv_quad_scene(dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   const Frame f = render_frame(**made);
   std::size_t black = 0, white = 0;
@@ -440,8 +445,6 @@ TEST_F(GrassMeshGl, UvDensityMapGrowsBladesOnlyOnTheWhiteHalf) {
 TEST_F(GrassMeshGl, UvDensityMapOnAGltfQuadGrowsTheObjBlades) {
   if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
   scene::testing::TestDir dir("sylva_grass_mesh");
-  write_uv_quad_obj(dir.path / "quad.obj", true);
-  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
   const float positions[12] = {-2, 0, -2, 2, 0, -2, 2, 0, 2, -2, 0, 2};
   const float uvs[8] = {0, 0, 1, 0, 1, 1, 0, 1};
   const std::uint32_t indices[6] = {0, 3, 2, 0, 2, 1};  // the OBJ face's fan
@@ -465,7 +468,7 @@ TEST_F(GrassMeshGl, UvDensityMapOnAGltfQuadGrowsTheObjBlades) {
                      {{"bufferView", 2}, {"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}}}},
   };
   std::ofstream(dir.path / "quad.gltf") << gltf.dump();
-  auto obj = scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir.path);
+  auto obj = uv_quad_scene(dir.path);
   ASSERT_TRUE(obj.ok()) << obj.error().message;
   auto made = scene::testing::scene_from_json(uv_stage("quad.gltf", "half.png"), dir.path);
   if (!made.ok() && made.error().code == ErrorCode::kUnsupported) GTEST_SKIP() << made.error().message;
@@ -478,9 +481,7 @@ TEST_F(GrassMeshGl, UvDensityMapOnAGltfQuadGrowsTheObjBlades) {
 TEST_F(GrassMeshGl, UvDensityMapFileIsRebasedBySaveAs) {
   if (!find_module("grass") || !find_module("model_terrain")) GTEST_SKIP() << "needs the grass and terrain modules";
   scene::testing::TestDir dir("sylva_grass_mesh");
-  write_uv_quad_obj(dir.path / "quad.obj", true);
-  ASSERT_TRUE(write_image(dir.path / "half.png", half_black_half_white(), PixelFormat::kU8).ok());
-  auto made = scene::testing::scene_from_json(uv_stage("quad.obj", "half.png"), dir.path);
+  auto made = uv_quad_scene(dir.path);
   ASSERT_TRUE(made.ok()) << made.error().message;
   fs::create_directories(dir.path / "elsewhere");
   ASSERT_TRUE((*made)->save(dir.path / "elsewhere" / "saved.json").ok());

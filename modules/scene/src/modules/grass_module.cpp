@@ -187,16 +187,21 @@ Image to_image(const MapGrid& g) {
 // its channel check, or be kept as a 1 GiB density map (issue 16, "Bad input").
 constexpr std::uint64_t kMaxImageBytes = std::uint64_t{256} << 20;
 
+// A control, tint or UV density image: at most 16384 pixels a side and kMaxImageBytes, no NaN.
+Result<Image> read_grass_image(const std::filesystem::path& file) {
+  ImageReadOptions options;
+  options.max_side = 16384;
+  options.max_bytes = kMaxImageBytes;
+  options.allow_non_finite = false;
+  return read_image(file, options);
+}
+
 // The image file of file-only slot `slot`, read once per build; errors name the key and the file.
 Result<Image> read_slot_image(const ModuleBuildContext& ctx, const MapSlot& slot, int channels_needed,
                               const std::string& why) {
   const std::string key = fmt::format("{}.maps.{}", ctx.section->name, slot.name);
   const std::filesystem::path file = ctx.document->resolve(ctx.section->maps.at(slot.name));
-  ImageReadOptions options;
-  options.max_side = 16384;
-  options.max_bytes = kMaxImageBytes;
-  options.allow_non_finite = false;
-  auto image = read_image(file, options);
+  auto image = read_grass_image(file);
   if (!image.ok()) return make_error(image.error().code, fmt::format("{}: {}", key, image.error().message));
   if (image->channels() < channels_needed) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("{}: {} has {} channel(s), {} needs {}", key, file.string(),
@@ -619,8 +624,8 @@ class GrassInstance final : public ModuleInstance {
   }
 
 #ifdef SYLVA_HAS_TERRAIN
-  // density_source "uv_map": grass.mesh.density_file read through core's image reader (16k side
-  // limit, no NaN); nullopt for the other sources. Errors name the setting and the file.
+  // density_source "uv_map": grass.mesh.density_file read through core's image reader
+  // (read_grass_image's limits); nullopt for the other sources. Errors name the setting and the file.
   Result<std::optional<grass::UvDensityMap>> mesh_uv_density(const terrain::TriangleMesh& mesh,
                                                               const std::filesystem::path& mesh_path) const {
     const GrassSectionSettings& s = settings();
@@ -639,11 +644,7 @@ class GrassInstance final : public ModuleInstance {
     }
     const std::filesystem::path file =
         ctx_.document != nullptr ? ctx_.document->resolve(s.mesh.density_file) : std::filesystem::path(s.mesh.density_file);
-    ImageReadOptions options;
-    options.max_side = 16384;
-    options.max_bytes = kMaxImageBytes;
-    options.allow_non_finite = false;
-    auto image = read_image(file, options);
+    auto image = read_grass_image(file);
     if (!image.ok()) return make_error(image.error().code, fmt::format("{}.mesh.density_file: {}", name, image.error().message));
     auto map = grass::UvDensityMap::create(*image, "mesh.density_file");
     if (!map.ok()) return make_error(map.error().code, fmt::format("{}.mesh.density_file: {}: {}", name, file.string(), map.error().message));
