@@ -54,7 +54,8 @@ TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
                                        "size": [1, 1], "blocks": {"0": "glowstone"}, "biomes": {"plains": {"spacing": 5, "chance": 1}}}]})")
                   .ok());
   std::string output;
-  const int code = run_bench("--suite species --size 64x36 --frames 1 --warmup 0 --set render.shadows.enabled=false --set voxel.flora.species_file='" +
+  const int code = run_bench("--suite species --size 64x36 --frames 1 --warmup 0 --set render.shadows.enabled=false "
+                             "--set vegetation.forest.lod.slice_resolution=64 --set voxel.flora.species_file='" +
                                  (dir / "plants.json").string() + "' --out '" + (dir / "out").string() + "'",
                              dir / "log.txt", output);
   ASSERT_EQ(code, 0) << output;

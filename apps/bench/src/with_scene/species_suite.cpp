@@ -171,7 +171,12 @@ class Suite {
   // Cold and cached builds of each species alone, and the ground without trees. A file that
   // fails does not stop the others; the first failure is returned.
   Status load_rows(const SuiteFiles& files) {
-    auto ground = build(forest_scene({}, cache_), o_.size, files.scene_settings);
+    // The ground scene has no vegetation section: the --set assignments of trees stay out.
+    std::vector<Assignment> ground_settings;
+    for (const Assignment& a : files.scene_settings) {
+      if (a.path.rfind("vegetation.", 0) != 0) ground_settings.push_back(a);
+    }
+    auto ground = build(forest_scene({}, cache_), o_.size, ground_settings);
     if (!ground.ok()) return ground.error();
     Status first_failure;
     for (const fs::path& file : files.species) {
