@@ -1,5 +1,6 @@
 // Control maps: sampling conventions and the exact density integral the blade count relies on.
 #include <sylva/grass/maps.hpp>
+#include <sylva/grass/uv_density_map.hpp>
 
 #include "support/fields.hpp"
 
@@ -108,4 +109,29 @@ TEST(GrassMaps, Seed001ControlTexture) {
 }
 
 }  // namespace
+}  // namespace sylva::grass
+
+// Density over a mesh's UVs (issue 16): channel 0 (red), bilinear between pixel centres, clamped
+// to the edge inside [0, 1] (u = 1 is the right column, not a blend with the left one), repeating
+// outside; non-finite UVs read 0.
+namespace sylva::grass {
+TEST(UvDensityMap, SamplesClampsInsideAndRepeatsOutside) {
+  Image image(4, 2, 3);
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 4; ++i) {
+      image.at(i, j, 0) = i < 2 ? 0.0f : 1.0f;  // red: left half 0
+      image.at(i, j, 1) = 0.5f;
+    }
+  auto map = UvDensityMap::create(image, "test map");
+  ASSERT_TRUE(map.ok()) << map.error().message;
+  EXPECT_FLOAT_EQ(map->sample({0.125f, 0.25f}), 0.0f);  // pixel centres
+  EXPECT_FLOAT_EQ(map->sample({0.875f, 0.75f}), 1.0f);
+  EXPECT_FLOAT_EQ(map->sample({0.5f, 0.5f}), 0.5f);     // between columns 1 and 2
+  EXPECT_FLOAT_EQ(map->sample({1.0f, 0.5f}), 1.0f);     // the right edge, clamped
+  EXPECT_FLOAT_EQ(map->sample({0.0f, 0.5f}), 0.0f);
+  EXPECT_FLOAT_EQ(map->sample({-0.125f, -0.25f}), 1.0f);  // repeats: (0.875, 0.75), where clamping gives 0
+  EXPECT_FLOAT_EQ(map->sample({1.125f, 0.5f}), 0.0f);     // (0.125, 0.5), where clamping gives 1
+  EXPECT_EQ(map->sample({std::nanf(""), 0.5f}), 0.0f);
+  EXPECT_FALSE(UvDensityMap::create(Image(), "test map").ok());
+}
 }  // namespace sylva::grass
