@@ -1,5 +1,7 @@
 #include <sylva/scene/scene.hpp>
 
+#include "baked_edits.hpp"
+
 #include <sylva/core/log.hpp>
 #include <sylva/core/params_json.hpp>
 #include <sylva/core/timer.hpp>
@@ -118,7 +120,8 @@ Status Scene::build_ground() {
       const double spacing = !from_raster                         ? height_spacing(source, grid.width)
                              : source.elevation.read.spacing > 0.0 ? source.elevation.read.spacing
                                                                    : grid.texel_size.x;
-      place_height_grid(grid, source, spacing);
+      // A baked terrain's ground stays where the file's chunks are (baked_ground.hpp).
+      if (!baked_ground_file(*document_, section.name)) place_height_grid(grid, source, spacing);
     } else {
       std::optional<std::filesystem::path> file, elevation, control;
       std::string path;

@@ -45,7 +45,10 @@ using BakedEditsGl = render::GlTest;
 std::string scene_text(const std::string& baked_file) {
   std::string terrain = R"("size": 1024, "resolution": 513, "height": 140, "generator": "fbm",
       "noise": {"frequency": 0.004, "octaves": 6, "seed": 23}, "tree": {"leaf_dimension": 33})";
-  if (!baked_file.empty()) terrain += R"(, "baked_file": ")" + baked_file + R"(", "stream": {"budget_mb": 64})";
+  // A baked ground lies where the file's chunks are, whatever "center" says (baked_ground.hpp).
+  if (!baked_file.empty()) {
+    terrain += R"(, "center": [100, 0], "baked_file": ")" + baked_file + R"(", "stream": {"budget_mb": 64})";
+  }
   return R"({"terrain": {)" + terrain + R"(}, "render": {"shadows": {"enabled": false}}})";
 }
 
@@ -172,6 +175,12 @@ TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainte
   EXPECT_GT(stats["stream_edited_chunks"].get<std::size_t>(), 4u);
   EXPECT_LT(stats["stream_edited_chunks"].get<std::size_t>(), 120u) << "only the chunks the strokes reach";
   const std::vector<float> painted_ground = baked->ground()->samples();
+  // A setting that rebuilds the ground and the section (kOffline) keeps the unsaved strokes
+  // where they are and draws them.
+  ASSERT_TRUE(baked->set_param("terrain.tree.leaf_dimension", "33").ok());
+  EXPECT_TRUE(baked->ground()->samples() == painted_ground);
+  EXPECT_EQ(baked->ground()->origin(), memory->ground()->origin());
+  expect_same_pictures(pictures(*baked, target), painted, "painted, after an offline rebuild");
   const nlohmann::json in_memory = memory->module_stats()["terrain"];
   std::printf("two strokes, applied at the next frame as their bounding rectangle: streamed %s chunks rebuilt in "
               "%.1f ms (%s edited so far); in memory %s rebuilt + %s updated in %.1f ms\n",
