@@ -224,6 +224,13 @@ std::vector<HostileCase> plant_file_cases() {
       grass_mesh("GrassMeshFaceOutOfRange", "m.obj", text("v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 99999999999\n"), {"m.obj:4"}),
       grass_mesh("GrassMeshIsAnImage", "m.obj", [] { return png_solid(8, 8, 3, "\x80\x80\x80"); }, {}),
       grass_mesh("GrassMeshUnknownFormat", "m.xyz", text("v 0 0 0\n"), {}),
+      // A 2 GiB OBJ (a triangle, then a hole): refused by its size, unread.
+      [] {
+        HostileCase c = grass_mesh("GrassMeshObjOf2GiB", "m.obj", text("v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3\n"),
+                                   {"2048 MiB", "limit"});
+        c.files.back().sparse_size = std::uintmax_t{2} << 30;
+        return c;
+      }(),
       // A glTF whose accessor claims 10^9 vertices over a 36-byte view: refused from the claim.
       grass_mesh("GrassMeshGltfClaimsABillionVertices", "m.gltf",
                  text(R"({"asset": {"version": "2.0"}, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],

@@ -3,6 +3,7 @@
 // what must come out (exit code, words of the message). The tables live in cases_*.cpp; adding
 // an input kind is adding a row there.
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -14,6 +15,9 @@ enum class Tool { kPlayer, kEditor, kBench };
 struct InputFile {
   std::string name{};                    // relative to the case folder; ending in '/': a folder
   std::function<std::string()> bytes{};  // generated when the case runs
+  // > 0: the file is then extended to this many bytes with a hole (sparse: no disk, no memory),
+  // for "huge" inputs; it is checked unchanged by size and modification time, not read back.
+  std::uintmax_t sparse_size = 0;
 };
 
 struct HostileCase {

@@ -118,10 +118,17 @@ TEST_P(HostileRun, FailsCleanly) {
   }
   const fs::path dir = case_folder(c.name);
   std::map<fs::path, std::string> inputs;
+  std::map<fs::path, std::pair<std::uintmax_t, fs::file_time_type>> sparse;  // size and time
   for (const InputFile& f : c.files) {
     const fs::path path = dir / f.name;
     if (f.name.ends_with('/')) {
       fs::create_directories(path);
+      continue;
+    }
+    if (f.sparse_size > 0) {
+      ASSERT_NO_FATAL_FAILURE(write_bytes(path, f.bytes()));
+      fs::resize_file(path, f.sparse_size);
+      sparse[path] = {fs::file_size(path), fs::last_write_time(path)};
       continue;
     }
     inputs[path] = f.bytes();
@@ -146,6 +153,11 @@ TEST_P(HostileRun, FailsCleanly) {
     auto now = read_file(path);
     ASSERT_TRUE(now.ok()) << path << " is gone after the run\n" << where;
     EXPECT_TRUE(*now == bytes) << path << " was modified by the run\n" << where;
+  }
+  for (const auto& [path, before] : sparse) {
+    std::error_code ec;
+    EXPECT_EQ(fs::file_size(path, ec), before.first) << path << " changed size in the run\n" << where;
+    EXPECT_TRUE(fs::last_write_time(path, ec) == before.second) << path << " was written by the run\n" << where;
   }
   EXPECT_EQ(leftover_temporaries(dir), std::vector<std::string>{}) << where;
   if (run.exit_code == 0 && !c.picture.empty()) expect_picture(dir / c.picture);
