@@ -13,7 +13,7 @@ namespace sylva::bake {
 
 std::string bake_usage() {
   return "usage:\n"
-         "  sylva-bake terrain SOURCE --out FILE.sylvaterrain [--tiles I/N] [--set terrain.KEY=VALUE]... [--quiet]\n"
+         "  sylva-bake terrain SOURCE --out FILE.sylvaterrain [--tiles I/N] [--overview-side S] [--set terrain.KEY=VALUE]... [--quiet]\n"
          "  sylva-bake merge SHARE... --out FILE.sylvaterrain [--quiet]\n"
          "  sylva-bake tree SPECIES.json|--preset NAME [--seed N] --out DIR [--format gltf|objt|both] [--slices] [--quiet]\n"
          "Bakes an elevation raster's chunk tree into a chunk file (modules/terrain/README.md, 'Baking').\n"
@@ -21,6 +21,8 @@ std::string bake_usage() {
          "  --preset NAME  broadleaf, conifer, birch or shrub (instead of a species file), --seed N its seed\n"
          "  --format F     gltf, objt or both (default both); --slices also writes the LOD1/LOD2 slice layers\n"
          "  --tiles I/N   bake share I of N (0 <= I < N) into --out; join the N shares with 'merge'\n"
+         "  --overview-side S  a field above S x S samples stores an overview of its ground of at most\n"
+         "                S x S samples (every 2nd, 4th, ... sample; default 4097; every share alike)\n"
          "  --set K=V     terrain.tree.* (leaf_dimension, flat_tolerance, threads, ...) or\n"
          "                terrain.elevation.* (spacing, height_scale, height_offset, nodata)\n"
          "Ctrl+C stops the bake and leaves no output file (exit status 130).\n";
@@ -44,6 +46,17 @@ Result<std::pair<int, int>> parse_tiles(const std::string& text) {
     return bad();
   }
   return std::pair<int, int>{i, n};
+}
+
+Result<std::uint32_t> parse_overview_side(const std::string& text) {
+  std::uint32_t side = 0;
+  const char* b = text.data();
+  auto r = std::from_chars(b, b + text.size(), side);
+  if (text.empty() || r.ec != std::errc() || r.ptr != b + text.size() || side < 2 || side > 65537) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("--overview-side '{}': expected samples per side, 2 to 65537", text));
+  }
+  return side;
 }
 
 Result<std::uint32_t> parse_seed(const std::string& text) {
@@ -112,6 +125,12 @@ Result<BakeCommand> parse_bake_args(const std::vector<std::string>& args) {
       cmd.share = t->first;
       cmd.shares_total = t->second;
       cmd.tiled = true;
+    } else if (a == "--overview-side" && cmd.kind == BakeCommand::Kind::kTerrain) {
+      auto v = value();
+      if (!v) return v.error();
+      auto side = parse_overview_side(*v);
+      if (!side) return side.error();
+      cmd.overview_side = *side;
     } else if (a == "--set" && cmd.kind == BakeCommand::Kind::kTerrain) {
       auto v = value();
       if (!v) return v.error();

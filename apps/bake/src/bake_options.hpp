@@ -1,6 +1,6 @@
 #pragma once
 // The command line of sylva-bake (offline baking, DESIGN.md §1 apps/bake):
-//   sylva-bake terrain SOURCE --out FILE.sylvaterrain [--tiles I/N] [--set terrain.KEY=VALUE]... [--quiet]
+//   sylva-bake terrain SOURCE --out FILE.sylvaterrain [--tiles I/N] [--overview-side S] [--set terrain.KEY=VALUE]... [--quiet]
 //   sylva-bake merge SHARE... --out FILE.sylvaterrain [--quiet]
 //   sylva-bake tree SPECIES.json|--preset NAME [--seed N] --out DIR [--format gltf|objt|both] [--slices] [--quiet]
 // SOURCE is any elevation raster core/elevation_raster.hpp reads (GDAL: GeoTIFF, SRTM .hgt,
@@ -52,6 +52,7 @@ struct BakeCommand {
   TerrainBakeSettings settings;
   int share = 0, shares_total = 1;            // --tiles I/N
   bool tiled = false;                         // --tiles given: write a share (even for 0/1)
+  std::uint32_t overview_side = 4097;         // --overview-side S: the ground overview's limit, S x S
   bool quiet = false;                         // no progress lines
 };
 

@@ -96,6 +96,7 @@ int run_bake(const BakeCommand& command, const std::atomic<bool>& cancel, std::o
     options.tree = command.settings.tree;
     options.share = command.share;
     options.shares = command.shares_total;
+    options.overview_max_samples = std::uint64_t{command.overview_side} * command.overview_side;
     options.control = control;
     report = command.tiled ? terrain::bake_share(std::move(raster->field), command.out, options)
                                       : terrain::bake_chunk_file(std::move(raster->field), command.out, options);

@@ -76,10 +76,12 @@ Result<Share> open_share(const std::filesystem::path& path) {
   const auto dir_offset = get_le<std::uint64_t>(h, detail::kShDirOffset);
   const auto dir_bytes = get_le<std::uint64_t>(h, detail::kShDirBytes);
   s.tiles = detail::HeightTiles{get_le<std::int32_t>(h, detail::kShColumns), get_le<std::int32_t>(h, detail::kShRows),
-                                 get_le<std::uint32_t>(h, detail::kShHeightTile)};
-  if (s.tiles.tile != detail::kHeightTileSamples || s.tiles.columns < 1 || s.tiles.rows < 1) {
-    return corrupt(fmt::format("implausible ground height layout ({} x {} samples, tiles of {})", s.tiles.columns,
-                               s.tiles.rows, s.tiles.tile));
+                                 get_le<std::uint16_t>(h, detail::kShHeightTile),
+                                 get_le<std::uint16_t>(h, detail::kShHeightOverview)};
+  if (s.tiles.tile != detail::kHeightTileSamples || s.tiles.columns < 1 || s.tiles.rows < 1 ||
+      (s.tiles.overview != 0 && (s.tiles.overview < 2 || (s.tiles.overview & (s.tiles.overview - 1)) != 0))) {
+    return corrupt(fmt::format("implausible ground height layout ({} x {} samples, tiles of {}, overview stride {})",
+                               s.tiles.columns, s.tiles.rows, s.tiles.tile, s.tiles.overview));
   }
   if (s.first > s.end || dir_bytes != static_cast<std::uint64_t>(s.end - s.first) * detail::kShareEntryBytes ||
       dir_bytes > size || dir_offset != size - dir_bytes || s.index >= s.count ||
@@ -114,6 +116,11 @@ Status check_shares(const std::vector<Share>& shares, std::uint32_t slot_count) 
       return make_error(ErrorCode::kInvalidArgument,
                         fmt::format("{}: baked from another field or with other terrain.tree settings than {}",
                                     s.name(), a.name()));
+    }
+    if (s.tiles.overview != a.tiles.overview) {
+      return make_error(ErrorCode::kInvalidArgument,
+                        fmt::format("{}: its ground overview has stride {}, {}'s {}: baked with another overview limit",
+                                    s.name(), s.tiles.overview, a.name(), a.tiles.overview));
     }
     if (s.height_table != a.height_table) {
       return make_error(ErrorCode::kInvalidArgument,
@@ -205,10 +212,12 @@ Result<BakeReport> detail::merge_shares(const std::vector<std::filesystem::path>
   // before it is overwritten, and the larger chunk-file directory replaces the share's.
   SYLVA_ASSERT(!in_place || shares.size() == 1, "in-place merge of {} shares", shares.size());
   Result<std::unique_ptr<ChunkFileWriter>> writer =
-      ChunkFileWriter::create(out, tree, in_place ? shares.front().path : std::filesystem::path(), true);
+      ChunkFileWriter::create(out, tree, in_place ? shares.front().path : std::filesystem::path(), true,
+                              shares.front().tiles.overview);
   if (!writer) return writer.error();
   if (!in_place) {
-    // Every share holds the same heights (check_shares); share 0's are copied tile by tile.
+    // Every share holds the same heights (check_shares); share 0's field is copied tile by tile
+    // and the overview made from it again (the same bytes: the same samples).
     const Share& s = shares.front();
     SYLVA_TRY((*writer)->write_heights(
         detail::HeightTileRows(*s.in, detail::kShareHeaderBytes, s.tiles, s.height_table, s.name())));

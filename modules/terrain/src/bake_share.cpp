@@ -80,7 +80,9 @@ Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& sh
   out.write(header.data(), static_cast<std::streamsize>(header.size()));
   std::string directory(static_cast<std::size_t>(end - first) * detail::kShareEntryBytes, '\0');
   // The ground heights: the field's samples, which are the padded grid's [0, columns) x [0, rows).
-  const detail::HeightTiles tiles{layout.field_columns(), layout.field_rows(), detail::kHeightTileSamples};
+  const detail::HeightTiles tiles{layout.field_columns(), layout.field_rows(), detail::kHeightTileSamples,
+                                  height_overview_stride(layout.field_columns(), layout.field_rows(),
+                                                         options.overview_max_samples)};
   SYLVA_TRY(detail::write_height_section(out, tiles, [&](int z, int x0, int width, float* row) {
     const float* src = grids.heights.h.data() + static_cast<std::size_t>(z) * static_cast<std::size_t>(grids.heights.n + 1);
     std::memcpy(row, src + x0, static_cast<std::size_t>(width) * sizeof(float));
@@ -152,7 +154,8 @@ Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& sh
   put_le(header, detail::kShOptimize, static_cast<std::uint8_t>(settings.optimize_vertex_cache ? 1 : 0));
   put_le(header, detail::kShFirstSlot, first);
   put_le(header, detail::kShEndSlot, end);
-  put_le(header, detail::kShHeightTile, tiles.tile);
+  put_le(header, detail::kShHeightTile, static_cast<std::uint16_t>(tiles.tile));
+  put_le(header, detail::kShHeightOverview, static_cast<std::uint16_t>(tiles.overview));
   put_le(header, detail::kShDirOffset, dir_offset);
   put_le(header, detail::kShDirBytes, static_cast<std::uint64_t>(directory.size()));
   put_le(header, detail::kShDirChecksum, fnv1a64(directory.data(), directory.size()));

@@ -1,7 +1,8 @@
 #pragma once
 // Byte layout of a bake share file (bake.hpp has the contract). Offsets in bytes, little endian.
-// kShHeightTile: samples per side of the ground height tiles that follow the header
-// (chunk_file_heights.hpp), the same section the chunk file holds at the same offset.
+// kShHeightTile: samples per side of the ground height tiles that follow the header (uint16), and
+// kShHeightOverview the stride of their overview (uint16, 0 = none; chunk_file_heights.hpp): the
+// same section the chunk file holds at the same offset.
 
 #include <cstddef>
 #include <cstdint>
@@ -18,7 +19,7 @@ inline constexpr std::size_t kShareEntryBytes = 48;
 inline constexpr std::size_t kShVersion = 8, kShIndex = 12, kShCount = 16, kShColumns = 20, kShRows = 24,
                              kShLeafDimension = 28, kShSpacing = 32, kShOriginX = 40, kShOriginZ = 48,
                              kShFlatTolerance = 56, kShMaxMorph = 60, kShOptimize = 64, kShFirstSlot = 68,
-                             kShEndSlot = 72, kShHeightTile = 76, kShDirOffset = 80, kShDirBytes = 88, kShDirChecksum = 96,
+                             kShEndSlot = 72, kShHeightTile = 76, kShHeightOverview = 78, kShDirOffset = 80, kShDirBytes = 88, kShDirChecksum = 96,
                              kShFileBytes = 104, kShHeaderChecksum = 120;
 // Directory entry.
 inline constexpr std::size_t kSePresent = 0, kSeError = 4, kSeMinY = 8, kSeMaxY = 12, kSeTriangles = 16,

@@ -22,10 +22,11 @@ constexpr std::size_t kHeaderBytes = 128;
 constexpr std::size_t kEntryBytes = 64;
 using detail::get_le;
 using detail::put_le;
-constexpr std::size_t kHeightTileAt = 76;  // header: samples per height tile side, 0 = no heights
+constexpr std::size_t kHeightTileAt = 76;      // header: uint16 samples per height tile side, 0 = no heights
+constexpr std::size_t kHeightOverviewAt = 78;  // header: uint16 overview stride, 0 = none (version 2: always)
 
-detail::HeightTiles height_tiles(const ChunkTree& t, std::uint32_t tile) {
-  return detail::HeightTiles{t.field_columns(), t.field_rows(), tile};
+detail::HeightTiles height_tiles(const ChunkTree& t, std::uint32_t tile, std::uint32_t overview) {
+  return detail::HeightTiles{t.field_columns(), t.field_rows(), tile, tile == 0 ? 0u : overview};
 }
 
 }  // namespace
@@ -33,7 +34,7 @@ detail::HeightTiles height_tiles(const ChunkTree& t, std::uint32_t tile) {
 Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::filesystem::path& path,
                                                                  const ChunkTree& layout,
                                                                  const std::filesystem::path& overwrite,
-                                                                 bool heights) {
+                                                                 bool heights, std::uint32_t overview_stride) {
   SYLVA_TRY(check_replaceable(path));
   if (layout.settings().tessellation != Tessellation::kRtin) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -53,7 +54,10 @@ Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::file
     w->out_.open(w->temp_, std::ios::binary | std::ios::in | std::ios::out);  // no truncation
     if (!w->out_) return make_error(ErrorCode::kIo, fmt::format("{}: cannot reopen {}", path.string(), overwrite.string()));
   }
-  const detail::HeightTiles tiles = height_tiles(layout, heights ? detail::kHeightTileSamples : 0);
+  SYLVA_ASSERT(overview_stride == 0 || (overview_stride >= 2 && overview_stride <= 0x8000 &&
+                                        (overview_stride & (overview_stride - 1)) == 0),
+               "ChunkFileWriter: overview stride {}", overview_stride);
+  const detail::HeightTiles tiles = height_tiles(layout, heights ? detail::kHeightTileSamples : 0, overview_stride);
   w->offset_ = kHeaderBytes + tiles.section_bytes();
   w->heights_pending_ = heights && overwrite.empty();
   // In place, the share's section already lies where this file wants it (bake_merge.cpp).
@@ -74,7 +78,8 @@ Result<std::unique_ptr<ChunkFileWriter>> ChunkFileWriter::create(const std::file
   put_le(header, 64, layout.settings().flat_tolerance);
   put_le(header, 68, layout.settings().max_morph_fraction);
   put_le(header, 72, static_cast<std::uint32_t>(layout.settings().leaf_dimension));
-  put_le(header, kHeightTileAt, tiles.tile);
+  put_le(header, kHeightTileAt, static_cast<std::uint16_t>(tiles.tile));
+  put_le(header, kHeightOverviewAt, static_cast<std::uint16_t>(tiles.overview));
   w->directory_.assign(layout.chunk_count() * kEntryBytes, '\0');
   for (std::uint32_t i = 0; i < layout.chunk_count(); ++i) {
     const ChunkKey& k = layout.chunk(i).key;
@@ -109,7 +114,8 @@ Status ChunkFileWriter::write_heights(const HeightRows& rows) {
   SYLVA_ASSERT(heights_pending_ && !done_, "write_heights: not announced to create() or already written");
   heights_pending_ = false;
   const detail::HeightTiles tiles{get_le<std::int32_t>(header_.data(), 28), get_le<std::int32_t>(header_.data(), 32),
-                                  get_le<std::uint32_t>(header_.data(), kHeightTileAt)};
+                                  get_le<std::uint16_t>(header_.data(), kHeightTileAt),
+                                  get_le<std::uint16_t>(header_.data(), kHeightOverviewAt)};
   Status written = detail::write_height_section(out_, tiles, rows, path_.string());
   if (!written.ok()) abandon();
   return written;
@@ -162,13 +168,20 @@ Status ChunkFileWriter::finish() {
   return replace_with_temp(temp_, path_);
 }
 
+std::uint32_t height_overview_stride(int columns, int rows, std::uint64_t max_samples) {
+  const int stride = detail::stride_for(columns, rows, max_samples);
+  return stride == 1 ? 0u : static_cast<std::uint32_t>(stride);
+}
+
 Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag,
-                       const HeightField* ground) {
+                       const HeightField* ground, std::uint64_t overview_max_samples) {
   if (!tree.has_meshes()) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: the chunk tree was built without meshes (keep_meshes = false)", path.string()));
   }
-  Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(path, tree, {}, ground != nullptr);
+  Result<std::unique_ptr<ChunkFileWriter>> writer = ChunkFileWriter::create(
+      path, tree, {}, ground != nullptr,
+      height_overview_stride(tree.field_columns(), tree.field_rows(), overview_max_samples));
   if (!writer) return writer.error();
   (*writer)->set_tag(tag);
   if (ground != nullptr) {
@@ -203,11 +216,14 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
   if (!file->in_) return corrupt("cannot read the header");
   if (std::memcmp(header.data(), kMagic, 8) != 0) return corrupt("not a Sylva chunk file (bad magic)");
   const auto version = get_le<std::uint32_t>(header.data(), 8);
-  if (version != kChunkFileVersion) {
+  // Version 2 is version 3 without the heights' overview (the header's overview stride is 0).
+  if (version != kChunkFileVersion && version != 2) {
     return make_error(ErrorCode::kUnsupported,
-                      fmt::format("{}: chunk file version {}, this build reads version {} (which adds the ground "
-                                  "heights): re-bake it with `sylva-bake terrain`", name, version, kChunkFileVersion));
+                      fmt::format("{}: chunk file version {}, this build reads versions 2 (which adds the ground "
+                                  "heights) and {}: re-bake it with `sylva-bake terrain`", name, version,
+                                  kChunkFileVersion));
   }
+  file->version_ = version;
   if (get_le<std::uint64_t>(header.data(), 120) != fnv1a64(header.data(), 120)) return corrupt("header checksum mismatch");
   const auto file_bytes = get_le<std::uint64_t>(header.data(), 104);
   if (file_bytes != size) {
@@ -242,11 +258,15 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
     return corrupt(fmt::format("implausible field geometry ({} x {} samples, spacing {}, leaf dimension {})", t.columns_,
                                t.rows_, t.spacing_, t.settings_.leaf_dimension));
   }
-  file->height_tile_ = get_le<std::uint32_t>(header.data(), kHeightTileAt);
-  if (file->height_tile_ != 0 && file->height_tile_ != detail::kHeightTileSamples) {
-    return corrupt(fmt::format("implausible height tile size {}", file->height_tile_));
+  file->height_tile_ = get_le<std::uint16_t>(header.data(), kHeightTileAt);
+  file->height_overview_ = get_le<std::uint16_t>(header.data(), kHeightOverviewAt);
+  if ((file->height_tile_ != 0 && file->height_tile_ != detail::kHeightTileSamples) ||
+      (file->height_overview_ != 0 && (file->height_tile_ == 0 || file->height_overview_ < 2 ||
+                                       (file->height_overview_ & (file->height_overview_ - 1)) != 0))) {
+    return corrupt(fmt::format("implausible height tiles ({} samples, overview stride {})", file->height_tile_,
+                               file->height_overview_));
   }
-  const detail::HeightTiles tiles = height_tiles(t, file->height_tile_);
+  const detail::HeightTiles tiles = height_tiles(t, file->height_tile_, file->height_overview_);
   const std::uint64_t data_start = kHeaderBytes + tiles.section_bytes();
   const auto dir_offset = get_le<std::uint64_t>(header.data(), 80);
   const auto dir_bytes = get_le<std::uint64_t>(header.data(), 88);
@@ -308,13 +328,7 @@ Result<std::shared_ptr<ChunkFile>> ChunkFile::open(const std::filesystem::path& 
 }
 
 int ChunkFile::height_stride(std::uint64_t max_samples) const {
-  int stride = 1;
-  auto samples = [&](int s) {
-    return std::uint64_t{static_cast<std::uint32_t>((tree_.field_columns() - 1) / s + 1)} *
-           static_cast<std::uint32_t>((tree_.field_rows() - 1) / s + 1);
-  };
-  while (samples(stride) > std::max<std::uint64_t>(max_samples, 1) && stride < (1 << 20)) stride *= 2;
-  return stride;
+  return detail::stride_for(tree_.field_columns(), tree_.field_rows(), max_samples);
 }
 
 Result<HeightField> ChunkFile::read_heights(int stride) const {
@@ -324,37 +338,35 @@ Result<HeightField> ChunkFile::read_heights(int stride) const {
                       fmt::format("{}: holds no ground heights (a tree cache file): re-bake it with `sylva-bake terrain`",
                                   path_.string()));
   }
-  const detail::HeightTiles tiles = height_tiles(tree_, height_tile_);
+  const detail::HeightTiles tiles = height_tiles(tree_, height_tile_, height_overview_);
   const int columns = (tiles.columns - 1) / stride + 1, rows = (tiles.rows - 1) / stride + 1;
   HeightField field(columns, rows, tree_.spacing() * stride, tree_.origin());
+  // The overview when it holds every sample wanted: the same samples, 1/overview^2 of the bytes.
+  const bool from_overview = tiles.overview != 0 && stride % static_cast<int>(tiles.overview) == 0;
+  const detail::HeightTiles::Grid grid = from_overview ? tiles.overview_grid() : tiles.field_grid();
+  const int sub = stride / grid.stride;  // every sub-th sample of the grid read
   // Tiles read in file order under the stream's lock, verified and copied on every thread (the
   // checksum is most of the time); each tile writes its own samples of the field.
-  std::vector<std::optional<Error>> failed(tiles.count());
+  const std::uint32_t count = grid.tiles_x * grid.tiles_z;
+  std::vector<std::optional<Error>> failed(count);
   std::atomic<bool> bad{false};
-  detail::parallel_for(tiles.count(), detail::resolve_threads(0), [&](std::size_t i) {
+  detail::parallel_for(count, detail::resolve_threads(0), [&](std::size_t i) {
     if (bad.load(std::memory_order_relaxed)) return;
-    const auto t = static_cast<std::uint32_t>(i);
+    const auto t = grid.first + static_cast<std::uint32_t>(i);
     std::vector<float> tile;
     Status status = ok_status();
     {
       std::lock_guard<std::mutex> lock(mutex_);
       status = detail::read_height_tile_bytes(in_, kHeaderBytes, tiles, t, path_.string(), tile);
     }
+    height_bytes_read_ += tile.size() * sizeof(float);
     if (status.ok()) status = detail::verify_height_tile(tiles, height_table_, t, path_.string(), tile);
     if (!status.ok()) {
       failed[i] = status.error();
       bad = true;
       return;
     }
-    const detail::HeightTiles::Rect r = tiles.rect(t);
-    // Samples of this tile on the stride's grid (multiples of `stride` from 0).
-    const int fx = (r.x0 + stride - 1) / stride * stride, fz = (r.z0 + stride - 1) / stride * stride;
-    for (int z = fz; z < r.z0 + r.height && z / stride < rows; z += stride) {
-      for (int x = fx; x < r.x0 + r.width && x / stride < columns; x += stride) {
-        field.sample(x / stride, z / stride) =
-            tile[static_cast<std::size_t>(z - r.z0) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(x - r.x0)];
-      }
-    }
+    detail::copy_strided(tile, tiles.rect(t), sub, field.samples().data(), columns, rows);
   }, nullptr, 1);
   for (const std::optional<Error>& e : failed)
     if (e) return *e;  // the first in file order of the bad tiles found

@@ -1,7 +1,8 @@
-// The ground height section of chunk files (chunk_file.hpp, version 2; issue 15, "a baked file
+// The ground height section of chunk files (chunk_file.hpp, version 3; issue 15, "a baked file
 // carries its ground"): a bake stores the field's samples exactly, in tiles, equal for one process
-// and merged shares; a reader gets every sample or every n-th; a damaged tile or table is an error
-// naming the file (and tile), never a crash; a version-1 file tells the user to re-bake.
+// and merged shares; a reader gets every sample or every n-th, the coarse ones from the overview
+// only; a damaged tile or table is an error naming the file (and tile), never a crash; a version-1
+// file tells the user to re-bake, a version-2 file (no overview) is still read.
 #include <sylva/terrain/bake.hpp>
 #include <sylva/terrain/chunk_file.hpp>
 
@@ -11,6 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cstring>
 #include <fstream>
 
 namespace sylva::terrain {
@@ -149,10 +152,121 @@ TEST(ChunkFileHeights, AVersionOneFileTellsTheUserToRebake) {
   auto file = ChunkFile::open(b.file);
   ASSERT_FALSE(file.ok());
   EXPECT_EQ(file.error().code, ErrorCode::kUnsupported);
-  EXPECT_NE(file.error().message.find(b.file.string() + ": chunk file version 1, this build reads version 2"),
+  EXPECT_NE(file.error().message.find(b.file.string() + ": chunk file version 1, this build reads versions 2"),
             std::string::npos) << file.error().message;
   EXPECT_NE(file.error().message.find("re-bake it with `sylva-bake terrain`"), std::string::npos)
       << file.error().message;
+}
+
+// With an overview limit of 260 x 150 samples the 520 x 300 field gets an overview of every 2nd
+// sample: 260 x 150, two tiles (7 and 8, after the field's 6).
+constexpr std::uint64_t kOverviewLimit = 260 * 150;
+constexpr std::uint64_t kFieldBytes = 520 * 300 * 4, kOverviewBytes = 260 * 150 * 4;
+std::uint64_t overview_tile_start(int t) {  // overview tile 6 + t (t = 0, 1) of that file
+  return 128 + 9 * 8 + kFieldBytes + 4 * std::uint64_t(t) * 256 * 150;
+}
+
+BakeOptions overview_options() {
+  BakeOptions o = options();
+  o.overview_max_samples = kOverviewLimit;
+  return o;
+}
+
+TEST(ChunkFileHeights, CoarseGroundsAreReadFromTheOverviewOnlyAndEqualTheStridedField) {
+  const HeightField field = test_field();
+  const fs::path baked = unique_temp("heights_overview.sylvaterrain");
+  ASSERT_TRUE(bake_chunk_file(field, baked, overview_options()).ok());
+  auto file = ChunkFile::open(baked);
+  ASSERT_TRUE(file.ok()) << file.error().describe();
+  EXPECT_EQ((*file)->version(), 3u);
+  ASSERT_EQ((*file)->height_overview(), 2u);
+  for (int stride : {2, 4}) {
+    const std::uint64_t before = (*file)->height_bytes_read();
+    auto coarse = (*file)->read_heights(stride);
+    ASSERT_TRUE(coarse.ok()) << coarse.error().describe();
+    EXPECT_EQ((*file)->height_bytes_read() - before, kOverviewBytes) << "stride " << stride;  // the overview only
+    ASSERT_EQ(coarse->columns(), (520 - 1) / stride + 1);
+    ASSERT_EQ(coarse->rows(), (300 - 1) / stride + 1);
+    EXPECT_EQ(coarse->spacing(), 1.5 * stride);
+    for (int z = 0; z < coarse->rows(); ++z)
+      for (int x = 0; x < coarse->columns(); ++x)
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(coarse->sample(x, z)),
+                  std::bit_cast<std::uint32_t>(field.sample(stride * x, stride * z)))
+            << "stride " << stride << " at " << x << ", " << z;
+  }
+  const std::uint64_t before = (*file)->height_bytes_read();
+  auto full = (*file)->read_heights(1);
+  ASSERT_TRUE(full.ok()) << full.error().describe();
+  EXPECT_TRUE(full->samples() == field.samples());
+  EXPECT_EQ((*file)->height_bytes_read() - before, kFieldBytes);
+
+  // The in-memory save and three merged shares write the same overview: the same bytes.
+  auto tree = ChunkTree::build(field, options().tree);
+  ASSERT_TRUE(tree.ok());
+  const fs::path memory = unique_temp("heights_overview_memory.sylvaterrain");
+  ASSERT_TRUE(save_chunk_file(memory, *tree, 0, &field, kOverviewLimit).ok());
+  EXPECT_TRUE(read_file(memory).value() == read_file(baked).value());
+  std::vector<fs::path> shares;
+  BakeOptions o = overview_options();
+  for (int i = 0; i < 3; ++i) {
+    o.share = i;
+    o.shares = 3;
+    shares.push_back(unique_temp(fmt::format("heights_overview_{}.share", i)));
+    ASSERT_TRUE(bake_share(field, shares.back(), o).ok());
+  }
+  const fs::path merged = unique_temp("heights_overview_merged.sylvaterrain");
+  auto m = merge_bake_shares(shares, merged);
+  ASSERT_TRUE(m.ok()) << m.error().describe();
+  EXPECT_TRUE(read_file(merged).value() == read_file(baked).value());
+  // A share baked with another overview limit is named.
+  o.share = 2;
+  o.overview_max_samples = 130 * 75;
+  ASSERT_TRUE(bake_share(field, shares[2], o).ok());
+  auto other = merge_bake_shares(shares, merged);
+  ASSERT_FALSE(other.ok());
+  EXPECT_NE(other.error().message.find(shares[2].string() + ": its ground overview has stride 4"), std::string::npos)
+      << other.error().message;
+  for (const auto& p : shares) fs::remove(p);
+  fs::remove(merged);
+  fs::remove(memory);
+  fs::remove(baked);
+}
+
+TEST(ChunkFileHeights, ADamagedOverviewTileIsAnErrorNamingTheFileAndTile) {
+  const HeightField field = test_field();
+  const fs::path baked = unique_temp("heights_overview_bad.sylvaterrain");
+  ASSERT_TRUE(bake_chunk_file(field, baked, overview_options()).ok());
+  patch(baked, overview_tile_start(1) + 8, 0x7f);  // overview tile 7: samples x 512..518, z 0..298
+  auto file = ChunkFile::open(baked);
+  ASSERT_TRUE(file.ok()) << file.error().describe();
+  auto coarse = (*file)->read_heights(2);
+  ASSERT_FALSE(coarse.ok());
+  EXPECT_EQ(coarse.error().code, ErrorCode::kCorrupt);
+  EXPECT_NE(coarse.error().message.find(baked.string() +
+                                        ": overview tile 7 (every 2nd sample; samples x 512..518, z 0..298): "
+                                        "checksum mismatch"),
+            std::string::npos) << coarse.error().message;
+  EXPECT_TRUE((*file)->read_heights(1).ok());  // the field's own tiles are intact
+  fs::remove(baked);
+}
+
+TEST(ChunkFileHeights, AVersionTwoFileIsReadWithoutAnOverview) {
+  // A version-2 file is a version-3 file without an overview: the header's version and checksum
+  // differ, nothing else.
+  Baked b;
+  std::string bytes = read_file(b.file).value();
+  bytes[8] = 2;
+  const std::uint64_t checksum = fnv1a64(bytes.data(), 120);
+  std::memcpy(bytes.data() + 120, &checksum, 8);
+  ASSERT_TRUE(write_file_atomic(b.file, bytes).ok());
+  auto file = ChunkFile::open(b.file);
+  ASSERT_TRUE(file.ok()) << file.error().describe();
+  EXPECT_EQ((*file)->version(), 2u);
+  EXPECT_EQ((*file)->height_overview(), 0u);
+  auto coarse = (*file)->read_heights(4);  // from the field's tiles
+  ASSERT_TRUE(coarse.ok()) << coarse.error().describe();
+  EXPECT_EQ((*file)->height_bytes_read(), kFieldBytes);
+  EXPECT_EQ(coarse->sample(129, 74), b.field.sample(516, 296));
 }
 
 TEST(ChunkFileHeights, AFileWithoutHeightsSaysSo) {

@@ -27,6 +27,7 @@
 
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/result.hpp>
+#include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
 
 #include <cstdint>
@@ -35,7 +36,8 @@
 
 namespace sylva::terrain {
 
-inline constexpr std::uint32_t kBakeShareVersion = 2;  // 2: the ground heights after the header
+// 2: the ground heights after the header; 3: with their overview (chunk_file.hpp).
+inline constexpr std::uint32_t kBakeShareVersion = 3;
 
 struct BakeOptions {
   ChunkTreeSettings tree;        // keep_meshes is ignored: a bake always writes the meshes
@@ -44,6 +46,9 @@ struct BakeOptions {
   // Meshes held at once while baking, at most about this many bytes (at least one chunk per
   // thread): the "memory budget" on top of the grids (8 bytes per root-grid point).
   std::size_t batch_bytes = std::size_t{64} << 20;
+  // A field with more samples gets an overview of its ground heights (chunk_file.hpp); the shares
+  // of one bake must agree (merge checks their height tables).
+  std::uint64_t overview_max_samples = kHeightOverviewMaxSamples;
   BuildControl control;          // progress in [0, 1] and cancellation (checked between chunks)
 };
 

@@ -16,6 +16,7 @@
 #include <sylva/core/result.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -27,7 +28,14 @@
 
 namespace sylva::terrain {
 
-inline constexpr std::uint32_t kChunkFileVersion = 2;
+// 2: the ground heights after the header; 3: with an overview of them (chunk_file_heights.hpp).
+// Version 2 files are still read (their section is version 3's without an overview).
+inline constexpr std::uint32_t kChunkFileVersion = 3;
+
+// A field with more samples than this gets an overview in its height section: every 2nd, 4th, ...
+// sample, at most this many (4097^2: 64 MiB; 16385^2 -> every 4th sample), which is what a scene
+// reads as its ground (scene/baked_ground.hpp) instead of every tile of the field.
+inline constexpr std::uint64_t kHeightOverviewMaxSamples = std::uint64_t{4097} * 4097;
 
 // Rows of ground heights for a writer: fill `out` with the `width` samples of row z from x0 on
 // [m]. Called tile by tile (256^2); an error stops the writing and is returned.
@@ -36,9 +44,15 @@ using HeightRows = std::function<Status(int z, int x0, int width, float* out)>;
 // Writes the tree (which must hold its meshes) through a temporary file and a rename. `tag` goes
 // into the header (ChunkFile::tag()). `ground`: the field the tree was built from, stored as the
 // ground height section (its columns and rows must equal the tree's, asserted); nullptr = none
-// (the tree cache, which keeps its field elsewhere).
+// (the tree cache, which keeps its field elsewhere). `overview_max_samples`: the ground's
+// overview limit (height_overview_stride; tests use small ones).
 Status save_chunk_file(const std::filesystem::path& path, const ChunkTree& tree, std::uint64_t tag = 0,
-                       const HeightField* ground = nullptr);
+                       const HeightField* ground = nullptr,
+                       std::uint64_t overview_max_samples = kHeightOverviewMaxSamples);
+
+// The overview stride of a columns x rows field's height section: the smallest power of two
+// giving at most `max_samples` samples, 0 (no overview) when the field itself has no more.
+std::uint32_t height_overview_stride(int columns, int rows, std::uint64_t max_samples = kHeightOverviewMaxSamples);
 
 // Writes a chunk file chunk by chunk, so a tree too big for memory can be saved (bake.hpp): blobs
 // go to a temporary file beside the target as they come, the directory and header at finish(),
@@ -53,10 +67,11 @@ class ChunkFileWriter {
   // `path`), which becomes the temporary: blobs added must then lie where the file already holds
   // blobs of the same sizes in the same order (the bake's one-process share, bake.hpp).
   // `heights`: the file gets a ground height section of the layout's field size: written by
-  // write_heights() before the first add(), or, with `overwrite`, already in that file.
+  // write_heights() before the first add(), or, with `overwrite`, already in that file;
+  // `overview_stride`: its overview (height_overview_stride; 0 = none).
   static Result<std::unique_ptr<ChunkFileWriter>> create(const std::filesystem::path& path, const ChunkTree& layout,
                                                          const std::filesystem::path& overwrite = {},
-                                                         bool heights = false);
+                                                         bool heights = false, std::uint32_t overview_stride = 0);
   ~ChunkFileWriter();
   ChunkFileWriter(const ChunkFileWriter&) = delete;
   ChunkFileWriter& operator=(const ChunkFileWriter&) = delete;
@@ -104,11 +119,18 @@ class ChunkFile {
 
   // Whether the file holds the ground heights (version 2 files written with them: every bake).
   bool has_heights() const { return height_tile_ != 0; }
+  // The stride of the heights' overview, 0 = none (a field of at most kHeightOverviewMaxSamples,
+  // or a version-2 file).
+  std::uint32_t height_overview() const { return height_overview_; }
+  std::uint32_t version() const { return version_; }
   // The ground: every `stride`-th sample (stride >= 1) of the baked field in x and z, from sample
-  // (0, 0), placed like the tree (origin, spacing x stride). Reads the tiles one at a time.
+  // (0, 0), placed like the tree (origin, spacing x stride). Reads the overview's tiles when
+  // stride is a multiple of its stride, else the field's; each tile verified, on every thread.
   // Errors: kInvalidArgument without heights, kCorrupt naming the file and the tile (checksum,
   // truncation).
   Result<HeightField> read_heights(int stride = 1) const;
+  // Bytes of height tiles read so far by read_heights (a statistic: the overview's worth).
+  std::uint64_t height_bytes_read() const { return height_bytes_read_; }
   // The smallest power-of-two stride whose ground has at most `max_samples` samples.
   int height_stride(std::uint64_t max_samples) const;
 
@@ -135,6 +157,9 @@ class ChunkFile {
   std::filesystem::path path_;
   std::uint64_t tag_ = 0;
   std::uint32_t height_tile_ = 0;
+  std::uint32_t height_overview_ = 0;
+  std::uint32_t version_ = 0;
+  mutable std::atomic<std::uint64_t> height_bytes_read_{0};
   std::vector<std::uint64_t> height_table_;  // per-tile checksums
   ChunkTree tree_;
   std::vector<Entry> entries_;
