@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 #include <set>
@@ -84,7 +86,22 @@ double expect_valid(const RandomInput& in, const std::vector<std::uint32_t>& out
   const MeshCheck c = check_mesh(in.positions, out);
   EXPECT_TRUE(c.ok()) << what << ": " << c.degenerate << " degenerate " << c.duplicate << " duplicate "
                       << c.non_manifold << " non-manifold";
-  EXPECT_EQ(count_flipped(in.positions, in.indices, out), 0u) << what;
+  // No triangle a collapse made faces against the original surface. Input triangles kept as they
+  // are do not count: the jittered grids hold a few folds that are "flipped" by this measure
+  // already (seed 12: 3 of 6272), and keeping one is no defect of the reducer.
+  std::set<std::array<std::uint32_t, 3>> input_tris;
+  for (std::size_t i = 0; i + 2 < in.indices.size(); i += 3) {
+    std::array<std::uint32_t, 3> t{in.indices[i], in.indices[i + 1], in.indices[i + 2]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    input_tris.insert(t);
+  }
+  std::vector<std::uint32_t> made;
+  for (std::size_t i = 0; i + 2 < out.size(); i += 3) {
+    std::array<std::uint32_t, 3> t{out[i], out[i + 1], out[i + 2]};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    if (!input_tris.count(t)) made.insert(made.end(), t.begin(), t.end());
+  }
+  EXPECT_EQ(count_flipped(in.positions, in.indices, made), 0u) << what;
   return hausdorff_distance(in.positions, in.indices, out).max();
 }
 
