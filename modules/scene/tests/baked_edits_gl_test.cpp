@@ -18,6 +18,9 @@
 
 #include "scene_test_files.hpp"
 #include "support/gl_support.hpp"
+#ifdef SYLVA_PLAYER_EXE
+#include "run_command.hpp"
+#endif
 
 #include <gtest/gtest.h>
 
@@ -194,12 +197,30 @@ TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainte
   ASSERT_TRUE(fs::exists(layer));
   // Tiles (0, 0), (1, 0), (1, 1) and the 1-column edge tile (2, 1) of the 3 x 3.
   EXPECT_EQ(fs::file_size(layer), 40u + 4u * 24u + (3u * 256u * 256u + 256u) * 4u) << "sparse: the painted tiles";
+  nlohmann::json reopened_edited;
   {
     auto reopened = open_scene_file(dir.path / "painted.json");
     ASSERT_TRUE(reopened);
     EXPECT_TRUE(reopened->ground()->samples() == painted_ground) << "edit layer: bit-exact heights";
+    reopened_edited = reopened->module_stats()["terrain"]["stream_edited_chunks"];
+    EXPECT_GT(reopened_edited.get<std::size_t>(), 4u) << "the layer's chunks rebuilt at open";
     expect_same_pictures(pictures(*reopened, target), painted, "reopened");
   }
+
+#ifdef SYLVA_PLAYER_EXE
+  {
+    // The shipped player opens the painted scene with its layer: the same chunks rebuilt.
+    const fs::path stats_file = dir.path / "player.stats.json";
+    const auto run = test::run_command(SYLVA_PLAYER_EXE, (dir.path / "painted.json").string() +
+                                                             " --headless --size 96x54 --frames 2 --stats " +
+                                                             stats_file.string());
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    std::ifstream in(stats_file);
+    const nlohmann::json player = nlohmann::json::parse(in, nullptr, false);
+    ASSERT_FALSE(player.is_discarded());
+    EXPECT_EQ(player["modules"]["terrain"]["stream_edited_chunks"], reopened_edited) << run.output;
+  }
+#endif
 
   // Undo the first stroke, then the second (the editor's undo pastes the old texels back).
   baked->map("terrain.height")->grid.paste_rect(first, undo_first);

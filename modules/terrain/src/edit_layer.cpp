@@ -108,11 +108,21 @@ Status apply_edit_layer(const EditLayer& layer, std::vector<float>& samples, int
   return ok_status();
 }
 
-std::vector<SampleRect> edit_layer_rects(const EditLayer& layer) {
+std::vector<SampleRect> changed_rects(const std::vector<float>& baked, const std::vector<float>& painted, int columns,
+                                      int rows) {
   std::vector<SampleRect> rects;
-  for (const EditLayerTile& tile : layer.tiles) {
-    const TileRect r = tile_rect(tile.index, layer.columns, layer.rows);
-    rects.push_back({r.x0, r.z0, r.x0 + r.w, r.z0 + r.h});
+  const std::uint32_t count = static_cast<std::uint32_t>(tiles_per_side(columns) * tiles_per_side(rows));
+  for (std::uint32_t t = 0; t < count; ++t) {
+    const TileRect r = tile_rect(t, columns, rows);
+    SampleRect box{r.x0 + r.w, r.z0 + r.h, r.x0, r.z0};  // empty
+    for (int z = r.z0; z < r.z0 + r.h; ++z) {
+      for (int x = r.x0; x < r.x0 + r.w; ++x) {
+        const std::size_t i = static_cast<std::size_t>(z) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(x);
+        if (std::memcmp(&baked[i], &painted[i], sizeof(float)) == 0) continue;
+        box = {std::min(box.x0, x), std::min(box.z0, z), std::max(box.x1, x + 1), std::max(box.z1, z + 1)};
+      }
+    }
+    if (box.x0 < box.x1) rects.push_back(box);
   }
   return rects;
 }

@@ -303,9 +303,9 @@ class TerrainInstance final : public ModuleInstance {
     }
     auto baked = file.read_heights(1);
     if (!baked.ok()) return;  // the ground came from the same heights; read errors were reported then
-    const terrain::EditLayer layer = terrain::diff_edit_layer(baked->samples(), f.samples(), f.columns(), f.rows());
-    if (layer.tiles.empty()) return;
-    auto changed = streamer.apply_height_edit(f, terrain::edit_layer_rects(layer));
+    const auto rects = terrain::changed_rects(baked->samples(), f.samples(), f.columns(), f.rows());
+    if (rects.empty()) return;
+    auto changed = streamer.apply_height_edit(f, rects);
     if (!changed.ok()) {
       log_warn("terrain: the painted ground is not drawn: {}", changed.error().message);
       return;

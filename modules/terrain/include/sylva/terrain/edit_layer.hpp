@@ -57,8 +57,10 @@ EditLayer diff_edit_layer(const std::vector<float>& baked, const std::vector<flo
 Status apply_edit_layer(const EditLayer& layer, std::vector<float>& samples, int columns, int rows,
                         const std::filesystem::path& file);
 
-// The sample rectangle of each of the layer's tiles (what a streamed terrain rebuilds on open).
-std::vector<SampleRect> edit_layer_rects(const EditLayer& layer);
+// Per 256^2 tile, the bounding rectangle of the samples where `painted` differs from `baked` in
+// any bit (what a streamed terrain rebuilds when it opens painted).
+std::vector<SampleRect> changed_rects(const std::vector<float>& baked, const std::vector<float>& painted, int columns,
+                                      int rows);
 
 std::string encode_edit_layer(const EditLayer& layer);
 // Errors name the file (and the tile): kNotFound, kIo, kCorrupt (bad magic, header checksum,
