@@ -155,6 +155,8 @@ std::vector<HostileCase> plant_file_cases() {
                              {{"cut.lsys", text("0 0")}}),
       voxel_species_left_out("VoxelSpeciesGrammarNaNAngles", species_with_grammar("nan.lsys"), {"species[1].grammar", "nan.lsys:1"},
                              {{"nan.lsys", text("nan nan nan\nU\nU > UU\n")}}),
+      voxel_species_left_out("VoxelSpeciesGrammarOf100MiB", species_with_grammar("big.lsys"), {"species[1].grammar", "big.lsys", "MiB"},
+                             {{"big.lsys", text(kPillar), std::uintmax_t{100} << 20}}),
       voxel_species_left_out("VoxelSpeciesGrammarIsTheTable", species_with_grammar("plants.json"),
                              {"species[1].grammar", "plants.json:1"}),
       // Ten-fold growth per derivation for 30 derivations: 10^30 symbols, refused before deriving.

@@ -104,6 +104,8 @@ std::vector<HostileCase> species_file_cases() {
       bad_species("SpeciesParameterHuge", text(R"({"model": {"preset": "birch", "parameters": {"trunk_length": 1e9}}})"),
                   {"model.parameters.trunk_length"}),
       bad_species("SpeciesTooBig", [] { return std::string(3u << 20, ' '); }, {"MiB limit"}),
+      bad_species("SpeciesObjtOf100MiB", text(R"({"model": {"objt": "big.objt"}})"), {"model.objt", "big.objt", "64 MiB limit"},
+                  {{"big.objt", seed_objt, std::uintmax_t{100} << 20}}),
       // Leaf, bark and season images (issue #16): each refused naming the species file, the JSON
       // path and the image, by its header where the size is the problem (nothing decoded).
       bad_species("SpeciesLeafImageMissing", with_images(R"("leaf": {"color": "gone.png"})"), {"leaf.color: no such file gone.png"}),
