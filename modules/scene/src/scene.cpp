@@ -186,13 +186,55 @@ Result<std::unique_ptr<ModuleInstance>> Scene::create_module(const ModuleSection
   return created;
 }
 
+namespace {
+
+// Sections a scene opens without when they fail to build (issue 16, "Bad input": a plant file
+// that fails leaves the plants out with a warning, the rest of the scene opens). The ground
+// sections and the voxel world are the scene itself; vegetation leaves out a failing species
+// on its own and fails only when none is left. A left-out section has no instance; setting one
+// of its parameters (the editor, --set) or reloading its files builds it again.
+bool left_out_when_failing(std::string_view section) { return section == "grass"; }
+
+void warn_left_out(std::string_view section, const Error& error) {
+  log_warn("{}; the {} section is left out of the scene until this is fixed", error.message, section);
+}
+
+}  // namespace
+
 Status Scene::build_modules() {
   modules_.clear();
   for (const ModuleSection& section : document_->modules()) {
     auto inst = create_module(section);
-    if (!inst.ok()) return inst.error();
+    if (!inst.ok()) {
+      if (!left_out_when_failing(section.name)) return inst.error();
+      warn_left_out(section.name, inst.error());
+      continue;
+    }
     modules_.push_back(std::move(*inst));
   }
+  return {};
+}
+
+bool Scene::left_out(std::string_view name) const {
+  if (!left_out_when_failing(name) || !document_->module(name)) return false;
+  for (const auto& m : modules_) {
+    if (m->module() == name) return false;
+  }
+  return true;
+}
+
+Status Scene::build_left_out(std::string_view name) {
+  const ModuleSection* section = document_->module(name);
+  auto fresh = create_module(*section);
+  if (!fresh.ok()) return fresh.error();
+  // Back in the document's order (the draw order of equal passes).
+  std::size_t at = 0;
+  for (const ModuleSection& s : document_->modules()) {
+    if (s.name == name) break;
+    if (module(s.name)) ++at;
+  }
+  modules_.insert(modules_.begin() + static_cast<std::ptrdiff_t>(at), std::move(*fresh));
+  log_info("scene: the {} section is built again", name);
   return {};
 }
 
@@ -220,6 +262,7 @@ Status Scene::rebuild_module(std::string_view name, Rebuild what) {
     modules_ = std::move(fresh);
     return {};
   }
+  if (left_out(name)) return build_left_out(name);
   ModuleInstance* m = module(name);
   if (!m) return {};
   const render::GpuMemoryOwner memory(name);
@@ -231,6 +274,7 @@ Status Scene::reload_module(std::string_view name) {
   if (d && d->provides_ground) return rebuild_module(name, Rebuild::kOffline);
   const ModuleSection* section = document_->module(name);
   if (!section) return make_error(ErrorCode::kNotFound, fmt::format("reload {}: the scene has no such section", name));
+  if (left_out(name)) return build_left_out(name);
   for (auto& m : modules_) {
     if (m->module() != name) continue;
     auto fresh = create_module(*section);
@@ -256,9 +300,11 @@ Status Scene::set_param(std::string_view path, std::string_view text) {
     Status check = ms->settings->check(section);
     if (!check.ok()) return revert(check.error());
     if (param->info.rebuild != Rebuild::kNone) {
+      const bool was_left_out = left_out(section);
       Status rebuilt = rebuild_module(section, param->info.rebuild);
       if (!rebuilt.ok()) {
         (void)param->set_string(before);
+        if (was_left_out) return rebuilt.error();  // still out, as it was
         Status restored = rebuild_module(section, param->info.rebuild);
         if (!restored.ok()) log_warn("{}: could not restore after a failed rebuild: {}", section, restored.error().message);
         return rebuilt.error();

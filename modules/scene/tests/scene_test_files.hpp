@@ -1,6 +1,7 @@
 #pragma once
 // Scenes with files of their own, for tests: a fresh folder per test, a scene made from JSON whose
 // relative paths resolve in that folder, and a scene opened from its file as the player does.
+#include <sylva/core/log.hpp>
 #include <sylva/scene/scene.hpp>
 
 #include <gtest/gtest.h>
@@ -53,6 +54,22 @@ inline std::unique_ptr<Scene> open_scene_file(const std::filesystem::path& file)
   auto scene = Scene::create(std::move(*doc));
   EXPECT_TRUE(scene.ok()) << scene.error().message;
   return scene.ok() ? std::move(*scene) : nullptr;
+}
+
+// Opens the scene of `json` (as scene_from_json) with the log captured and returns the warnings
+// it logged, for a scene that must open with `section` left out (Scene::left_out); an error
+// naming what happened instead (the scene failed, or kept the section).
+inline Result<std::string> open_leaving_out(const nlohmann::json& json, const std::filesystem::path& dir,
+                                            const std::string& section) {
+  std::string warnings;
+  set_log_sink([&](LogLevel level, std::string_view message) {
+    if (level == LogLevel::kWarn) warnings += std::string(message) + "\n";
+  });
+  auto made = scene_from_json(json, dir);
+  set_log_sink(nullptr);
+  if (!made.ok()) return make_error(made.error().code, "the scene failed instead: " + made.error().message);
+  if (!(*made)->left_out(section)) return make_error(ErrorCode::kInvalidArgument, "the scene kept " + section);
+  return warnings;
 }
 
 }  // namespace sylva::scene::testing

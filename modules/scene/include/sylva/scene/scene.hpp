@@ -90,6 +90,10 @@ class Scene {
   // --- modules and shared services ---
   const std::vector<std::unique_ptr<ModuleInstance>>& modules() const { return modules_; }
   ModuleInstance* module(std::string_view name);
+  // True when the document has the section but it failed to build and the scene opened without
+  // it (only "grass": a plant file that fails leaves the plants out with a warning, issue 16).
+  // Setting one of its parameters or reloading its files builds it again.
+  bool left_out(std::string_view name) const;
   // The scene's ground (null when it lists neither terrain nor ground).
   const HeightField* ground() const { return ground_.get(); }
   // Ground height at world (x, z) [m]; 0 without a ground.
@@ -165,6 +169,7 @@ class Scene {
   Status build_modules();
   Result<std::unique_ptr<ModuleInstance>> create_module(const ModuleSection& section);
   Status rebuild_module(std::string_view name, Rebuild what);
+  Status build_left_out(std::string_view name);  // builds a left-out section into its place
   ModuleBuildContext context_for(const ModuleSection& section);
   void draw_pass(render::Pass pass, render::FrameProfiler& profiler);
   void draw_debug_lines();
