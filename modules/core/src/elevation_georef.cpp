@@ -1,7 +1,5 @@
 #include "elevation_georef.hpp"
 
-#include <sylva/core/assert.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -38,10 +36,10 @@ void resampled_size(int columns, int rows, double sx, double sz, double spacing,
   out_rows = static_cast<int>(std::lround((rows - 1) * sz / spacing)) + 1;
 }
 
-void resample_square(const std::vector<float>& values, int columns, int rows, double sx, double sz, double spacing,
-                     int out_columns, int out_rows, std::vector<float>& out) {
-  SYLVA_ASSERT(out.size() == static_cast<std::size_t>(out_columns) * static_cast<std::size_t>(out_rows),
-               "resample_square: {} values for {}x{}", out.size(), out_columns, out_rows);
+std::vector<float> resample_square(const std::vector<float>& values, int columns, int rows, double sx, double sz,
+                                   double spacing, int& out_columns, int& out_rows) {
+  resampled_size(columns, rows, sx, sz, spacing, out_columns, out_rows);
+  std::vector<float> out(static_cast<std::size_t>(out_columns) * static_cast<std::size_t>(out_rows));
   auto at = [&](int i, int j) {
     return values[static_cast<std::size_t>(j) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(i)];
   };
@@ -61,6 +59,7 @@ void resample_square(const std::vector<float>& values, int columns, int rows, do
           static_cast<float>(top * (1.0 - fz) + bottom * fz);
     }
   }
+  return out;
 }
 
 }  // namespace sylva::detail
