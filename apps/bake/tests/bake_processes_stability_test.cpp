@@ -51,7 +51,10 @@ std::vector<std::string> names_in(const fs::path& dir) {
 TEST(BakeProcesses, ThreeTileProcessesMergeByteIdenticallyToOneProcess) {
   const fs::path dir = test_dir("tiles");
   const fs::path dem = write_dem(dir, 700);  // not 2^k+1: padded, absent chunks
-  const std::vector<std::string> set{"--set", "terrain.tree.leaf_dimension=17", "--set", "terrain.tree.threads=1"};
+  // --overview-side 257: the 700^2 field also stores its ground's overview (every 4th sample,
+  // 175^2), which every process must write alike.
+  const std::vector<std::string> set{"--set", "terrain.tree.leaf_dimension=17", "--set", "terrain.tree.threads=1",
+                                     "--overview-side", "257"};
   auto with_set = [&](std::vector<std::string> a) {
     a.insert(a.end(), set.begin(), set.end());
     return a;
@@ -75,15 +78,17 @@ TEST(BakeProcesses, ThreeTileProcessesMergeByteIdenticallyToOneProcess) {
   EXPECT_NE(text_of(dir / "one.log").find("ETA"), std::string::npos) << text_of(dir / "one.log");
 
   // The ground heights travel with the shares: every share and both files hold the 700^2 field
-  // (3 x 3 tiles of 256^2: 9 checksums and the table's) right after the 128-byte header.
-  const std::size_t heights_end = 128 + 10 * 8 + 700 * 700 * 4;
+  // (3 x 3 tiles of 256^2) and its overview (1 tile of 175^2; 10 checksums and the table's) right
+  // after the 128-byte header, whose uint16 at 78 is the overview's stride.
+  EXPECT_EQ(static_cast<unsigned char>(one[78]) + 256 * static_cast<unsigned char>(one[79]), 4);
+  const std::size_t field_end = 128 + 11 * 8 + 700 * 700 * 4, heights_end = field_end + 175 * 175 * 4;
   EXPECT_TRUE(one.compare(0, heights_end, text_of(dir / "s2.share"), 0, heights_end) != 0) << "headers differ";
   EXPECT_TRUE(one.compare(128, heights_end - 128, text_of(dir / "s2.share"), 128, heights_end - 128) == 0);
   // A damaged height tile in share 0 (the one whose heights are copied): named with its tile.
   const std::string good0 = text_of(dir / "s0.share");
   {
     std::string bad = good0;
-    bad[heights_end - 10] = static_cast<char>(bad[heights_end - 10] ^ 0x40);  // the last tile
+    bad[field_end - 10] = static_cast<char>(bad[field_end - 10] ^ 0x40);  // the field's last tile
     ASSERT_TRUE(write_file_atomic(dir / "s0.share", bad).ok());
   }
   EXPECT_EQ(run_bake({"merge", (dir / "s0.share").string(), (dir / "s1.share").string(), (dir / "s2.share").string(),

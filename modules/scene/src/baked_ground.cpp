@@ -21,13 +21,22 @@ bool is_chunk_file(const std::filesystem::path& file) {
   return static_cast<bool>(in.read(magic, 8)) && std::memcmp(magic, "SYLVACHK", 8) == 0;
 }
 
-Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64_t max_samples) {
+Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64_t max_samples,
+                                  BakedGroundRead* read) {
 #if SYLVA_HAS_TERRAIN
   auto chunks = terrain::ChunkFile::open(file);
   if (!chunks) return chunks.error();
   const int stride = (*chunks)->height_stride(max_samples);
+  const std::uint32_t overview = (*chunks)->height_overview();
+  const bool from_overview = overview != 0 && stride % static_cast<int>(overview) == 0;
+  if (stride > 1 && overview == 0) {
+    log_info("{}: reading every {}th ground sample from all of the field's height tiles (chunk file version {}, "
+             "no overview of its ground): re-baking it with `sylva-bake terrain` makes opening it faster",
+             file.string(), stride, (*chunks)->version());
+  }
   auto field = (*chunks)->read_heights(stride);
   if (!field) return field.error();
+  if (read != nullptr) *read = BakedGroundRead{(*chunks)->height_bytes_read(), from_overview};
   MapGrid grid;
   grid.width = field->columns();
   grid.height = field->rows();
@@ -36,11 +45,13 @@ Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64
   grid.texel_origin = field->origin();
   log_info("{}: the ground is the baked field's heights, {}x{} samples {:.3f} m apart{}", file.string(), grid.width,
            grid.height, grid.texel_size.x,
-           stride > 1 ? fmt::format(" (every {}th sample: the field has more than {} samples)", stride, max_samples)
+           stride > 1 ? fmt::format(" (every {}th sample{}: the field has more than {} samples)", stride,
+                                    from_overview ? ", from its overview" : "", max_samples)
                       : std::string());
   return grid;
 #else
   (void)max_samples;
+  (void)read;
   return make_error(ErrorCode::kUnsupported,
                     fmt::format("{}: a baked chunk file needs the terrain module, which this program was built without",
                                 file.string()));

@@ -16,14 +16,25 @@ namespace sylva::scene {
 bool is_chunk_file(const std::filesystem::path& file);
 
 // Grounds above this many samples are read every 2nd, 4th, ... sample (4097^2 floats = 64 MiB):
-// an 8193^2 bake gives a 4 m ground of a 2 m field, a 16385^2 bake an 8 m one. Why not more: a
-// ground that matches the chunk grid also shades the terrain, and the renderer's height and
-// shape textures of an 8193^2 ground took 15 s to the first frame on llvmpipe (README).
+// an 8193^2 bake gives a 4 m ground of a 2 m field, a 16385^2 bake an 8 m one, both read from
+// the file's overview (terrain/chunk_file.hpp: the bake stores every 2nd/4th/... sample at most
+// 4097^2 once more), so opening reads 64 MiB, not the field's 1 GiB. Why not more: a ground that
+// matches the chunk grid also shades the terrain, and the renderer's height and shape textures of
+// an 8193^2 ground took 15 s to the first frame on llvmpipe (README).
 inline constexpr std::uint64_t kMaxBakedGroundSamples = std::uint64_t{4097} * 4097;
+
+// What reading the ground cost (tests and logs).
+struct BakedGroundRead {
+  std::uint64_t bytes = 0;    // height tile bytes read
+  bool overview = false;      // read from the file's overview
+};
 
 // The file's ground heights [m] as a height grid. Errors name the file (and the height tile):
 // kNotFound, kCorrupt, kUnsupported (another version: "re-bake it with `sylva-bake terrain`", or a
-// program built without the terrain module), kInvalidArgument (a file without heights).
-Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64_t max_samples = kMaxBakedGroundSamples);
+// program built without the terrain module), kInvalidArgument (a file without heights). A
+// version-2 file (no overview) above max_samples is read from every tile, with a log line saying
+// that re-baking makes it faster.
+Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64_t max_samples = kMaxBakedGroundSamples,
+                                  BakedGroundRead* read = nullptr);
 
 }  // namespace sylva::scene

@@ -16,6 +16,7 @@
 #include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/renderer.hpp>
 
+#include "baked_ground.hpp"
 #include "support/gl_support.hpp"
 #ifdef SYLVA_PLAYER_EXE
 #include "run_command.hpp"
@@ -252,7 +253,7 @@ TEST_F(BakedTerrainGl, MissingCorruptAndForeignFilesAreSceneErrorsNamingTheFile)
   write("foreign.sylvaterrain", foreign);
   error.clear();
   EXPECT_FALSE(open_scene(baked.dir.path / "foreign.json", scene_text("foreign.sylvaterrain", 64.0), &error));
-  EXPECT_NE(error.find("foreign.sylvaterrain: chunk file version 1, this build reads version 2"), std::string::npos)
+  EXPECT_NE(error.find("foreign.sylvaterrain: chunk file version 1, this build reads versions 2"), std::string::npos)
       << error;
   EXPECT_NE(error.find("re-bake it with `sylva-bake terrain`"), std::string::npos) << error;
   EXPECT_NE(error.find("terrain.baked_file"), std::string::npos) << error;
@@ -339,6 +340,44 @@ TEST_F(BakedTerrainGl, PlayerStatsReportStreaming) {
               stats["longest_frame_ms"].get<double>());
 }
 #endif
+
+// A baked field above the ground limit: the ground is every n-th sample, read from the file's
+// overview alone (chunk_file.hpp version 3), not from every tile of the field. Small sizes stand
+// in for the real ones: the 513^2 field baked with an overview of at most 129^2 samples (every
+// 4th), read with a ground limit of 129^2 (the scene's is 4097^2 for fields up to 16385^2).
+TEST_F(BakedTerrainGl, AGroundAboveTheLimitIsReadFromTheOverviewOnly) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  Baked baked;
+  ASSERT_TRUE(baked.reference);
+  const HeightField& source = *baked.reference->ground();
+  ASSERT_EQ(source.columns(), 513);
+  terrain::BakeOptions options;
+  options.tree.leaf_dimension = 33;
+  options.overview_max_samples = 129 * 129;
+  const fs::path file = baked.dir.path / "overview.sylvaterrain";
+  ASSERT_TRUE(terrain::bake_chunk_file(source, file, options).ok());
+
+  BakedGroundRead read;
+  auto ground = read_baked_ground(file, 129 * 129, &read);
+  ASSERT_TRUE(ground.ok()) << ground.error().message;
+  EXPECT_TRUE(read.overview);
+  EXPECT_EQ(read.bytes, 129u * 129u * 4u) << "the overview's one tile, none of the field's 9";
+  ASSERT_EQ(ground->width, 129);
+  ASSERT_EQ(ground->height, 129);
+  EXPECT_EQ(ground->texel_size.x, 4.0 * source.spacing());
+  EXPECT_EQ(ground->texel_origin, source.origin());
+  for (int z = 0; z < 129; ++z)
+    for (int x = 0; x < 129; ++x)
+      ASSERT_EQ(ground->values[static_cast<std::size_t>(z) * 129 + static_cast<std::size_t>(x)],
+                source.sample(4 * x, 4 * z)) << x << ", " << z;
+
+  // A limit the overview does not serve (every 2nd sample) reads the field's tiles, silently.
+  auto finer = read_baked_ground(file, 257 * 257, &read);
+  ASSERT_TRUE(finer.ok()) << finer.error().message;
+  EXPECT_FALSE(read.overview);
+  EXPECT_EQ(read.bytes, 513u * 513u * 4u);
+  EXPECT_EQ(finer->values.back(), source.sample(512, 512));
+}
 
 // A user who names only terrain.baked_file: the scene's ground is the baked field (the file
 // carries its heights, chunk_file.hpp version 2), so grass, trees and the camera's above-ground
