@@ -12,12 +12,14 @@
 #include <string>
 #include <unistd.h>
 
+#include "image_files.hpp"
 #include "run_command.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using sylva::test::differing_pixels;
 using sylva::test::RunResult;
 
 RunResult run_editor(const std::string& args) { return sylva::test::run_command(SYLVA_EDITOR_EXE, args); }
@@ -26,22 +28,6 @@ std::size_t cache_files(const fs::path& dir) {
   std::size_t n = 0;
   std::error_code ec;
   for (const auto& e : fs::directory_iterator(dir / "cache", ec)) n += e.path().extension() == ".sylvaterrain" ? 1 : 0;
-  return n;
-}
-
-// Pixels that differ in any channel (all of them when the sizes differ).
-std::size_t differing_pixels(const fs::path& a_file, const fs::path& b_file) {
-  auto a = sylva::read_image(a_file);
-  auto b = sylva::read_image(b_file);
-  if (!a.ok() || !b.ok() || a->width() != b->width() || a->height() != b->height()) return ~std::size_t{0};
-  std::size_t n = 0;
-  for (int y = 0; y < a->height(); ++y)
-    for (int x = 0; x < a->width(); ++x)
-      for (int c = 0; c < a->channels(); ++c)
-        if (a->at(x, y, c) != b->at(x, y, c)) {
-          ++n;
-          break;
-        }
   return n;
 }
 
