@@ -79,6 +79,24 @@ Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::ve
     meshes_[rebuild[k]] = std::move(mesh);
   }
   ChunkTreeBuilder::finish(tree_);
+  // A chunk read from the file later gets its exact height range when it is resolved; until then
+  // its range must still hold its geometry, or the selection could cull it while it shows. Its
+  // heights are the file's; its morph targets lie on coarser levels' surfaces, i.e. within the
+  // range of the ancestor whose mesh is that surface there, which changed only if that ancestor
+  // was rebuilt: widen by the rebuilt ancestors' ranges.
+  std::vector<std::uint8_t> was_rebuilt(tree_.chunk_count(), 0);
+  for (std::uint32_t i : rebuild) was_rebuilt[i] = 1;
+  for (std::uint32_t i = 1; i < tree_.chunk_count(); ++i) {
+    Chunk& c = ChunkTreeBuilder::chunk(tree_, i);
+    if (!c.present || was_rebuilt[i]) continue;
+    for (std::uint32_t a = tree_.parent_index(i);; a = tree_.parent_index(a)) {
+      if (was_rebuilt[a]) {
+        c.min_y = std::min(c.min_y, tree_.chunk(a).min_y);
+        c.max_y = std::max(c.max_y, tree_.chunk(a).max_y);
+      }
+      if (a == 0) break;
+    }
+  }
   // Every rebuilt mesh (of this and earlier edits) takes the new morph data: targets near this
   // edit and bounds anywhere may have changed (a pure function of the grids and bounds, so
   // recomputing an unchanged value gives the same float).

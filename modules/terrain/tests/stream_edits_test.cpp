@@ -110,12 +110,22 @@ TEST(StreamEdits, EveryChunkEqualsTheInMemoryBuildOfTheEditedField) {
   s->wait_idle();
   s->update();
   HeightField edited = b.field;
-  const SampleRect rect = bump(edited, 60, 70, 9, 35.0f);
+  const SampleRect rect = bump(edited, 60, 70, 9, 300.0f);  // far above the field's 120 m relief
   auto changed = s->apply_height_edit(edited, rect.x0, rect.z0, rect.x1, rect.z1);
   ASSERT_TRUE(changed.ok()) << changed.error().describe();
   EXPECT_GT(changed->rebuilt.size(), 4u);
   EXPECT_LT(changed->rebuilt.size(), 60u) << "only the chunks the edit reaches";
   EXPECT_EQ(s->edited_chunks(), changed->rebuilt.size());
+  // Before they are loaded, the chunks' boxes hold their geometry (selection must not cull them).
+  const ChunkTree built = ChunkTree::build(edited, tree_settings()).value();
+  std::size_t widened = 0;
+  for (std::uint32_t i = 0; i < built.chunk_count(); ++i) {
+    if (!built.chunk(i).present) continue;
+    EXPECT_LE(s->tree().chunk(i).min_y, built.chunk(i).min_y) << "chunk " << i;
+    EXPECT_GE(s->tree().chunk(i).max_y, built.chunk(i).max_y) << "chunk " << i;
+    widened += s->tree().chunk(i).max_y > built.chunk(i).max_y ? 1 : 0;
+  }
+  EXPECT_GT(widened, 0u) << "non-resident chunks under rebuilt ancestors";
   expect_streamer_equals_build(*s, edited);
 
   // A second stroke at the padded far corner, with everything resident.
