@@ -46,6 +46,17 @@ std::uint64_t tile_start(int columns, int t) {
   return 128 + std::uint64_t(tiles) * 8 + 8 + 4 * (std::uint64_t(tz) * 256 * columns + std::uint64_t(tx) * 256 * height);
 }
 
+// Bakes `field` as shares 0, 1, 2 of 3 into temporary files named after `stem`.
+std::vector<fs::path> bake_three_shares(const HeightField& field, BakeOptions o, const std::string& stem) {
+  std::vector<fs::path> shares;
+  o.shares = 3;
+  for (o.share = 0; o.share < 3; ++o.share) {
+    shares.push_back(unique_temp(fmt::format("{}_{}.share", stem, o.share)));
+    EXPECT_TRUE(bake_share(field, shares.back(), o).ok());
+  }
+  return shares;
+}
+
 struct Baked {
   HeightField field = test_field();
   fs::path file = unique_temp("heights.sylvaterrain");
@@ -81,14 +92,9 @@ TEST(ChunkFileHeights, ABakeCarriesEverySampleExactlyAndPlacedLikeTheTree) {
 
 TEST(ChunkFileHeights, MergedSharesAndTheInMemorySaveHoldTheSameSection) {
   Baked b;
-  std::vector<fs::path> shares;
+  std::vector<fs::path> shares = bake_three_shares(b.field, options(), "heights");
   BakeOptions o = options();
-  for (int i = 0; i < 3; ++i) {
-    o.share = i;
-    o.shares = 3;
-    shares.push_back(unique_temp(fmt::format("heights_{}.share", i)));
-    ASSERT_TRUE(bake_share(b.field, shares.back(), o).ok());
-  }
+  o.shares = 3;
   const fs::path merged = unique_temp("heights_merged.sylvaterrain");
   auto m = merge_bake_shares(shares, merged);
   ASSERT_TRUE(m.ok()) << m.error().describe();
@@ -206,14 +212,9 @@ TEST(ChunkFileHeights, CoarseGroundsAreReadFromTheOverviewOnlyAndEqualTheStrided
   const fs::path memory = unique_temp("heights_overview_memory.sylvaterrain");
   ASSERT_TRUE(save_chunk_file(memory, *tree, 0, &field, kOverviewLimit).ok());
   EXPECT_TRUE(read_file(memory).value() == read_file(baked).value());
-  std::vector<fs::path> shares;
+  const std::vector<fs::path> shares = bake_three_shares(field, overview_options(), "heights_overview");
   BakeOptions o = overview_options();
-  for (int i = 0; i < 3; ++i) {
-    o.share = i;
-    o.shares = 3;
-    shares.push_back(unique_temp(fmt::format("heights_overview_{}.share", i)));
-    ASSERT_TRUE(bake_share(field, shares.back(), o).ok());
-  }
+  o.shares = 3;
   const fs::path merged = unique_temp("heights_overview_merged.sylvaterrain");
   auto m = merge_bake_shares(shares, merged);
   ASSERT_TRUE(m.ok()) << m.error().describe();
