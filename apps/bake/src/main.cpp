@@ -27,10 +27,10 @@ int main(int argc, char** argv) {
     std::cout << sylva::bake::bake_usage();
     return 0;
   }
-  // The raster is read whole in one request (core/elevation_raster.hpp), so GDAL's block cache
-  // (by default 5 % of the RAM: 1.2 GB on a 24 GB machine) would only hold a second copy of the
-  // blocks it read: at 16385^2 that alone takes the bake past its 2 GiB budget (terrain README,
-  // "Baking"). 64 MB unless the user set GDAL_CACHEMAX.
+  // read_elevation drops GDAL's cached blocks after each row of blocks, but within one row GDAL
+  // keeps up to GDAL_CACHEMAX (by default 5 % of the RAM: 1.2 GB on a 24 GB machine) of blocks
+  // it has already copied out, a second copy of the samples nothing reads again (terrain README,
+  // "Baking": the 2 GiB budget). 64 MB unless the user set GDAL_CACHEMAX.
   ::setenv("GDAL_CACHEMAX", "64", 0);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);

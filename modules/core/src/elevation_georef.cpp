@@ -1,5 +1,7 @@
 #include "elevation_georef.hpp"
 
+#include <sylva/core/assert.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -36,10 +38,10 @@ void resampled_size(int columns, int rows, double sx, double sz, double spacing,
   out_rows = static_cast<int>(std::lround((rows - 1) * sz / spacing)) + 1;
 }
 
-std::vector<float> resample_square(const std::vector<float>& values, int columns, int rows, double sx, double sz,
-                                   double spacing, int& out_columns, int& out_rows) {
-  resampled_size(columns, rows, sx, sz, spacing, out_columns, out_rows);
-  std::vector<float> out(static_cast<std::size_t>(out_columns) * static_cast<std::size_t>(out_rows));
+void resample_square(const std::vector<float>& values, int columns, int rows, double sx, double sz, double spacing,
+                     int out_columns, int out_rows, std::vector<float>& out) {
+  SYLVA_ASSERT(out.size() == static_cast<std::size_t>(out_columns) * static_cast<std::size_t>(out_rows),
+               "resample_square: {} values for {}x{}", out.size(), out_columns, out_rows);
   auto at = [&](int i, int j) {
     return values[static_cast<std::size_t>(j) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(i)];
   };
@@ -59,7 +61,6 @@ std::vector<float> resample_square(const std::vector<float>& values, int columns
           static_cast<float>(top * (1.0 - fz) + bottom * fz);
     }
   }
-  return out;
 }
 
 }  // namespace sylva::detail

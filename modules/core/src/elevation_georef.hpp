@@ -22,11 +22,12 @@ struct MetricSpacing {
 MetricSpacing geographic_spacing(double dlon_deg, double dlat_deg, double lat_deg, double a, double inv_f);
 
 // Bilinear resampling of a columns x rows grid with spacings (sx, sz) to square samples at
-// `spacing`, covering the same extent to within half a sample. Output size in out_columns/rows.
-std::vector<float> resample_square(const std::vector<float>& values, int columns, int rows, double sx, double sz,
-                                   double spacing, int& out_columns, int& out_rows);
+// `spacing`, covering the same extent to within half a sample, into `out` (out_columns x
+// out_rows from resampled_size, sized by the caller: the HeightField's own array).
+void resample_square(const std::vector<float>& values, int columns, int rows, double sx, double sz, double spacing,
+                     int out_columns, int out_rows, std::vector<float>& out);
 
-// Output size of resample_square without doing it (for the limit check before allocating).
+// Output size of resample_square (for the limit check before allocating).
 void resampled_size(int columns, int rows, double sx, double sz, double spacing, int& out_columns, int& out_rows);
 
 }  // namespace sylva::detail

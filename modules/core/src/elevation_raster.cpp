@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <numbers>
@@ -62,9 +64,9 @@ Status check_size(const std::string& name, int columns, int rows, const Elevatio
   return {};
 }
 
-// Samples as read, before heights, nodata and resampling.
+// The samples' description, before heights, nodata and resampling (the samples themselves are
+// read straight into their final array: see read_heights).
 struct RawGrid {
-  std::vector<float> values;
   int columns = 0;
   int rows = 0;
   bool has_nodata = false;
@@ -75,61 +77,102 @@ struct RawGrid {
   double spacing_z = 0.0;
 };
 
-// Heights, nodata policy, square spacing, and the HeightField (shared by both readers).
-Result<ElevationRaster> finish(const std::string& name, RawGrid raw, ElevationRaster info, const ElevationReadOptions& o) {
-  std::vector<std::uint8_t> valid(raw.values.size(), 1);
+// Fills `values` (columns * rows, row 0 north) with the stored values.
+using SampleReader = std::function<Status(std::vector<float>& values)>;
+
+// The HeightField's size and spacing, known from the header before any pixel is read.
+struct SquareLayout {
+  int columns = 0;
+  int rows = 0;
+  double spacing = 1.0;
+  bool resample = false;  // non-square pixels: read into a second array, resampled into the field
+};
+
+Result<SquareLayout> square_layout(const std::string& name, const RawGrid& raw, const ElevationReadOptions& o) {
+  SquareLayout layout{raw.columns, raw.rows, o.spacing, false};
+  if (layout.spacing <= 0.0 && raw.spacing_x > 0.0) {
+    layout.spacing = std::min(raw.spacing_x, raw.spacing_z);
+    if (std::abs(raw.spacing_x - raw.spacing_z) > 1e-9 * layout.spacing) {
+      // HeightField has one spacing; resample to the finer one so no detail is lost.
+      detail::resampled_size(raw.columns, raw.rows, raw.spacing_x, raw.spacing_z, layout.spacing, layout.columns,
+                             layout.rows);
+      SYLVA_TRY(check_size(name, layout.columns, layout.rows, o, "resampled to square samples is"));
+      layout.resample = true;
+    }
+  } else if (layout.spacing <= 0.0) {
+    layout.spacing = o.plain_extent > 0.0 ? o.plain_extent / (raw.columns - 1) : 1.0;
+  }
+  return layout;
+}
+
+// Stored values to heights in metres, in place; then the nodata policy. Returns the count filled.
+Result<std::size_t> heights_in_metres(const std::string& name, std::vector<float>& values, const RawGrid& raw,
+                                      const ElevationReadOptions& o) {
+  // An unusable sample becomes NaN (every usable height is finite), so the mask the fill needs
+  // is made only when there is something to fill, and only for as long as the fill runs.
   std::size_t invalid = 0, first_bad = 0;
-  for (std::size_t k = 0; k < raw.values.size(); ++k) {
-    const float v = raw.values[k];
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const float v = values[k];
     const double metres = static_cast<double>(v) * raw.scale + raw.offset;
     // A value that leaves float range once scaled is as unusable as NaN (cf. c901c22).
     if ((raw.has_nodata && v == raw.nodata) || !std::isfinite(static_cast<float>(metres))) {
       if (invalid++ == 0) first_bad = k;
-      valid[k] = 0;
+      values[k] = std::numeric_limits<float>::quiet_NaN();
       continue;
     }
-    raw.values[k] = static_cast<float>(metres);
+    values[k] = static_cast<float>(metres);
   }
+  if (invalid == 0) return std::size_t{0};
   const std::string what_nodata = raw.has_nodata ? fmt::format("nodata ({}) or NaN/Inf", raw.nodata) : "NaN/Inf";
-  if (invalid == raw.values.size()) {
+  if (invalid == values.size()) {
     return make_error(ErrorCode::kInvalidArgument,
                       fmt::format("{}: all {} samples are {}; there is no height to show", name, invalid, what_nodata));
   }
-  if (invalid > 0) {
-    const auto cols = static_cast<std::size_t>(raw.columns);
-    if (o.nodata == NodataPolicy::kRefuse) {
-      return make_error(ErrorCode::kInvalidArgument,
-                        fmt::format("{}: {} of {} samples are {}, the first at column {} row {} (nodata = refuse; "
-                                    "\"fill\" fills them from the nearest valid samples)",
-                                    name, invalid, raw.values.size(), what_nodata, first_bad % cols, first_bad / cols));
-    }
-    info.nodata_filled = fill_nodata(raw.values, valid, raw.columns, raw.rows);
-    log_warn("{}: filled {} {} samples of {} from the nearest valid ones, smoothed", name, info.nodata_filled,
-             what_nodata, raw.values.size());
+  const auto cols = static_cast<std::size_t>(raw.columns);
+  if (o.nodata == NodataPolicy::kRefuse) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: {} of {} samples are {}, the first at column {} row {} (nodata = refuse; "
+                                  "\"fill\" fills them from the nearest valid samples)",
+                                  name, invalid, values.size(), what_nodata, first_bad % cols, first_bad / cols));
   }
+  std::vector<std::uint8_t> valid(values.size());
+  for (std::size_t k = 0; k < values.size(); ++k) valid[k] = std::isnan(values[k]) ? 0 : 1;
+  const std::size_t filled = fill_nodata(values, valid, raw.columns, raw.rows);
+  log_warn("{}: filled {} {} samples of {} from the nearest valid ones, smoothed", name, filled, what_nodata,
+           values.size());
+  return filled;
+}
+
+// Heights, nodata policy, square spacing, and the HeightField (shared by both readers). Square
+// samples are read straight into the HeightField's own array, so a raster is held once (the
+// largest allocation of a raster bake, terrain README "Baking"); non-square ones need the
+// source array and the resampled field side by side.
+Result<ElevationRaster> read_heights(const std::string& name, const RawGrid& raw, ElevationRaster info,
+                                     const ElevationReadOptions& o, const SampleReader& read_samples) {
+  auto layout = square_layout(name, raw, o);
+  if (!layout.ok()) return layout.error();
   info.source_columns = raw.columns;
   info.source_rows = raw.rows;
   info.source_spacing_x = raw.spacing_x;
   info.source_spacing_z = raw.spacing_z;
-
-  int columns = raw.columns, rows = raw.rows;
-  double spacing = o.spacing;
-  if (spacing <= 0.0 && raw.spacing_x > 0.0) {
-    spacing = std::min(raw.spacing_x, raw.spacing_z);
-    if (std::abs(raw.spacing_x - raw.spacing_z) > 1e-9 * spacing) {
-      // HeightField has one spacing; resample to the finer one so no detail is lost.
-      detail::resampled_size(raw.columns, raw.rows, raw.spacing_x, raw.spacing_z, spacing, columns, rows);
-      SYLVA_TRY(check_size(name, columns, rows, o, "resampled to square samples is"));
-      raw.values = detail::resample_square(raw.values, raw.columns, raw.rows, raw.spacing_x, raw.spacing_z, spacing,
-                                           columns, rows);
-      log_info("{}: non-square samples ({:.3f} x {:.3f} m) resampled from {}x{} to {}x{} at {:.3f} m", name,
-               raw.spacing_x, raw.spacing_z, raw.columns, raw.rows, columns, rows, spacing);
-    }
-  } else if (spacing <= 0.0) {
-    spacing = o.plain_extent > 0.0 ? o.plain_extent / (raw.columns - 1) : 1.0;
+  if (!layout->resample) {
+    info.field = HeightField(layout->columns, layout->rows, layout->spacing);
+    SYLVA_TRY(read_samples(info.field.samples()));
+    auto filled = heights_in_metres(name, info.field.samples(), raw, o);
+    if (!filled.ok()) return filled.error();
+    info.nodata_filled = *filled;
+  } else {
+    std::vector<float> source(static_cast<std::size_t>(raw.columns) * static_cast<std::size_t>(raw.rows));
+    SYLVA_TRY(read_samples(source));
+    auto filled = heights_in_metres(name, source, raw, o);
+    if (!filled.ok()) return filled.error();
+    info.nodata_filled = *filled;
+    info.field = HeightField(layout->columns, layout->rows, layout->spacing);
+    detail::resample_square(source, raw.columns, raw.rows, raw.spacing_x, raw.spacing_z, layout->spacing,
+                            layout->columns, layout->rows, info.field.samples());
+    log_info("{}: non-square samples ({:.3f} x {:.3f} m) resampled from {}x{} to {}x{} at {:.3f} m", name,
+             raw.spacing_x, raw.spacing_z, raw.columns, raw.rows, layout->columns, layout->rows, layout->spacing);
   }
-  info.field = HeightField(columns, rows, spacing);
-  info.field.samples() = std::move(raw.values);
   info.field.update_range();
   return info;
 }
@@ -153,10 +196,6 @@ Result<ElevationRaster> read_plain(const fs::path& file, const ElevationReadOpti
   raw.columns = image->width();
   raw.rows = image->height();
   SYLVA_TRY(check_size(name, raw.columns, raw.rows, o, "image is"));
-  raw.values.resize(image->pixel_count());
-  for (int y = 0; y < raw.rows; ++y) {
-    for (int x = 0; x < raw.columns; ++x) raw.values[static_cast<std::size_t>(y) * raw.columns + x] = image->at(x, y, 0);
-  }
   raw.scale = o.height_scale != 0.0 ? o.height_scale : 1.0;
   raw.offset = o.height_offset;
   if (o.height_scale == 0.0) {
@@ -166,7 +205,12 @@ Result<ElevationRaster> read_plain(const fs::path& file, const ElevationReadOpti
   }
   ElevationRaster info;
   info.reader = "OpenImageIO";
-  return finish(name, std::move(raw), std::move(info), o);
+  return read_heights(name, raw, std::move(info), o, [&](std::vector<float>& values) {
+    for (int y = 0; y < raw.rows; ++y) {
+      for (int x = 0; x < raw.columns; ++x) values[static_cast<std::size_t>(y) * raw.columns + x] = image->at(x, y, 0);
+    }
+    return ok_status();
+  });
 }
 
 // Spacing in metres from the geotransform and coordinate system; logs how it was found.
@@ -211,6 +255,35 @@ Status georeferenced_spacing(const std::string& name, const double gt[6], OGRSpa
   return {};
 }
 
+// Band 1 into `values` (row 0 north, column 0 west), one row of blocks at a time, dropping the
+// blocks from GDAL's cache after each: GDAL would otherwise keep a second copy of every block it
+// read, up to GDAL_CACHEMAX (by default 5 % of the RAM; 1.2 GB on a 24 GB machine), which at
+// 16385^2 alone would take a bake past its 2 GiB budget whatever the caller set.
+Status read_band(const std::string& name, GDALDatasetH ds, GDALRasterBandH band, int columns, int rows,
+                 bool flip_rows, bool flip_columns, std::vector<float>& values) {
+  int block_columns = 0, block_rows = 0;
+  GDALGetBlockSize(band, &block_columns, &block_rows);
+  const int strip = std::clamp(block_rows, 1, rows);
+  // Rows run north to south and columns west to east in the file when the pixel size is
+  // negative/positive; negative strides keep row 0 north and column 0 west otherwise.
+  const auto cols = static_cast<GSpacing>(columns);
+  const GSpacing pixel = flip_columns ? -static_cast<GSpacing>(sizeof(float)) : static_cast<GSpacing>(sizeof(float));
+  const GSpacing line = (flip_rows ? -cols : cols) * static_cast<GSpacing>(sizeof(float));
+  CPLErrorReset();
+  for (int y = 0; y < rows; y += strip) {
+    const int count = std::min(strip, rows - y);
+    float* start = values.data() + (flip_rows ? rows - 1 - y : y) * cols + (flip_columns ? cols - 1 : 0);
+    const CPLErr read = GDALRasterIOEx(band, GF_Read, 0, y, columns, count, start, columns, count, GDT_Float32, pixel,
+                                       line, nullptr);
+    if (read != CE_None || CPLGetLastErrorType() >= CE_Failure) {
+      return make_error(ErrorCode::kCorrupt,
+                        fmt::format("{}: truncated or corrupt raster data ({})", name, gdal_message()));
+    }
+    GDALFlushCache(ds);
+  }
+  return ok_status();
+}
+
 Result<ElevationRaster> read_gdal(const std::string& name, GDALDatasetH ds, const double gt[6], bool has_gt,
                                   OGRSpatialReferenceH srs, const ElevationReadOptions& o) {
   RawGrid raw;
@@ -247,21 +320,10 @@ Result<ElevationRaster> read_gdal(const std::string& name, GDALDatasetH ds, cons
     raw.offset = GDALGetRasterOffset(band, nullptr) * *metres + o.height_offset;
   }
 
-  raw.values.resize(static_cast<std::size_t>(raw.columns) * static_cast<std::size_t>(raw.rows));
-  // Rows run north to south and columns west to east in the file when the pixel size is
-  // negative/positive; negative strides keep row 0 north and column 0 west otherwise.
   const bool flip_rows = has_gt && gt[5] > 0.0, flip_columns = has_gt && gt[1] < 0.0;
-  const auto cols = static_cast<GSpacing>(raw.columns);
-  float* start = raw.values.data() + (flip_rows ? (raw.rows - 1) * cols : 0) + (flip_columns ? cols - 1 : 0);
-  const GSpacing pixel = flip_columns ? -static_cast<GSpacing>(sizeof(float)) : static_cast<GSpacing>(sizeof(float));
-  const GSpacing line = (flip_rows ? -cols : cols) * static_cast<GSpacing>(sizeof(float));
-  CPLErrorReset();
-  const CPLErr read = GDALRasterIOEx(band, GF_Read, 0, 0, raw.columns, raw.rows, start, raw.columns, raw.rows,
-                                     GDT_Float32, pixel, line, nullptr);
-  if (read != CE_None || CPLGetLastErrorType() >= CE_Failure) {
-    return make_error(ErrorCode::kCorrupt, fmt::format("{}: truncated or corrupt raster data ({})", name, gdal_message()));
-  }
-  return finish(name, std::move(raw), std::move(info), o);
+  return read_heights(name, raw, std::move(info), o, [&](std::vector<float>& values) {
+    return read_band(name, ds, band, raw.columns, raw.rows, flip_rows, flip_columns, values);
+  });
 }
 
 }  // namespace

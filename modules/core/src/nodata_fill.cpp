@@ -2,10 +2,29 @@
 #include <sylva/core/assert.hpp>
 #include <sylva/core/elevation_raster.hpp>
 
+#include <algorithm>
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace sylva {
+namespace {
+
+// A valid sample with an invalid one among its 8 neighbours.
+bool beside_a_hole(const std::vector<std::uint8_t>& valid, std::size_t k, int columns, int rows) {
+  const int i = static_cast<int>(k % static_cast<std::size_t>(columns));
+  const int j = static_cast<int>(k / static_cast<std::size_t>(columns));
+  for (int z = std::max(j - 1, 0); z <= std::min(j + 1, rows - 1); ++z) {
+    for (int x = std::max(i - 1, 0); x <= std::min(i + 1, columns - 1); ++x) {
+      if (!valid[static_cast<std::size_t>(z) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(x)]) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+}  // namespace
 
 std::size_t fill_nodata(std::vector<float>& values, const std::vector<std::uint8_t>& valid, int columns, int rows) {
   const std::size_t n = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
@@ -14,15 +33,19 @@ std::size_t fill_nodata(std::vector<float>& values, const std::vector<std::uint8
   // Breadth-first flood from every valid sample at once: each hole sample takes the value of the
   // neighbour that reached it first, so it carries the value of a nearest valid sample (in
   // 8-neighbour steps). O(n), unlike repeated neighbour averaging, which needs one pass over the
-  // whole grid per sample of hole radius.
-  std::vector<std::size_t> queue;
-  queue.reserve(n);
+  // whole grid per sample of hole radius. Only valid samples beside a hole are queued: the others
+  // have no unknown neighbour, so taking them out of the queue changes nothing (same order, same
+  // result) and the queue holds the holes and their borders instead of 8 bytes per sample.
   std::vector<std::uint8_t> known = valid;
-  std::vector<std::size_t> holes;
+  std::vector<std::size_t> queue;
+  bool any_valid = false;
   for (std::size_t k = 0; k < n; ++k) {
-    if (valid[k]) queue.push_back(k);
+    if (!valid[k]) continue;
+    any_valid = true;
+    if (beside_a_hole(valid, k, columns, rows)) queue.push_back(k);
   }
-  SYLVA_ASSERT(!queue.empty(), "fill_nodata: no valid sample in {}x{}", columns, rows);
+  SYLVA_ASSERT(any_valid, "fill_nodata: no valid sample in {}x{}", columns, rows);
+  const std::size_t seeds = queue.size();
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::size_t k = queue[head];
     const int i = static_cast<int>(k % static_cast<std::size_t>(columns));
@@ -36,10 +59,12 @@ std::size_t fill_nodata(std::vector<float>& values, const std::vector<std::uint8
         known[m] = 1;
         values[m] = values[k];
         queue.push_back(m);
-        holes.push_back(m);
       }
     }
   }
+  known = {};
+  // The holes, in the order the flood reached them.
+  const std::span<const std::size_t> holes(queue.data() + seeds, queue.size() - seeds);
   // The flood leaves flat Voronoi terraces with steps where two nearest samples meet; a few 3x3
   // means over the filled samples only round them off. Valid samples are never changed.
   std::vector<float> next(holes.size());

@@ -135,6 +135,75 @@ TEST(ElevationRaster, NodataIsFilledFromTheNearestValidSamplesWithAWarning) {
   EXPECT_NE(refused.error().message.find("10 of 256"), std::string::npos) << refused.error().message;
 }
 
+// Golden values: what the reader gave before it read the samples straight into the HeightField
+// and seeded the nodata flood with the holes' borders only (issue 15, raster bake memory). Both
+// changes are meant to keep every height bit for bit.
+TEST(ElevationRaster, FilledHeightsAreUnchangedBitForBit) {
+  auto spec = ramp(12, 10);
+  spec.type = GDT_Float32;
+  spec.nodata = -9999.0;
+  std::vector<int> holes;
+  for (int j = 3; j < 6; ++j)
+    for (int i = 4; i < 8; ++i) holes.push_back(j * 12 + i);
+  holes.push_back(0);
+  holes.push_back(9 * 12 + 11);
+  for (int k : holes) spec.values[static_cast<std::size_t>(k)] = -9999.0;
+  spec.values[2 * 12 + 10] = std::numeric_limits<double>::quiet_NaN();
+  holes.push_back(2 * 12 + 10);
+  const fs::path file = temp("golden_fill.tif");
+  test::write_geotiff(file, spec);
+  ElevationReadOptions o;
+  o.height_scale = 0.37;
+  o.height_offset = 12.5;
+  auto r = read_elevation(file, o);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  ASSERT_EQ(r->nodata_filled, holes.size());
+  // In the order of `holes`, printed with %.9g (exact for floats) by the code before the change.
+  const float golden[] = {51.7035828f, 52.8040466f, 53.9147987f, 55.0348015f, 50.956768f,  52.0532761f,
+                          53.164341f,  54.2884941f, 50.2235641f, 51.3240166f, 52.4347725f, 53.5547867f,
+                          49.7466812f, 54.8033295f, 59.1199989f};
+  for (std::size_t h = 0; h < holes.size(); ++h) {
+    EXPECT_EQ(r->field.samples()[static_cast<std::size_t>(holes[h])], golden[h]) << "sample " << holes[h];
+  }
+  for (int j = 0; j < 10; ++j) {
+    for (int i = 0; i < 12; ++i) {
+      if (std::find(holes.begin(), holes.end(), j * 12 + i) != holes.end()) continue;
+      ASSERT_EQ(r->field.sample(i, j), static_cast<float>((100.0 + 3.0 * i - 2.0 * j) * 0.37 + 12.5)) << i << "," << j;
+    }
+  }
+}
+
+// The reader reads a row of blocks at a time into the HeightField (GDAL's cache dropped between
+// rows): a south-up, east-to-west raster of 16-row tiles, 3 rows of them with a partial last
+// one, comes out north-up and west-to-east with every sample in place and the nodata across
+// the tile rows filled.
+TEST(ElevationRaster, RowsOfBlocksOfAFlippedTiledRasterLandInPlace) {
+  auto spec = ramp(40, 37);
+  spec.type = GDT_Float32;
+  spec.pixel_x = spec.pixel_y = -30.0;  // gt[1] < 0: east to west; gt[5] > 0: south up
+  spec.nodata = -9999.0;
+  spec.options = {"TILED=YES", "BLOCKXSIZE=16", "BLOCKYSIZE=16"};
+  for (int j = 14; j < 18; ++j) spec.values[static_cast<std::size_t>(j) * 40 + 20] = -9999.0;
+  const fs::path file = temp("flipped_tiles.tif");
+  test::write_geotiff(file, spec);
+  auto r = read_elevation(file);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  ASSERT_EQ(r->field.columns(), 40);
+  ASSERT_EQ(r->field.rows(), 37);
+  EXPECT_EQ(r->nodata_filled, 4u);
+  for (int j = 0; j < 37; ++j) {
+    for (int i = 0; i < 40; ++i) {
+      const int file_i = 39 - i, file_j = 36 - j;
+      const float v = r->field.sample(i, j);
+      if (file_i == 20 && file_j >= 14 && file_j < 18) {
+        EXPECT_NEAR(v, 100.0f + 3.0f * file_i - 2.0f * file_j, 6.0f) << i << "," << j;
+        continue;
+      }
+      ASSERT_EQ(v, 100.0f + 3.0f * file_i - 2.0f * file_j) << i << "," << j;
+    }
+  }
+}
+
 TEST(ElevationRaster, FillCarriesTheNearestValidHeightsIntoLargeHoles) {
   // West half 100 m, east half 300 m, a 20x20 hole across the edge: smoothing alone would leave
   // the hole's middle far from both; the flood gives each side its nearest height.
