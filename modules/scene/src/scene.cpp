@@ -188,12 +188,13 @@ Result<std::unique_ptr<ModuleInstance>> Scene::create_module(const ModuleSection
 
 namespace {
 
-// Sections a scene opens without when they fail to build (issue 16, "Bad input": a plant file
-// that fails leaves the plants out with a warning, the rest of the scene opens). The ground
-// sections and the voxel world are the scene itself; vegetation leaves out a failing species
-// on its own and fails only when none is left. A left-out section has no instance; setting one
-// of its parameters (the editor, --set) or reloading its files builds it again.
-bool left_out_when_failing(std::string_view section) { return section == "grass"; }
+// Sections a scene opens without when they fail to build (ModuleDescriptor::left_out_on_failure;
+// issue 16, "Bad input"). A left-out section has no instance; setting one of its parameters (the
+// editor, --set) or reloading its files builds it again.
+bool left_out_when_failing(std::string_view section) {
+  const ModuleDescriptor* d = find_module(section);
+  return d != nullptr && d->left_out_on_failure;
+}
 
 void warn_left_out(std::string_view section, const Error& error) {
   log_warn("{}; the {} section is left out of the scene until this is fixed", error.message, section);

@@ -775,6 +775,7 @@ ModuleDescriptor grass_module() {
   d.name = "grass";
   d.description = "tessellated grass blades with physics and a billboard/ground far field (seeds 001, 003)";
   d.needs_ground = true;
+  d.left_out_on_failure = true;  // a bad control, tint, mesh or density file: the scene opens without grass
   d.make_settings = [] { return std::make_unique<Settings>(std::vector<MapSlot>{kDensitySlot, kHeightSlot, kTintSlots[0], kTintSlots[1],
                                                                              kTintSlots[2], kControlSlot, kTintFileSlot}, &check_grass); };
   d.create = &GrassInstance::create;

@@ -32,6 +32,9 @@ struct ModuleDescriptor {
   std::string description;   // one line for --list-modules and the editor
   bool provides_ground = false;  // builds the scene's ground height field (terrain, ground)
   bool needs_ground = false;     // stands on the ground (grass, vegetation)
+  // When create() fails, the scene opens without the section and logs the error (issue 16: a
+  // plant file that fails leaves the plants out with a warning); Scene::left_out says so.
+  bool left_out_on_failure = false;
   std::function<std::unique_ptr<ModuleSettings>()> make_settings;
   // Ground providers only: the height source their settings describe (the scene builds the one
   // ground HeightField from it and the section's "height" map before creating any module).

@@ -91,7 +91,7 @@ class Scene {
   const std::vector<std::unique_ptr<ModuleInstance>>& modules() const { return modules_; }
   ModuleInstance* module(std::string_view name);
   // True when the document has the section but it failed to build and the scene opened without
-  // it (only "grass": a plant file that fails leaves the plants out with a warning, issue 16).
+  // it (modules with ModuleDescriptor::left_out_on_failure: grass, issue 16).
   // Setting one of its parameters or reloading its files builds it again.
   bool left_out(std::string_view name) const;
   // The scene's ground (null when it lists neither terrain nor ground).
