@@ -1,6 +1,7 @@
 #include <sylva/terrain/water.hpp>
 
 #include <sylva/core/log.hpp>
+#include <sylva/render/blend_state.hpp>
 #include <sylva/render/gpu_memory.hpp>
 
 #include <cmath>
@@ -134,27 +135,16 @@ void WaterRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   if (stats_.scene_depth) depth_copy_.depth_texture().bind(kDepthUnit);
 
   // out = src0 + dst x src1 (dual-source blending), depth tested, not written.
-  const GLboolean blend = glIsEnabled(GL_BLEND);
-  const GLboolean cull = glIsEnabled(GL_CULL_FACE);
-  GLboolean depth_mask = GL_TRUE;
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
-  GLint src_rgb = GL_ONE, dst_rgb = GL_ZERO, src_alpha = GL_ONE, dst_alpha = GL_ZERO;
-  glGetIntegerv(GL_BLEND_SRC_RGB, &src_rgb);
-  glGetIntegerv(GL_BLEND_DST_RGB, &dst_rgb);
-  glGetIntegerv(GL_BLEND_SRC_ALPHA, &src_alpha);
-  glGetIntegerv(GL_BLEND_DST_ALPHA, &dst_alpha);
-  glEnable(GL_BLEND);
-  glBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ZERO, GL_ONE);
-  glDisable(GL_CULL_FACE);
-  glDepthMask(GL_FALSE);
-  vao_.bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glDepthMask(depth_mask);
-  glBlendFuncSeparate(static_cast<GLenum>(src_rgb), static_cast<GLenum>(dst_rgb), static_cast<GLenum>(src_alpha),
-                      static_cast<GLenum>(dst_alpha));
-  if (!blend) glDisable(GL_BLEND);
-  if (cull) glEnable(GL_CULL_FACE);
+  {
+    const render::SavedBlendState saved;
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_SRC1_COLOR, GL_ZERO, GL_ONE);
+    glDisable(GL_CULL_FACE);
+    glDepthMask(GL_FALSE);
+    vao_.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindVertexArray(0);
+  }
   stats.draw_calls += 1;
   stats.triangles += 1;
   stats_.drawn = true;

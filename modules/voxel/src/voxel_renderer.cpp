@@ -2,6 +2,7 @@
 
 #include <sylva/core/assert.hpp>
 #include <sylva/core/log.hpp>
+#include <sylva/render/blend_state.hpp>
 #include <sylva/render/frustum.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/voxel/block_textures.hpp>
@@ -656,7 +657,8 @@ void VoxelRenderer::sort_translucent(ChunkGpu& gpu, const glm::dvec3& eye) {
   if (cell == gpu.sorted_for) return;
   gpu.sorted_for = cell;
   const glm::vec3 e(local);
-  std::vector<std::pair<float, PackedQuad>> keyed(gpu.translucent.size());
+  std::vector<std::pair<float, PackedQuad>>& keyed = sort_keys_;
+  keyed.resize(gpu.translucent.size());
   for (std::size_t i = 0; i < keyed.size(); ++i) {
     const glm::vec3 d = quad_centre(gpu.translucent[i]) - e;
     keyed[i] = {glm::dot(d, d), gpu.translucent[i]};
@@ -680,15 +682,7 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   vao_.bind();
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
-  const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
-  const GLboolean blend_was = glIsEnabled(GL_BLEND);
-  GLboolean depth_mask_was = GL_TRUE;
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_was);
-  GLint blend_was_func[4] = {GL_ONE, GL_ZERO, GL_ONE, GL_ZERO};
-  glGetIntegerv(GL_BLEND_SRC_RGB, &blend_was_func[0]);
-  glGetIntegerv(GL_BLEND_DST_RGB, &blend_was_func[1]);
-  glGetIntegerv(GL_BLEND_SRC_ALPHA, &blend_was_func[2]);
-  glGetIntegerv(GL_BLEND_DST_ALPHA, &blend_was_func[3]);
+  const render::SavedBlendState saved;
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_BACK);
@@ -714,11 +708,6 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
     stats_.quads_drawn += gpu->translucent_quads;
     stats_.translucent_quads_drawn += gpu->translucent_quads;
   }
-  glDepthMask(depth_mask_was);
-  glBlendFuncSeparate(static_cast<GLenum>(blend_was_func[0]), static_cast<GLenum>(blend_was_func[1]),
-                      static_cast<GLenum>(blend_was_func[2]), static_cast<GLenum>(blend_was_func[3]));
-  if (!blend_was) glDisable(GL_BLEND);
-  if (!cull_was) glDisable(GL_CULL_FACE);
   restore_block(light_block);
   restore_block(shadow_block);
 }

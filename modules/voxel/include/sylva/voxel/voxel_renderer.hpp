@@ -54,6 +54,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace sylva::voxel {
@@ -242,6 +243,7 @@ class VoxelRenderer final : public render::Drawable {
   std::uint64_t mesh_epoch_ = ~std::uint64_t{0};
   std::uint64_t plant_epoch_ = ~std::uint64_t{0};
   std::vector<ChunkGpu*> visible_;
+  std::vector<std::pair<float, PackedQuad>> sort_keys_;  // sort_translucent's scratch, kept between frames
   glm::vec2 fade_{0.0f};      // fade start / end [blocks] this frame
   double lowest_block_ = 0.0; // world y of the lowest loaded chunk's bottom (the skirt's height)
   std::vector<glm::vec4> light_pos_;    // camera-relative xyz
