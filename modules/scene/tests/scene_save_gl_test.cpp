@@ -7,6 +7,8 @@
 #include <sylva/render/testing.hpp>
 #include <sylva/scene/scene.hpp>
 
+#include "scene_test_files.hpp"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -43,15 +45,7 @@ class SceneSaveGl : public render::GlTest {
     fs::remove_all(dir_, ec);
     render::GlTest::TearDown();
   }
-  static std::unique_ptr<Scene> reopen(const fs::path& file) {
-    std::vector<std::string> warnings;
-    auto doc = SceneDocument::load(file, warnings);
-    EXPECT_TRUE(doc.ok()) << doc.error().message;
-    if (!doc.ok()) return nullptr;
-    auto scene = Scene::create(std::move(*doc));
-    EXPECT_TRUE(scene.ok()) << scene.error().message;
-    return scene.ok() ? std::move(*scene) : nullptr;
-  }
+  static std::unique_ptr<Scene> reopen(const fs::path& file) { return sylva::scene::testing::open_scene_file(file); }
   static void paint(Scene& scene, float value) {
     SceneMap* map = scene.map("ground.height");
     ASSERT_NE(map, nullptr);
