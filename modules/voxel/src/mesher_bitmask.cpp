@@ -307,10 +307,11 @@ class BitmaskMesher final : public Mesher {
           rows_[k * 64 + static_cast<std::size_t>(r)] |= bits;
           used_[k] |= std::uint64_t{1} << r;
         };
-        // One face at bit b: special blocks; AO open (kOpen), from the neighbourhood table
-        // (kTable) or, for faces on an edge bit, from the padding blocks (kEdge).
+        // One face at bit b: special blocks; AO open (kOpen), the neighbourhood table's entry
+        // `table` (kTable, see ao_entry()) or, for faces on an edge bit, from the padding blocks
+        // (kEdge).
         enum Ao { kOpen, kTable, kEdge };
-        auto one = [&](int b, Ao mode) __attribute__((always_inline)) {
+        auto one = [&](int b, Ao mode, std::uint32_t table = 0) __attribute__((always_inline)) {
           const int idx = row_base + b * bit_stride;
           const BlockId self = ids[idx];
           const std::uint8_t f = flags[self];
@@ -322,11 +323,8 @@ class BitmaskMesher final : public Mesher {
           std::uint32_t aob = 0xffu;  // all four corners open
           bool uniform = true;
           if (mode == kTable) {
-            // Bits b - 1, b, b + 1 of the three rows index the AO table (b is not an edge bit).
-            const int sh = b - 1;
-            const std::uint32_t e = ao_table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
-            aob = e & 0xffu;
-            uniform = (e & 0x100u) != 0;
+            aob = table & 0xffu;
+            uniform = (table & 0x100u) != 0;
           } else if (mode == kEdge) {
             aob = edge_ao.face_bits(idx, F);
             uniform = ao_uniform(aob);
@@ -342,17 +340,67 @@ class BitmaskMesher final : public Mesher {
             }
           }
         };
-        if constexpr (kAxis != 0) {
-          // Bits run along x here: faces with uniform AO go in runs of one block id and one AO
-          // value (same_next bit b: the block at b + 1 has the same id as the one at b), one slot
-          // update per run instead of per face.
-          // (A single face is a run of one: no need to compare the row's ids.)
-          std::uint64_t uni = occluded ? 0 : faces & ~alone;
-          faces &= ~uni;
-          if (single != kAir) {  // one block id: the row's open faces are one run set
-            if (uni) add(pack_word1(single, F, 0xffu), uni);
-            uni = 0;
+        // Faces that may merge (not alone) and see nothing opaque around them (AO 3 at every
+        // corner): with AO on they are told apart from the rest bit-parallel, from the 3 x 3
+        // neighbourhood of the whole row at once, so on occluded rows only the others pay the
+        // per-face table lookup (terrain sides: most rows have ground in front somewhere).
+        std::uint64_t open_merge;
+        if (occluded) {
+          const std::uint64_t nb = l0 | l1 | l2;
+          open_merge = faces & ~(nb | nb << 1 | nb >> 1 | alone);
+          faces &= ~open_merge;
+          // The rest by the table: mostly unit quads (corners differ). The few uniform ones that
+          // may merge (rare) are added below with the open ones, in bit order, so slots are made
+          // in the order the faces come (the mesh's quad order does not depend on this split).
+          std::uint64_t rare = 0;
+          if (single != kAir) {
+            // One plain block id: no id, flag or list choice per face.
+            const std::uint32_t word1 = pack_word1(single, F, 0);
+            while (faces) {
+              const int b = std::countr_zero(faces);
+              faces &= faces - 1;
+              const std::uint32_t e = ao_entry(ao_table, l0, l1, l2, b);
+              if ((e & 0x100u) && !((alone >> b) & 1)) {
+                rare |= std::uint64_t{1} << b;
+                continue;
+              }
+              *dst_opaque++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), word1 | (e & 0xffu) << 19};
+            }
+          } else {
+            while (faces) {
+              const int b = std::countr_zero(faces);
+              faces &= faces - 1;
+              const std::uint32_t e = ao_entry(ao_table, l0, l1, l2, b);
+              if ((e & 0x100u) && !((alone >> b) & 1)) {
+                rare |= std::uint64_t{1} << b;
+                continue;
+              }
+              one(b, kTable, e);
+            }
           }
+          if (rare) {
+            for (std::uint64_t all = rare | open_merge; all; all &= all - 1) {
+              const int b = std::countr_zero(all);
+              one(b, kTable, ao_entry(ao_table, l0, l1, l2, b));
+            }
+            open_merge = 0;
+          }
+        } else {
+          open_merge = faces & ~alone;
+          faces &= ~open_merge;
+          while (faces) {  // alone: unit quads
+            const int b = std::countr_zero(faces);
+            faces &= faces - 1;
+            one(b, kOpen);
+          }
+        }
+        if (single != kAir) {  // one block id: the open faces are one set
+          if (open_merge) add(pack_word1(single, F, 0xffu), open_merge);
+        } else if constexpr (kAxis != 0) {
+          // Bits run along x here: open faces go in runs of one block id (same_next bit b: the
+          // block at b + 1 has the same id as the one at b), one slot update per run instead of
+          // per face. (A single face is a run of one: no need to compare the row's ids.)
+          std::uint64_t uni = open_merge;
           const std::uint64_t same_next = (uni & (uni - 1)) != 0 ? same_next_mask(ids + row_base, n) : 0;
           while (uni) {
             const int b = std::countr_zero(uni);
@@ -362,29 +410,16 @@ class BitmaskMesher final : public Mesher {
               uni &= uni - 1;
               continue;
             }
-            const std::uint32_t aob = 0xffu;
             const int len = 1 + std::countr_one(((uni >> 1) & same_next) >> b);
             const std::uint64_t run = (len >= 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << len) - 1)) << b;
             uni &= ~run;
-            add(pack_word1(self, F, aob), run);
-          }
-        } else if (single != kAir && !occluded) {
-          // Bits along y, one block id: the open faces that may merge go to the slot at once
-          // (else one add() per face below).
-          const std::uint64_t uni = faces & ~alone;
-          faces &= ~uni;
-          if (uni) add(pack_word1(single, F, 0xffu), uni);
-        }
-        if (occluded) {
-          while (faces) {
-            const int b = std::countr_zero(faces);
-            faces &= faces - 1;
-            one(b, kTable);
+            add(pack_word1(self, F, 0xffu), run);
           }
         } else {
-          while (faces) {
-            const int b = std::countr_zero(faces);
-            faces &= faces - 1;
+          // Bits along y: ids p^2 apart, one slot update per face.
+          while (open_merge) {
+            const int b = std::countr_zero(open_merge);
+            open_merge &= open_merge - 1;
             one(b, kOpen);
           }
         }
@@ -406,6 +441,13 @@ class BitmaskMesher final : public Mesher {
         count_[list] = static_cast<std::size_t>((list == 0 ? dst_opaque : dst_alpha) - lists_[list]->data());
       }
     }
+  }
+
+  // Entry of the AO table (make_ao_table()) for a face at bit b (not an edge bit) of a row whose
+  // layer in front has the opaque rows l0, l1, l2: bits b - 1, b, b + 1 of each are the index.
+  static std::uint32_t ao_entry(const std::uint16_t* table, std::uint64_t l0, std::uint64_t l1, std::uint64_t l2, int b) {
+    const int sh = b - 1;
+    return table[((l0 >> sh) & 7u) | ((l1 >> sh) & 7u) << 3 | ((l2 >> sh) & 7u) << 6];
   }
 
   // faces[r] = slice[r] & ~layer[r] for r in [0, n); returns the mask of rows with faces.

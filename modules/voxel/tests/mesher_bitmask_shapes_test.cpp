@@ -199,6 +199,30 @@ TEST(MesherBitmaskShapes, OneBlockIdChunksGiveTheQuadsOfTheGeneralPath) {
   }
 }
 
+TEST(MesherBitmaskShapes, OccludedRowsSplitOpenFacesFromTheTableOnes) {
+  // With AO on, a row with something opaque in front sends only the faces with an opaque block
+  // around them through the AO table; the open ones that may merge go to their slot at once.
+  // A stone floor under a half of pillars at odd (x, z): its top faces at even (x, z) see only
+  // diagonal pillars (uniform AO 2: they take the slot path after the table), the others
+  // corner-varying AO (unit quads), and the half without pillars is open and merges, in the
+  // same rows. One id (no id reads) and two ids (a buried block, no face of its own) must give
+  // the same quads in the same order, and the reference surface.
+  for (int n : {9, 17, 33, 62, 64}) {
+    const PaddedBlocks one = fill(n, [n](int x, int y, int z) -> BlockId {
+      const bool pillar = y == 2 && x < n / 2 && (x & 1) && (z & 1);
+      return y < 2 || pillar ? 1 : kAir;
+    });
+    PaddedBlocks two = one;
+    two.set(n / 2, 0, n / 2, 2);
+    const ChunkMesh single = expect_reference(one, "one id n=" + std::to_string(n));
+    const ChunkMesh general = expect_reference(two, "two ids n=" + std::to_string(n));
+    EXPECT_EQ(single.opaque, general.opaque) << n;
+    EXPECT_TRUE(single.alpha_cut.empty() && general.alpha_cut.empty()) << n;
+    // The open half's top faces merge: fewer quads than the floor has unit top faces.
+    EXPECT_LT(single.opaque.size(), static_cast<std::size_t>(n * n)) << n;
+  }
+}
+
 TEST(MesherBitmaskShapes, Avx2AndSse2RowPassesGiveTheSameMesh) {
   // The row pass runs AVX2 where the CPU has it (dispatch when the mesher is made) and SSE2
   // with SYLVA_VOXEL_NO_AVX2 set: both must give the same quads, in the same order.
