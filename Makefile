@@ -57,8 +57,9 @@ test-asan: deps
 	  -L '^($(subst $(space),|,$(strip $(ASAN_KINDS))))$$'
 
 # Fuzzing (fuzz/README.md): the `fuzz` preset (clang 14, libFuzzer + ASan/UBSan) builds the fuzz
-# targets and only the libraries they link, then runs each for FUZZ_SECONDS (CI: 20) and stops at
-# the first crash, printing its reproducer. FUZZ_TARGETS="scene_json obj" runs only those.
+# targets and only the libraries they link, then runs each for FUZZ_SECONDS (CI: 20), FUZZ_JOBS
+# (default: nproc) at a time, and starts no more after the first crash, printing its reproducer.
+# FUZZ_TARGETS="scene_json obj" runs only those.
 # Corpora grow in build/fuzz-work, outside git.
 FUZZ_SECONDS ?= 60
 FUZZ_TARGETS ?=
