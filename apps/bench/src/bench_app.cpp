@@ -8,6 +8,7 @@
 #ifdef SYLVA_BENCH_WITH_SCENE
 #include "with_scene/paper_runs.hpp"
 #include "with_scene/species_suite.hpp"
+#include "with_scene/stream_suite.hpp"
 #endif
 #include "svg_plot.hpp"
 
@@ -197,6 +198,16 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
     merge(run_species_suite(so, out, err));
 #else
     err << "sylva-bench: suite species: module not available: it needs the scene module, which is not part of this build\n";
+    merge(kExitUnavailable);
+#endif
+  } else if (o.suite && *o.suite == "stream") {  // rows too: streamed against in-memory terrain (stream_suite.hpp)
+#ifdef SYLVA_BENCH_WITH_SCENE
+    StreamSuiteOptions so{.warmup = o.warmup, .overrides = o.overrides, .out = out_dir};
+    if (o.size) so.size = *o.size;
+    if (o.frames) so.frames = *o.frames;
+    merge(run_stream_suite(so, out, err));
+#else
+    err << "sylva-bench: suite stream: module not available: it needs the scene module, which is not part of this build\n";
     merge(kExitUnavailable);
 #endif
   } else if (o.suite) {

@@ -94,10 +94,11 @@ Result<BenchOptions> parse_bench_options(const std::vector<std::string>& args) {
       if (!a.ok()) return a.error();
       (name == "--set" ? o.overrides : o.reference).push_back(std::move(*a));
     } else if (name == "--suite") {
-      SYLVA_BENCH_VALUE(v, "terrain, grass, trees, voxel, model, species or all");
-      if (*v != "terrain" && *v != "grass" && *v != "trees" && *v != "voxel" && *v != "model" && *v != "species" && *v != "all") {
+      SYLVA_BENCH_VALUE(v, "terrain, grass, trees, voxel, model, species, stream or all");
+      if (*v != "terrain" && *v != "grass" && *v != "trees" && *v != "voxel" && *v != "model" && *v != "species" &&
+          *v != "stream" && *v != "all") {
         return make_error(ErrorCode::kInvalidArgument,
-                          fmt::format("--suite: \"{}\" is not terrain, grass, trees, voxel, model, species or all", *v));
+                          fmt::format("--suite: \"{}\" is not terrain, grass, trees, voxel, model, species, stream or all", *v));
       }
       o.suite = *v;
     } else if (name == "--paper") {
@@ -230,7 +231,8 @@ std::string bench_usage() {
          "                         without it the scene as loaded is the reference\n"
          "  --set path=value       applied to every setting and to the reference\n"
          "  --suite NAME           curated sweeps: terrain, grass, trees, voxel, model or all; species: load +\n"
-         "                         bake of species files, plants/s of grammars, mixed vs one-species forest\n"
+         "                         bake of species files, plants/s of grammars, mixed vs one-species forest;\n"
+         "                         stream: frame times of the terrain streamed from its bake vs in memory\n"
          "  --paper THESIS         the thesis's experiments: per table the thesis's numbers beside Sylva's\n"
          "                         (DIR/paper-THESIS/paper.md, paper.json, a sweep report per row)\n"
          "  --quick                with --paper: the first row of each table at 256x144, 2 frames (for CI)\n"

@@ -6,9 +6,12 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 #include <string>
+#include <vector>
 
 namespace sylva::bench::testing {
 
@@ -42,6 +45,27 @@ inline std::filesystem::path fresh_test_dir(const std::string& prefix, const std
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
+}
+
+// The lines of `output` starting with `prefix` (the row lines of a suite that prints rows).
+inline std::vector<std::string> lines_of(const std::string& output, const std::string& prefix) {
+  std::vector<std::string> found;
+  std::size_t at = 0;
+  while (at < output.size()) {
+    const std::size_t end = output.find('\n', at);
+    const std::string line = output.substr(at, end == std::string::npos ? std::string::npos : end - at);
+    if (line.rfind(prefix, 0) == 0) found.push_back(line);
+    if (end == std::string::npos) break;
+    at = end + 1;
+  }
+  return found;
+}
+
+// The number after "key=" in a row line (NaN when absent).
+inline double field(const std::string& line, const std::string& key) {
+  std::smatch m;
+  if (!std::regex_search(line, m, std::regex(key + "=([-0-9.e+]+)"))) return std::nan("");
+  return std::stod(m[1].str());
 }
 
 }  // namespace sylva::bench::testing

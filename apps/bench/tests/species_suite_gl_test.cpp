@@ -22,28 +22,9 @@ namespace {
 
 #ifdef SYLVA_BENCH_WITH_SCENE
 
+using sylva::bench::testing::field;
+using sylva::bench::testing::lines_of;
 using sylva::bench::testing::run_bench;
-
-// The lines of `output` starting with `prefix`.
-std::vector<std::string> lines_of(const std::string& output, const std::string& prefix) {
-  std::vector<std::string> found;
-  std::size_t at = 0;
-  while (at < output.size()) {
-    const std::size_t end = output.find('\n', at);
-    const std::string line = output.substr(at, end == std::string::npos ? std::string::npos : end - at);
-    if (line.rfind(prefix, 0) == 0) found.push_back(line);
-    if (end == std::string::npos) break;
-    at = end + 1;
-  }
-  return found;
-}
-
-// The number after "key=" in `line` (NaN when absent).
-double field(const std::string& line, const std::string& key) {
-  std::smatch m;
-  if (!std::regex_search(line, m, std::regex(key + "=([-0-9.e+]+)"))) return std::nan("");
-  return std::stod(m[1].str());
-}
 
 TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
   const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-species-test", "rows");

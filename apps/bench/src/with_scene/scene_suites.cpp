@@ -4,6 +4,7 @@
 #include "suites.hpp"
 #include "with_scene/scene_target.hpp"
 #include "with_scene/shipped_files.hpp"
+#include "with_scene/stream_suite.hpp"
 
 #include <sylva/scene/module_registry.hpp>
 
@@ -44,6 +45,13 @@ constexpr const char* kTerrainScene = R"json({
       {"time_s": 12.0, "position": [1638.0, 110.0, -1638.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0}]}
   }
 })json";
+
+}  // namespace
+
+// The terrain suite's scene, also flown by --suite stream (stream_suite.hpp).
+std::string terrain_suite_scene() { return kTerrainScene; }
+
+namespace {
 
 Result<SuiteSpec> terrain_suite() {
   if (scene::find_module("terrain") == nullptr) return unavailable("terrain", "terrain");
