@@ -3,6 +3,8 @@
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/log.hpp>
 
+#include "mesh_text.hpp"
+
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -87,9 +89,9 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
       }
       float v[6];
       for (std::size_t k = 0; k + 1 < std::min<std::size_t>(t.size(), colored ? 7 : 4); ++k) {
-        if (!parse_float(t[k + 1], v[k])) return fail(fmt::format("'{}' is not a number", t[k + 1]));
-        if (!std::isfinite(v[k])) return fail(fmt::format("coordinate '{}' is not finite", t[k + 1]));
-        if (k >= 3 && (v[k] < 0.0f || v[k] > 1.0f)) return fail(fmt::format("colour '{}' is outside [0, 1]", t[k + 1]));
+        if (!parse_float(t[k + 1], v[k])) return fail(fmt::format("'{}' is not a number", detail::printable(t[k + 1])));
+        if (!std::isfinite(v[k])) return fail(fmt::format("coordinate '{}' is not finite", detail::printable(t[k + 1])));
+        if (k >= 3 && (v[k] < 0.0f || v[k] > 1.0f)) return fail(fmt::format("colour '{}' is outside [0, 1]", detail::printable(t[k + 1])));
       }
       mesh.positions.emplace_back(v[0], v[1], v[2]);
       if (colored) mesh.colors.emplace_back(v[3], v[4], v[5]);
@@ -106,7 +108,7 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
           uvs_complete = false;
         } else {
           long long ti = 0;
-          if (!parse_int(tex, ti)) return fail(fmt::format("'{}' is not a texture index", t[k]));
+          if (!parse_int(tex, ti)) return fail(fmt::format("'{}' is not a texture index", detail::printable(t[k])));
           const long long tcount = static_cast<long long>(texcoords.size());
           if (ti < 0) ti = tcount + ti + 1;
           if (ti < 1 || ti > tcount) {
@@ -115,7 +117,7 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
           mesh.corner_uvs.push_back(texcoords[static_cast<std::size_t>(ti - 1)]);
         }
         long long idx = 0;
-        if (!parse_int(ref, idx)) return fail(fmt::format("'{}' is not a vertex index", t[k]));
+        if (!parse_int(ref, idx)) return fail(fmt::format("'{}' is not a vertex index", detail::printable(t[k])));
         const long long count = static_cast<long long>(mesh.positions.size());
         if (idx < 0) idx = count + idx + 1;  // relative to the vertices read so far
         if (idx < 1 || idx > count) {
@@ -129,7 +131,7 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
       float uv[2] = {0.0f, 0.0f};
       for (std::size_t k = 1; k < std::min<std::size_t>(t.size(), 3); ++k) {
         if (!parse_float(t[k], uv[k - 1]) || !std::isfinite(uv[k - 1])) {
-          return fail(fmt::format("'{}' is not a finite number", t[k]));
+          return fail(fmt::format("'{}' is not a finite number", detail::printable(t[k])));
         }
       }
       texcoords.emplace_back(uv[0], 1.0f - uv[1]);  // OBJ's v grows upwards
@@ -137,7 +139,7 @@ Result<PolygonMesh> parse_obj(std::string_view text, std::string_view source) {
                kw == "mtllib" || kw == "l" || kw == "vp") {
       // Not needed for terrain geometry.
     } else {
-      if (warned++ < 5) log_warn("{}:{}: unknown OBJ statement '{}' skipped", source, line_no, kw);
+      if (warned++ < 5) log_warn("{}:{}: unknown OBJ statement '{}' skipped", source, line_no, detail::printable(kw));
     }
     if (end == text.size()) break;
   }
@@ -162,6 +164,11 @@ Result<PolygonMesh> load_obj(const std::filesystem::path& path) {
 Result<PolygonMesh> load_mesh(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::error_code size_error;
+  if (const std::uintmax_t bytes = std::filesystem::file_size(path, size_error); !size_error && bytes > kMeshFileByteLimit) {
+    return make_error(ErrorCode::kLimit, fmt::format("{}: {} MiB, above the {} MiB limit of a mesh file (read whole)",
+                                                     path.string(), bytes >> 20, kMeshFileByteLimit >> 20));
+  }
   if (ext == ".obj") return load_obj(path);
   if (ext == ".iv") return load_iv(path);
   if (ext == ".gltf" || ext == ".glb") return load_gltf(path);

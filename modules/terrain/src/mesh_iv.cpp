@@ -7,6 +7,8 @@
 
 #include <sylva/core/atomic_file.hpp>
 
+#include "mesh_text.hpp"
+
 #include <fmt/format.h>
 
 #include <charconv>
@@ -132,11 +134,11 @@ class IvParser {
       if (name.kind != Token::kWord) return fail(name.line, "USE needs a name");
       return {};  // instancing is not followed: each shape counts once
     }
-    if (t.kind != Token::kWord) return fail(t.line, fmt::format("expected a node type, found '{}'", t.text));
+    if (t.kind != Token::kWord) return fail(t.line, fmt::format("expected a node type, found '{}'", detail::printable(t.text)));
     const Token open = lex_.next();
     if (open.kind != Token::kOpenBrace) {
-      return fail(open.line, fmt::format("expected '{{' after '{}', found '{}'", t.text,
-                                         open.kind == Token::kEnd ? std::string_view("end of file") : open.text));
+      return fail(open.line, fmt::format("expected '{{' after '{}', found '{}'", detail::printable(t.text),
+                                         open.kind == Token::kEnd ? std::string("end of file") : detail::printable(open.text)));
     }
     const std::size_t saved_base = base_, saved_count = count_;
     const bool separator = t.text == "Separator" || t.text == "TransformSeparator" || t.text == "SoSeparator";
@@ -173,7 +175,7 @@ class IvParser {
         case Token::kString:
           break;
         default:
-          return fail(t.line, fmt::format("unexpected '{}' in {}", t.text, type.text));
+          return fail(t.line, fmt::format("unexpected '{}' in {}", detail::printable(t.text), detail::printable(type.text)));
       }
     }
   }
@@ -184,7 +186,7 @@ class IvParser {
   Status list(Token t, int single, F&& each) {
     if (t.kind != Token::kOpenBracket) {
       for (int i = 0; i < single; ++i, t = lex_.next()) {
-        if (t.kind != Token::kNumber && t.kind != Token::kWord) return fail(t.line, fmt::format("'{}' is not a value", t.text));
+        if (t.kind != Token::kNumber && t.kind != Token::kWord) return fail(t.line, fmt::format("'{}' is not a value", detail::printable(t.text)));
         SYLVA_TRY(each(t));
         if (i + 1 == single) break;
       }
@@ -194,7 +196,7 @@ class IvParser {
     for (t = lex_.next(); t.kind != Token::kCloseBracket; t = lex_.next()) {
       if (t.kind == Token::kEnd) return fail(t.line, fmt::format("end of file inside the '[' list opened at line {}", open));
       if (t.kind != Token::kNumber && t.kind != Token::kWord && t.kind != Token::kString) {
-        return fail(t.line, fmt::format("unexpected '{}' in the '[' list opened at line {}", t.text, open));
+        return fail(t.line, fmt::format("unexpected '{}' in the '[' list opened at line {}", detail::printable(t.text), open));
       }
       SYLVA_TRY(each(t));
     }
@@ -211,9 +213,9 @@ class IvParser {
       float v = 0.0f;
       const auto r = std::from_chars(t.text.data(), t.text.data() + t.text.size(), v);
       if (t.kind != Token::kNumber || r.ec != std::errc() || r.ptr != t.text.data() + t.text.size()) {
-        return fail(t.line, fmt::format("'{}' is not a coordinate", t.text));
+        return fail(t.line, fmt::format("'{}' is not a coordinate", detail::printable(t.text)));
       }
-      if (!std::isfinite(v)) return fail(t.line, fmt::format("coordinate '{}' is not finite", t.text));
+      if (!std::isfinite(v)) return fail(t.line, fmt::format("coordinate '{}' is not finite", detail::printable(t.text)));
       p[k++] = v;
       line = t.line;
       if (k == 3) {
@@ -244,7 +246,7 @@ class IvParser {
       long long idx = 0;
       const auto r = std::from_chars(t.text.data(), t.text.data() + t.text.size(), idx);
       if (t.kind != Token::kNumber || r.ec != std::errc() || r.ptr != t.text.data() + t.text.size()) {
-        return fail(t.line, fmt::format("'{}' is not a vertex index", t.text));
+        return fail(t.line, fmt::format("'{}' is not a vertex index", detail::printable(t.text)));
       }
       if (idx == -1) return close();
       if (idx < 0 || static_cast<unsigned long long>(idx) >= count_) {

@@ -1,5 +1,7 @@
 // General-model terrain (seed 002 §4): OBJ loading with file:line errors, OpenSubdiv refinement,
 // the QEM and seed reducers with locked borders, the segment tree, and its crack guarantee.
+#include <sylva/core/log.hpp>
+#include <sylva/terrain/mesh.hpp>
 #include <sylva/terrain/model_tree.hpp>
 #include <sylva/terrain/simplify.hpp>
 #include <sylva/terrain/subdivision.hpp>
@@ -10,6 +12,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <random>
 #include <set>
@@ -71,6 +74,8 @@ TEST(Obj, ErrorsNameFileAndLine) {
       {"v 0 0\n", "bad.obj:1: a vertex needs 3 coordinates"},
       {"v 0 0 0\nv 1 0 0\n", "bad.obj: no faces"},
       {"v 0 nan 0\n", "bad.obj:1: coordinate 'nan' is not finite"},
+      // A binary file renamed .obj: its bytes are quoted escaped, not printed raw.
+      {"v 0 \x01\xff 0\n", "bad.obj:1: '\\x01\\xff' is not a number"},
   };
   for (const Bad& b : cases) {
     auto r = parse_obj(b.text, "bad.obj");
@@ -81,6 +86,38 @@ TEST(Obj, ErrorsNameFileAndLine) {
   auto missing = load_obj("/nonexistent/terrain.obj");
   ASSERT_FALSE(missing.ok());
   EXPECT_NE(missing.error().message.find("terrain.obj"), std::string::npos);
+}
+
+TEST(Obj, UnknownBinaryStatementsAreWarnedEscapedAndCut) {
+  std::vector<std::string> warnings;
+  set_log_sink([&](LogLevel level, std::string_view m) {
+    if (level == LogLevel::kWarn) warnings.emplace_back(m);
+  });
+  const std::string junk = "\x01\x02\xfe" + std::string(200, 'q');
+  auto r = parse_obj("v 0 0 0\nv 1 0 0\nv 0 0 1\n" + junk + " 1 2\nf 1 2 3\n", "junk.obj");
+  set_log_sink(nullptr);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("junk.obj:4: unknown OBJ statement '\\x01\\x02\\xfeqq"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("q...'"), std::string::npos) << warnings[0];  // cut, not 200 q
+  EXPECT_LT(warnings[0].size(), 120u) << warnings[0];
+  for (const char c : warnings[0]) EXPECT_GE(static_cast<unsigned char>(c), 0x20u) << warnings[0];
+}
+
+TEST(Obj, MeshFileAboveTheLimitIsRefusedUnread) {
+  // A sparse file: 1 GiB + 1 byte of hole costs no disk; reading it whole would cost 1 GiB.
+  const auto path = unique_temp("huge.obj");
+  {
+    std::ofstream f(path);
+    f << "v 0 0 0\n";
+  }
+  std::filesystem::resize_file(path, kMeshFileByteLimit + 1);
+  auto r = load_mesh(path);
+  std::filesystem::remove(path);
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::kLimit);
+  EXPECT_NE(r.error().message.find(path.string()), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("1024 MiB"), std::string::npos) << r.error().message;
 }
 
 TEST(Obj, SaveAndLoadRoundTrip) {

@@ -72,7 +72,13 @@ Result<PolygonMesh> load_iv(const std::filesystem::path& path);
 bool gltf_supported();
 Result<PolygonMesh> load_gltf(const std::filesystem::path& path);
 
-// By the file extension (case-insensitive): .obj, .iv, .gltf or .glb; any other is kUnsupported.
+// Mesh files are read whole (OBJ and IV as text, glTF by tinygltf), so load_mesh refuses a file
+// above this size unread (kLimit naming the path and both sizes): a 2 GiB OBJ had taken 6.5 GB
+// and 30 s before failing. 1 GiB of OBJ text is about 15 M vertices, far above a terrain mesh.
+inline constexpr std::uintmax_t kMeshFileByteLimit = std::uintmax_t{1} << 30;
+
+// By the file extension (case-insensitive): .obj, .iv, .gltf or .glb; any other is kUnsupported;
+// a file larger than kMeshFileByteLimit is kLimit.
 Result<PolygonMesh> load_mesh(const std::filesystem::path& path);
 
 // Writes OBJ text (vertices and faces) through an atomic file write.
