@@ -17,6 +17,7 @@ uniform float u_k_over_tau;   // K / tau
 uniform float u_morph_start;  // 1 - morph_fraction
 uniform int u_morph;          // 0 = no morphing
 uniform mat4 u_view_projection;  // camera-relative position -> clip
+uniform ivec2 u_field_size;      // field samples (columns, rows): beyond them is padding
 
 out vec3 v_rel;      // camera-relative position [m]
 out vec2 v_grid;     // grid coordinates (for the height texture)
@@ -51,5 +52,11 @@ void main() {
   v_rel = vec3(rx, ry - a_skirt, rz);
   v_grid = vec2(a_grid) + centre_offset;
   v_morph = mu;
+  // Padding beyond the field (non-square / non-power-of-two fields) is not terrain: clipped here
+  // (enabled by the renderer only for padded trees) rather than discarded in the fragment shader,
+  // because a shader that can discard loses the early depth test (a software rasteriser then
+  // shades every hidden fragment). Linear in the grid, so it cuts where the discard did.
+  gl_ClipDistance[0] = float(u_field_size.x - 1) + 1e-3 - v_grid.x;
+  gl_ClipDistance[1] = float(u_field_size.y - 1) + 1e-3 - v_grid.y;
   gl_Position = u_view_projection * vec4(v_rel, 1.0);
 }

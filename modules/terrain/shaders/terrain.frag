@@ -14,10 +14,17 @@
 // variation (material.hpp).
 layout(binding = 2) uniform sampler2D u_shape;
 
+// The view is compiled in, one program per view (renderer.cpp): llvmpipe runs every side of a
+// branch under execution masks, so a run-time switch made the shaded view pay for all the debug
+// views and the flat view for the whole material. 0 shaded, 1 LOD colours, 2 morph weight,
+// 3 flat colour, 4 material layers (DebugView).
+#ifndef SYLVA_TERRAIN_VIEW
+#define SYLVA_TERRAIN_VIEW 0
+#endif
+
 uniform int u_has_shape;       // 0: normals from screen-space derivatives, no curvature
 uniform ivec2 u_field_size;    // field samples (columns, rows)
 uniform float u_spacing;
-uniform int u_debug_view;      // 0 shaded, 1 LOD colours, 2 morph weight, 3 flat colour, 4 material layers
 uniform int u_level;           // LOD level of the chunk (debug)
 uniform vec4 u_flat_color;     // debug view 3, wireframe and bounds
 
@@ -34,12 +41,10 @@ vec3 lod_color(int level) {
 }
 
 void main() {
-  // Padding beyond the field (non-square / non-power-of-two fields) is not terrain.
-  if (v_grid.x > float(u_field_size.x - 1) + 1e-3 || v_grid.y > float(u_field_size.y - 1) + 1e-3) discard;
-  if (u_debug_view == 3) {
-    o_color = u_flat_color;
-    return;
-  }
+  // No discard here (padding is clipped in chunk.vert): it would turn off the early depth test.
+#if SYLVA_TERRAIN_VIEW == 3
+  o_color = u_flat_color;
+#else
   // The drawn surface's height (within tau pixels of the field's) places the altitude bands.
   float h = v_rel.y + sylva_params.y;
   vec3 n;
@@ -53,22 +58,24 @@ void main() {
     n = normalize(cross(dFdy(v_rel), dFdx(v_rel)));
     if (n.y < 0.0) n = -n;
   }
-  if (u_debug_view == 1 || u_debug_view == 2) {
-    vec3 c = u_debug_view == 1 ? lod_color(u_level) : mix(vec3(0.1, 0.3, 0.9), vec3(0.95, 0.3, 0.1), v_morph);
-    o_color = vec4(c * (0.35 + 0.65 * max(dot(n, sun_direction()), 0.0)), 1.0);
-    return;
-  }
+#if SYLVA_TERRAIN_VIEW == 1 || SYLVA_TERRAIN_VIEW == 2
+#if SYLVA_TERRAIN_VIEW == 1
+  vec3 c = lod_color(u_level);
+#else
+  vec3 c = mix(vec3(0.1, 0.3, 0.9), vec3(0.95, 0.3, 0.1), v_morph);
+#endif
+  o_color = vec4(c * (0.35 + 0.65 * max(dot(n, sun_direction()), 0.0)), 1.0);
+#else
   TerrainSurface surface = terrain_surface(vec3(v_grid.x * u_spacing, h, v_grid.y * u_spacing), n, curvature, h, macro);
-  if (u_debug_view == 4) {
-    // Unlit layer colours: snow white, rock/scree grey, dirt brown, sand yellow, vegetation green.
-    vec3 c = vec3(0.15, 0.55, 0.1);
-    c = mix(c, vec3(0.45, 0.28, 0.1), surface.layers.z);
-    c = mix(c, vec3(0.4), surface.layers.y);
-    c = mix(c, vec3(0.95, 0.8, 0.3), surface.layers.w);
-    c = mix(c, vec3(1.0), surface.layers.x);
-    o_color = vec4(c, 1.0);
-    return;
-  }
+#if SYLVA_TERRAIN_VIEW == 4
+  // Unlit layer colours: snow white, rock/scree grey, dirt brown, sand yellow, vegetation green.
+  vec3 c = vec3(0.15, 0.55, 0.1);
+  c = mix(c, vec3(0.45, 0.28, 0.1), surface.layers.z);
+  c = mix(c, vec3(0.4), surface.layers.y);
+  c = mix(c, vec3(0.95, 0.8, 0.3), surface.layers.w);
+  c = mix(c, vec3(1.0), surface.layers.x);
+  o_color = vec4(c, 1.0);
+#else
   float shadow = 1.0;
 #if SYLVA_TERRAIN_SHADOWS
   shadow = sylva_shadow(v_rel, n);
@@ -79,4 +86,7 @@ void main() {
   float sun = lambert(nd, sun_direction()) * smoothstep(0.0, 0.15, dot(n, sun_direction()));
   vec3 color = surface.albedo * (sun_radiance() * sun * shadow + hemisphere_ambient(nd) * surface.occlusion);
   o_color = vec4(apply_fog(color, v_rel), 1.0);
+#endif
+#endif
+#endif
 }

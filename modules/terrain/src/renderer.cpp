@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace sylva::render::embedded {
 void register_terrain_shaders();  // generated from modules/terrain/shaders (cmake/embed_shaders.cmake)
@@ -19,6 +20,13 @@ namespace sylva::terrain {
 
 namespace {
 constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2, kAttrCentre = 3;
+
+// The colour-pass program of one debug view, with or without received shadows (terrain.frag).
+Result<render::Program> make_shaded_program(bool shadows, DebugView view) {
+  return render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
+                                 {{"SYLVA_TERRAIN_SHADOWS", shadows ? "1" : "0"},
+                                  {"SYLVA_TERRAIN_VIEW", std::to_string(static_cast<int>(view))}});
+}
 }  // namespace
 
 LodView TerrainRenderer::view_for(const render::Camera& camera, glm::ivec2 viewport) {
@@ -125,8 +133,8 @@ Status TerrainRenderer::init(const HeightField* field) {
   render::embedded::register_terrain_shaders();
   render::embedded::register_render_shaders();
   shaded_with_shadows_ = settings_.receive_shadows;
-  auto shaded = render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
-                                        {{"SYLVA_TERRAIN_SHADOWS", shaded_with_shadows_ ? "1" : "0"}});
+  shaded_view_ = settings_.debug_view;
+  auto shaded = make_shaded_program(shaded_with_shadows_, shaded_view_);
   if (!shaded.ok()) return shaded.error();
   shaded_ = std::move(shaded).value();
   auto depth = render::Program::create({"terrain/chunk.vert", "terrain/depth.frag"});
@@ -310,6 +318,25 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
   set_frame_uniforms(program, view_projection);
   glVertexAttrib1f(kAttrSkirt, 0.0f);   // bodies have no skirt attribute array
   glVertexAttrib1f(kAttrCentre, 0.0f);  // seams and skirts hold edge points only, never centres
+  // chunk.vert clips the padding beyond a field that does not fill the root grid.
+  const auto padded_intervals = static_cast<int>(tree_->root_intervals());
+  const bool padded = tree_->field_columns() - 1 < padded_intervals || tree_->field_rows() - 1 < padded_intervals;
+  if (padded) {
+    glEnable(GL_CLIP_DISTANCE0);
+    glEnable(GL_CLIP_DISTANCE1);
+  }
+  // Chunk bodies face up (counter-clockwise from above, chunk_tree.hpp), so a body triangle seen
+  // from behind lies behind the ground in front of it: culled in the colour pass, half of a
+  // grazing view's triangles never reach the rasteriser. The shadow pass keeps both faces (the
+  // sun may see the field from below its horizon line), and seam fans are vertical (drawn after).
+  GLint front_face = GL_CCW, cull_mode = GL_BACK;
+  if (!shadow) {
+    glGetIntegerv(GL_FRONT_FACE, &front_face);
+    glGetIntegerv(GL_CULL_FACE_MODE, &cull_mode);
+    glFrontFace(GL_CCW);
+    glCullFace(GL_BACK);
+    glEnable(GL_CULL_FACE);
+  }
   for (const SelectedChunk& s : selection.chunks) {
     if (cull != nullptr) {
       render::Aabb box;
@@ -323,6 +350,11 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(g->index_count), GL_UNSIGNED_INT, nullptr);
     stats.triangles += g->index_count / 3;
     ++stats.draw_calls;
+  }
+  if (!shadow) {
+    glDisable(GL_CULL_FACE);
+    glFrontFace(static_cast<GLenum>(front_face));
+    glCullFace(static_cast<GLenum>(cull_mode));
   }
   if (!batch.empty()) {
     // Uploaded once per frame (the shadow batch is drawn once per cascade).
@@ -338,6 +370,10 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     ++stats.draw_calls;
   }
   glBindVertexArray(0);
+  if (padded) {
+    glDisable(GL_CLIP_DISTANCE0);
+    glDisable(GL_CLIP_DISTANCE1);
+  }
 }
 
 void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
@@ -350,37 +386,49 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       draw_geometry(depth_, cascade->relative_view_projection, false, stats, true, &cascade->light_frustum);
     }
   } else {
-    if (settings_.receive_shadows != shaded_with_shadows_) {
-      auto p = render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
-                                       {{"SYLVA_TERRAIN_SHADOWS", settings_.receive_shadows ? "1" : "0"}});
+    if (settings_.receive_shadows != shaded_with_shadows_ || settings_.debug_view != shaded_view_) {
+      auto p = make_shaded_program(settings_.receive_shadows, settings_.debug_view);
       if (p.ok()) {
         shaded_ = std::move(p).value();
         shaded_with_shadows_ = settings_.receive_shadows;
+        shaded_view_ = settings_.debug_view;
       } else {
         log_warn("terrain: {}", p.error().message);
       }
     }
     const glm::mat4 vp = frame.camera.view_projection();
+    // Each view's program has only the uniforms its view reads (the others are compiled out).
+    const DebugView view = shaded_view_;
     shaded_.use();
-    shaded_.set("u_has_shape", shape_ ? 1 : 0);
-    shaded_.set("u_debug_view", static_cast<int>(settings_.debug_view));
-    shaded_.set("u_level", 0);
-    shaded_.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
-    set_material_uniforms(shaded_, settings_.material, climate_);
+    if (view == DebugView::kFlat) {
+      shaded_.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
+    } else {
+      shaded_.set("u_has_shape", shape_ ? 1 : 0);
+      if (view == DebugView::kShaded || view == DebugView::kMaterials) {
+        set_material_uniforms(shaded_, settings_.material, climate_);
+      }
+    }
     detail_.bind(1);
     if (shape_) shape_.bind(2);
-    const bool levels = settings_.debug_view == DebugView::kLodColors;
+    const bool levels = view == DebugView::kLodColors;
     draw_geometry(shaded_, vp, levels, stats, false, nullptr);
-    if (settings_.wireframe) {
+    if (settings_.wireframe && !flat_) {
+      auto p = make_shaded_program(false, DebugView::kFlat);
+      if (p.ok()) {
+        flat_ = std::move(p).value();
+      } else {
+        log_warn("terrain: wireframe: {}", p.error().message);
+      }
+    }
+    if (settings_.wireframe && flat_) {
       render::PassStats lines;
-      shaded_.use();
-      shaded_.set("u_debug_view", 3);
-      shaded_.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.05f, 1.0f));
+      flat_.use();
+      flat_.set("u_flat_color", glm::vec4(0.05f, 0.05f, 0.05f, 1.0f));
       glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
       GLint depth_func = GL_GREATER;
       glGetIntegerv(GL_DEPTH_FUNC, &depth_func);
       glDepthFunc(depth_func == GL_GREATER ? GL_GEQUAL : GL_LEQUAL);
-      draw_geometry(shaded_, vp, false, lines, false, nullptr);
+      draw_geometry(flat_, vp, false, lines, false, nullptr);
       glDepthFunc(static_cast<GLenum>(depth_func));
       glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
       stats.draw_calls += lines.draw_calls;

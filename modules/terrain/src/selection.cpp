@@ -8,6 +8,17 @@
 
 namespace sylva::terrain {
 
+namespace {
+
+// Squared horizontal distance from the eye to the middle of a chunk's box [m^2].
+double centre_distance2(const ChunkNode& node, const glm::dvec3& eye) {
+  const double dx = 0.5 * (node.lo.x + node.hi.x) - eye.x;
+  const double dz = 0.5 * (node.lo.z + node.hi.z) - eye.z;
+  return dx * dx + dz * dz;
+}
+
+}  // namespace
+
 LodSelector::LodSelector(const ChunkTree& tree) : tree_(&tree), state_(tree.chunk_count(), kUnseen) {}
 
 bool LodSelector::accept(std::uint32_t index, const LodView& view, const LodSettings& settings, double* rho) const {
@@ -103,8 +114,14 @@ const Selection& LodSelector::select(const LodView& view, const LodSettings& set
       continue;
     }
     state_[i] = kRefined;
-    for (int k = 3; k >= 0; --k) {
-      const std::uint32_t ci = children[static_cast<std::size_t>(k)];
+    // Nearest child on top of the stack: the chunks come out front to back, so a software
+    // rasteriser's early depth test rejects the hidden ground behind nearer hills before shading.
+    std::array<double, 4> far{};
+    for (std::size_t k = 0; k < 4; ++k) far[k] = centre_distance2(nodes[children[k]], view.position);
+    std::array<std::size_t, 4> order{0, 1, 2, 3};
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return far[a] > far[b]; });
+    for (std::size_t k : order) {
+      const std::uint32_t ci = children[k];
       if (nodes[ci].present) stack_.emplace_back(ci, mask);
     }
   }

@@ -153,8 +153,11 @@ class TerrainRenderer final : public render::Drawable {
   TerrainFrameStats stats_;
   std::uint64_t frame_number_ = 0;
 
-  render::Program shaded_, depth_, bounds_;
+  // shaded_ is compiled for one debug view and the shadow switch (terrain.frag); flat_ draws the
+  // wireframe overlay, compiled when first asked for.
+  render::Program shaded_, flat_, depth_, bounds_;
   bool shaded_with_shadows_ = false;
+  DebugView shaded_view_ = DebugView::kShaded;
   render::Texture heights_;
   bool has_heights_ = false;
   // Material: the tiling detail noise, the field's normal + curvature (when the heights fit on
