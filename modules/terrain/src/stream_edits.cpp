@@ -12,9 +12,16 @@
 
 namespace sylva::terrain::detail {
 
+ChunkMesh RebuildSource::build(std::uint32_t index) const {
+  Chunk chunk = grids->tree.chunk(index);
+  ChunkTreeBuilder::build_chunk(*grids, chunk);
+  return std::move(chunk.mesh);
+}
+
 StreamEdits::StreamEdits(const ChunkTree& file_tree) : tree_(file_tree) {}
 
-Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::vector<SampleRect>& rects) {
+Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::vector<SampleRect>& rects,
+                                         RebuiltMeshes& meshes) {
   RegionRebuild out;
   if (tree_.settings().tessellation != Tessellation::kRtin) {
     return make_error(ErrorCode::kInvalidArgument,
@@ -71,13 +78,19 @@ Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::ve
   });
 
   // Committed: metadata of the rebuilt chunks, then bounds, report and nodes of the whole tree.
-  grids_ = std::move(*grids);
+  auto source = std::make_shared<RebuildSource>();
+  source->grids = std::move(*grids);
+  source->rebuilt = source_ ? source_->rebuilt : std::vector<std::uint8_t>(tree_.chunk_count(), 0);
+  source->generation = generation() + 1;
+  std::vector<std::shared_ptr<ChunkMesh>> fresh(rebuild.size());
   for (std::size_t k = 0; k < rebuild.size(); ++k) {
-    auto mesh = std::make_shared<ChunkMesh>(std::move(built[k].mesh));
+    fresh[k] = std::make_shared<ChunkMesh>(std::move(built[k].mesh));
     built[k].mesh = ChunkMesh{};
     ChunkTreeBuilder::chunk(tree_, rebuild[k]) = std::move(built[k]);
-    meshes_[rebuild[k]] = std::move(mesh);
+    rebuilt_count_ += source->rebuilt[rebuild[k]] ? 0 : 1;
+    source->rebuilt[rebuild[k]] = 1;
   }
+  source_ = std::move(source);
   ChunkTreeBuilder::finish(tree_);
   // A chunk read from the file later gets its exact height range when it is resolved; until then
   // its range must still hold its geometry, or the selection could cull it while it shows. Its
@@ -97,13 +110,11 @@ Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::ve
       if (a == 0) break;
     }
   }
-  // Every rebuilt mesh (of this and earlier edits) takes the new morph data: targets near this
-  // edit and bounds anywhere may have changed (a pure function of the grids and bounds, so
-  // recomputing an unchanged value gives the same float).
-  for (auto& [index, mesh] : meshes_) {
-    auto copy = std::make_shared<ChunkMesh>(*mesh);
-    patch(index, *copy);
-    mesh = std::move(copy);
+  // This edit's meshes take their morph data (from the new grids and bounds); the caller
+  // re-resolves the chunks it holds from earlier edits.
+  for (std::size_t k = 0; k < rebuild.size(); ++k) {
+    patch(rebuild[k], *fresh[k]);
+    meshes[rebuild[k]] = std::move(fresh[k]);
   }
   ChunkTreeBuilder::finish(tree_);
   return out;
@@ -111,11 +122,16 @@ Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::ve
 
 void StreamEdits::patch(std::uint32_t index, ChunkMesh& mesh) {
   float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+  const TreeGrids& g = *source_->grids;
   for (ChunkVertex& v : mesh.vertices) {
-    if (v.intro_level > 0) {
-      v.morph_target = static_cast<float>(level_surface_height(
-          grids_->rule, grids_->heights, v.intro_level - 1, Pt{static_cast<std::int32_t>(v.gx), static_cast<std::int32_t>(v.gz)}));
-    }
+    // The coarsest level holding the point follows the point's RTIN error, which an edit beyond
+    // the chunk's reach can change (a coarse-grid corner's error gathers a wide diamond): taken
+    // again, as the bake's build_chunk takes it (a chunk's own vertex set is unchanged: the points
+    // a coarser level may drop lie within its reach).
+    const Pt p{static_cast<std::int32_t>(v.gx), static_cast<std::int32_t>(v.gz)};
+    v.intro_level = static_cast<std::uint8_t>(std::min(g.rule.intro_level(p), static_cast<int>(tree_.chunk(index).key.level)));
+    v.morph_target = v.intro_level == 0 ? v.height
+                                        : static_cast<float>(level_surface_height(g.rule, g.heights, v.intro_level - 1, p));
     v.morph_error = ChunkTreeBuilder::morph_error(tree_, v);
     lo = std::min({lo, v.height, v.morph_target});
     hi = std::max({hi, v.height, v.morph_target});
@@ -127,10 +143,9 @@ void StreamEdits::patch(std::uint32_t index, ChunkMesh& mesh) {
   }
 }
 
-std::shared_ptr<const ChunkMesh> StreamEdits::resolve(std::uint32_t index, std::shared_ptr<const ChunkMesh> file_mesh) {
-  if (auto it = meshes_.find(index); it != meshes_.end()) return it->second;
-  if (!grids_ || !file_mesh) return file_mesh;
-  auto copy = std::make_shared<ChunkMesh>(*file_mesh);
+std::shared_ptr<const ChunkMesh> StreamEdits::resolve(std::uint32_t index, std::shared_ptr<const ChunkMesh> mesh) {
+  if (!source_ || !mesh) return mesh;
+  auto copy = std::make_shared<ChunkMesh>(*mesh);
   patch(index, *copy);
   return copy;
 }

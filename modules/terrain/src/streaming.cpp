@@ -53,6 +53,7 @@ ChunkStreamer::~ChunkStreamer() {
 void ChunkStreamer::loader() {
   for (;;) {
     std::uint32_t chunk = kNoChunk;
+    std::shared_ptr<const detail::RebuildSource> source;
     {
       std::unique_lock<std::mutex> lock(mutex_);
       wake_.wait(lock, [&] { return stop_ || !requests_.empty(); });
@@ -76,11 +77,14 @@ void ChunkStreamer::loader() {
       }
       requests_.erase(chunk);
       loading_ = chunk;
+      source = edit_source_;
     }
-    Result<ChunkMesh> mesh = file_->read_chunk(chunk);
+    // A chunk rebuilt by edits comes from them (stream_edits.hpp), every other from the file.
+    Result<ChunkMesh> mesh = source && source->is_rebuilt(chunk) ? Result<ChunkMesh>(source->build(chunk))
+                                                                  : file_->read_chunk(chunk);
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      done_.emplace_back(chunk, std::move(mesh));
+      done_.push_back(Loaded{chunk, std::move(mesh), source ? source->generation : 0});
       loading_ = kNoChunk;
       if (requests_.empty()) idle_.notify_all();
     }
@@ -88,14 +92,14 @@ void ChunkStreamer::loader() {
 }
 
 void ChunkStreamer::update() {
-  std::vector<std::pair<std::uint32_t, Result<ChunkMesh>>> done;
+  std::vector<Loaded> done;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     done.swap(done_);
     current_frame_ = ++frame_;
   }
   bool edited_nodes = false;
-  for (auto& [chunk, mesh] : done) {
+  for (auto& [chunk, mesh, generation] : done) {
     if (!mesh.ok()) {
       if (!failed_[chunk]) log_warn("terrain streaming: {}", mesh.error().message);
       failed_[chunk] = 1;
@@ -104,26 +108,15 @@ void ChunkStreamer::update() {
       continue;
     }
     if (resident_.count(chunk)) continue;
+    // Made before the latest edit rebuilt it: stale (asked for again while needed).
+    if (edits_ && edits_->rebuilt(chunk) && generation != edits_->generation()) continue;
     std::shared_ptr<const ChunkMesh> loaded = std::make_shared<const ChunkMesh>(std::move(mesh).value());
     if (edits_) {
       loaded = edits_->resolve(chunk, std::move(loaded));  // the edited field's chunk
       edited_nodes = true;
     }
     const std::size_t bytes = bytes_of(*loaded);
-    if (resident_bytes_ + bytes > budget_) {
-      // Evict least recently used chunks not used in this or the previous frame (never the root).
-      std::vector<std::pair<std::uint64_t, std::uint32_t>> candidates;
-      for (const auto& [id, r] : resident_)
-        if (id != 0 && r.last_used + 1 < frame_) candidates.emplace_back(r.last_used, id);
-      std::sort(candidates.begin(), candidates.end());
-      for (const auto& [used, id] : candidates) {
-        if (resident_bytes_ + bytes <= budget_) break;
-        resident_bytes_ -= resident_.at(id).bytes;
-        resident_.erase(id);
-        ++stats_.evictions;
-      }
-    }
-    if (resident_bytes_ + bytes > budget_) {
+    if (!make_room(bytes)) {
       ++stats_.dropped;
       continue;
     }
@@ -134,22 +127,46 @@ void ChunkStreamer::update() {
   if (edited_nodes) edits_->refresh_nodes();  // the resolved chunks' height ranges
 }
 
+bool ChunkStreamer::make_room(std::size_t bytes, bool recently_used_too) {
+  if (resident_bytes_ + bytes <= budget_) return true;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> candidates;
+  for (const auto& [id, r] : resident_)
+    if (id != 0 && (recently_used_too || r.last_used + 1 < frame_)) candidates.emplace_back(r.last_used, id);
+  std::sort(candidates.begin(), candidates.end());
+  for (const auto& [used, id] : candidates) {
+    if (resident_bytes_ + bytes <= budget_) break;
+    resident_bytes_ -= resident_.at(id).bytes;
+    resident_.erase(id);
+    ++stats_.evictions;
+  }
+  return resident_bytes_ + bytes <= budget_;
+}
+
 Result<RegionRebuild> ChunkStreamer::apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1) {
   return apply_height_edit(field, std::vector<SampleRect>{{x0, z0, x1, z1}});
 }
 
 Result<RegionRebuild> ChunkStreamer::apply_height_edit(const HeightField& field, const std::vector<SampleRect>& rects) {
   if (!edits_) edits_ = std::make_unique<detail::StreamEdits>(file_->tree());
-  auto changed = edits_->apply(field, rects);  // unchanged on error
+  detail::RebuiltMeshes rebuilt;
+  auto changed = edits_->apply(field, rects, rebuilt);  // unchanged on error
   if (!changed.ok()) return changed.error();
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    edit_source_ = edits_->source();
+  }
   // Every resident chunk becomes the edited field's: rebuilt ones swapped, the others re-patched
-  // (their heights and triangles stay the file's, only morph data and height range change).
+  // (their triangles stay as they were, only morph data and height range change).
   resident_bytes_ = 0;
   for (auto& [id, r] : resident_) {
-    r.mesh = edits_->resolve(id, r.mesh);
+    auto fresh = rebuilt.find(id);
+    r.mesh = fresh != rebuilt.end() ? fresh->second : edits_->resolve(id, r.mesh);
     r.bytes = bytes_of(*r.mesh);
     resident_bytes_ += r.bytes;
   }
+  // Rebuilt meshes may be bigger: other chunks make room (the root stays: it is always drawn).
+  // Any of them may go, as every selection and mesh pointer is renewed after an edit.
+  make_room(0, true);
   edits_->refresh_nodes();
   tree_ = &edits_->tree();
   return changed;
@@ -171,7 +188,7 @@ Residency ChunkStreamer::residency() {
       std::lock_guard<std::mutex> lock(mutex_);
       // Being read or read and not yet integrated: asking again would read it twice.
       if (chunk == loading_ ||
-          std::any_of(done_.begin(), done_.end(), [chunk](const auto& d) { return d.first == chunk; })) {
+          std::any_of(done_.begin(), done_.end(), [chunk](const Loaded& d) { return d.chunk == chunk; })) {
         return;
       }
       auto [it, fresh] = requests_.try_emplace(chunk);

@@ -87,17 +87,17 @@ void expect_streamer_equals_build(ChunkStreamer& s, const HeightField& field) {
 }
 
 struct Baked {
-  HeightField field = fbm_field(257, 201, 2.0, 120.0f, 61);  // padded, non-square
+  HeightField field;
   fs::path path = unique_temp("stream_edits.sylvaterrain");
-  Baked() {
+  explicit Baked(float relief_m = 120.0f) : field(fbm_field(257, 201, 2.0, relief_m, 61)) {  // padded, non-square
     const ChunkTree tree = ChunkTree::build(field, tree_settings()).value();
     EXPECT_TRUE(save_chunk_file(path, tree, 0, &field).ok());
   }
   ~Baked() { fs::remove(path); }
-  std::unique_ptr<ChunkStreamer> open() {
+  std::unique_ptr<ChunkStreamer> open(double budget_mb = StreamingSettings{}.memory_budget_mb) {
     auto file = ChunkFile::open(path);
     EXPECT_TRUE(file.ok());
-    return std::move(ChunkStreamer::create(*file, StreamingSettings{}).value());
+    return std::move(ChunkStreamer::create(*file, StreamingSettings{budget_mb}).value());
   }
 };
 
@@ -150,6 +150,53 @@ TEST(StreamEdits, UndoGivesTheFilesChunksBack) {
     const ChunkMesh m = file->read_chunk(i).value();
     EXPECT_TRUE(same_bytes(m.vertices, s->mesh(i)->vertices)) << "chunk " << i;
   }
+}
+
+// Issue 15, "rebuilt chunk meshes count against the streaming budget": strokes on a streamer
+// whose budget holds about a third of the field's chunks keep the resident bytes (rebuilt meshes
+// included) within it, and a rebuilt chunk evicted comes back from the edits bit for bit. A nearly
+// flat field (small meshes, "reduced where flat") whose strokes add many triangles.
+TEST(StreamEdits, RebuiltChunksStayWithinTheBudgetAndComeBackBitExactAfterEviction) {
+  Baked b(0.05f);
+  std::size_t all_bytes = 0;
+  {
+    auto everything = b.open();
+    load_all(*everything);
+    all_bytes = everything->stats().resident_bytes;
+  }
+  auto s = b.open(all_bytes / 3.0 / 1048576.0);
+  const std::size_t budget = s->stats().budget_bytes;
+  HeightField edited = b.field;
+  const int strokes[][2] = {{60, 70}, {200, 40}, {128, 100}, {20, 180}, {240, 190}, {130, 20}};
+  for (const auto& at : strokes) {
+    load_all(*s);  // as full as the budget allows (loads that do not fit are dropped)
+    EXPECT_LE(s->stats().resident_bytes, budget);
+    const SampleRect rect = bump(edited, at[0], at[1], 14, 300.0f);  // many more triangles
+    ASSERT_TRUE(s->apply_height_edit(edited, rect.x0, rect.z0, rect.x1, rect.z1).ok());
+    EXPECT_LE(s->stats().resident_bytes, budget) << "after the stroke at " << at[0] << ", " << at[1];
+  }
+  EXPECT_GT(s->stats().evictions, 0u);
+  EXPECT_GT(s->tree().report().triangles(), 2 * ChunkFile::open(b.path).value()->tree().report().triangles())
+      << "strokes add triangles";
+  // Every chunk, rebuilt or not, made resident alone: equal to the in-memory build.
+  const ChunkTree built = ChunkTree::build(edited, tree_settings()).value();
+  const auto file = ChunkFile::open(b.path).value();
+  std::size_t rebuilt = 0;
+  for (std::uint32_t i = 1; i < built.chunk_count(); ++i) {
+    if (!built.chunk(i).present) continue;
+    s->evict_all();
+    s->residency().request(i, 1.0);
+    s->wait_idle();
+    const ChunkMesh* m = s->mesh(i);
+    ASSERT_NE(m, nullptr) << "chunk " << i;
+    EXPECT_TRUE(same_bytes(m->vertices, built.chunk(i).mesh.vertices)) << "chunk " << i << " vertices";
+    EXPECT_EQ(m->indices, built.chunk(i).mesh.indices) << "chunk " << i;
+    EXPECT_EQ(m->edges, built.chunk(i).mesh.edges) << "chunk " << i;
+    EXPECT_EQ(s->tree().chunk(i).min_y, built.chunk(i).min_y) << "chunk " << i;
+    rebuilt += same_bytes(built.chunk(i).mesh.vertices, file->read_chunk(i).value().vertices) ? 0 : 1;
+  }
+  EXPECT_GT(rebuilt, 20u) << "chunks the strokes changed";
+  EXPECT_LE(s->stats().resident_bytes, budget);
 }
 
 TEST(StreamEdits, AnotherGridOrNanIsRefusedAndChangesNothing) {

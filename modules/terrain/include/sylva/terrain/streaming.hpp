@@ -29,6 +29,7 @@ namespace sylva::terrain {
 
 namespace detail {
 class StreamEdits;  // stream_edits.hpp
+struct RebuildSource;
 }  // namespace detail
 
 struct StreamingSettings {
@@ -84,8 +85,11 @@ class ChunkStreamer {
   // the edit reaches are rebuilt from `field` by the bake's code and substituted for the file's,
   // every other chunk gets its morph data recomputed when it becomes resident, and the resident
   // chunks are updated at once, so every resident chunk equals ChunkTree::build(field)'s. tree()
-  // may then be another object: re-create selectors. Errors (kInvalidArgument): another grid, a
-  // non-RTIN file, NaN/Inf samples; nothing changes then. Main thread only.
+  // may then be another object: re-create selectors. Rebuilt meshes count against the budget like
+  // the file's: the resident ones are swapped (others evicted, least recently used first, to fit), the
+  // rest dropped and built again by the loader from the edits when asked for. Errors
+  // (kInvalidArgument): another grid, a non-RTIN file, NaN/Inf samples; nothing changes then.
+  // Main thread only.
   Result<RegionRebuild> apply_height_edit(const HeightField& field, int x0, int z0, int x1, int z1);
   // The same for several edited rectangles at once (one pass over the field: opening a scene
   // with an edit layer, one rectangle per edited tile).
@@ -100,6 +104,9 @@ class ChunkStreamer {
   ChunkStreamer(std::shared_ptr<const ChunkFile> file, const StreamingSettings& settings);
   void loader();
   static std::size_t bytes_of(const ChunkMesh& m);
+  // Evicts chunks not used in this or the previous frame (or any, `recently_used_too`; never the
+  // root), least recently used first, until `bytes` more fit; false if they do not.
+  bool make_room(std::size_t bytes, bool recently_used_too = false);
 
   struct Resident {
     std::shared_ptr<const ChunkMesh> mesh;
@@ -125,7 +132,13 @@ class ChunkStreamer {
   std::condition_variable wake_;
   std::condition_variable idle_;
   std::unordered_map<std::uint32_t, Request> requests_;
-  std::vector<std::pair<std::uint32_t, Result<ChunkMesh>>> done_;
+  struct Loaded {
+    std::uint32_t chunk = kNoChunk;
+    Result<ChunkMesh> mesh;
+    std::uint64_t generation = 0;  // of the edits it was made under (stale after a later edit)
+  };
+  std::vector<Loaded> done_;
+  std::shared_ptr<const detail::RebuildSource> edit_source_;  // rebuilt chunks are built from it
   std::uint32_t loading_ = kNoChunk;
   std::uint64_t current_frame_ = 1;
   bool stop_ = false;
