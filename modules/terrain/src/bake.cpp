@@ -23,7 +23,7 @@ Result<BakeReport> bake_chunk_file(HeightField field, const std::filesystem::pat
       std::filesystem::remove(p, ec);
     }
   } remove_share{share};
-  Result<BakeReport> meshed = bake_share(std::move(field), share, one);
+  Result<BakeReport> meshed = detail::bake_share(std::move(field), share, one, false);
   if (!meshed) return meshed.error();
   BuildControl merge_control = options.control;
   if (options.control.progress) merge_control.progress = [&](float f) { options.control.progress(0.9f + 0.1f * f); };

@@ -246,7 +246,11 @@ Result<BakeReport> detail::merge_shares(const std::vector<std::filesystem::path>
                              c.key.z, what);
     };
     std::string& blob = it.blob;
-    if (fnv1a64(blob.data(), blob.size()) != get_le<std::uint64_t>(e, detail::kSeChecksum)) return corrupt("checksum mismatch");
+    // In place, the share is this process's own temporary, written without blob checksums
+    // (bake_merge.hpp); shares from other processes are verified.
+    if (!in_place && fnv1a64(blob.data(), blob.size()) != get_le<std::uint64_t>(e, detail::kSeChecksum)) {
+      return corrupt("checksum mismatch");
+    }
     const auto nv = get_le<std::uint32_t>(blob.data(), 0);
     if (nv != c.vertex_count || 24 + static_cast<std::uint64_t>(nv) * detail::kChunkVertexBytes > blob.size()) {
       return corrupt("its vertex count does not match its size");

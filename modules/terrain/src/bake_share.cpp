@@ -2,6 +2,7 @@
 #include <sylva/terrain/bake.hpp>
 #include <sylva/terrain/chunk_file.hpp>
 
+#include "bake_merge.hpp"
 #include "bake_share_format.hpp"
 #include "chunk_blob.hpp"
 #include "chunk_file_heights.hpp"
@@ -51,6 +52,11 @@ Status check_options(const BakeOptions& o) {
 
 Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& share_file,
                               const BakeOptions& options) {
+  return detail::bake_share(std::move(field), share_file, options, true);
+}
+
+Result<BakeReport> detail::bake_share(HeightField field, const std::filesystem::path& share_file,
+                                      const BakeOptions& options, bool blob_checksums) {
   SYLVA_TRY(check_options(options));
   BakeReport report;
   Stopwatch watch;
@@ -109,7 +115,7 @@ Result<BakeReport> bake_share(HeightField field, const std::filesystem::path& sh
       c = layout.chunk(mine[b + k]);
       ChunkTreeBuilder::build_chunk(grids, c);
       blobs[k] = detail::encode_chunk_mesh(c.mesh);
-      sums[k] = fnv1a64(blobs[k].data(), blobs[k].size());
+      if (blob_checksums) sums[k] = fnv1a64(blobs[k].data(), blobs[k].size());
       c.mesh = ChunkMesh{};
     }, options.control.cancel);
     if (!finished) return make_error(ErrorCode::kCancelled, fmt::format("{}: bake cancelled; no share was written", name));
