@@ -62,6 +62,12 @@ void main() {
     axis = face;
     sign = eye_local[axis] >= 0.0 ? 1 : -1;
   }
+  // data.w: the part's hidden faces (plant_faces.hpp, bit 2 axis + (sign < 0)); a hidden face
+  // collapses to a point outside the clip volume, so it is never rasterised.
+  if (((part.data.w >> uint(2 * axis + (sign < 0 ? 1 : 0))) & 1u) != 0u) {
+    gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+    return;
+  }
   ivec2 corner = kVoxelCorners[voxel_corner(k, sign, false)];
   int u = (axis + 1) % 3;
   int v = (axis + 2) % 3;

@@ -8,6 +8,8 @@
 #include <sylva/voxel/block_textures.hpp>
 #include <sylva/voxel/tufts.hpp>
 
+#include "plant_batch.hpp"
+
 #include <fmt/format.h>
 
 #include <glm/gtc/packing.hpp>
@@ -50,6 +52,7 @@ constexpr GLuint kQuadBinding = 1;
 constexpr GLuint kPlantBinding = 2;
 constexpr GLuint kBlockBinding = 3;
 constexpr int kMaxLights = 32;
+constexpr double kNever = std::numeric_limits<double>::infinity();  // a distance no chunk reaches
 constexpr const char* kShadowHook = "voxel/shadow_hook.glsl";
 
 struct BlockGpu {
@@ -58,26 +61,6 @@ struct BlockGpu {
   float material[4];
 };
 static_assert(sizeof(BlockGpu) == 48);
-
-struct PlantPartGpu {
-  float center_size[4];
-  std::uint32_t data[4];
-};
-static_assert(sizeof(PlantPartGpu) == 32);
-
-// One instance of plant.vert: chunk-relative centre (tufts: foot), size, rotation, block, extra.
-PlantPartGpu make_part(const glm::vec3& center, float size, const glm::quat& q, BlockId block, std::uint32_t extra) {
-  PlantPartGpu g;
-  g.center_size[0] = center.x;
-  g.center_size[1] = center.y;
-  g.center_size[2] = center.z;
-  g.center_size[3] = size;
-  g.data[0] = glm::packSnorm2x16(glm::vec2(q.x, q.y));
-  g.data[1] = glm::packSnorm2x16(glm::vec2(q.z, q.w));
-  g.data[2] = block;
-  g.data[3] = extra;
-  return g;
-}
 
 // The horizon skirt's outer radius [blocks]: the scene's far plane is infinite, and a skirt 200
 // blocks below the eye ends 0.001 degrees under the horizon there, far below a pixel.
@@ -114,9 +97,9 @@ struct VoxelRenderer::ChunkGpu {
   std::vector<PackedQuad> translucent;   // their CPU copy, re-sorted back to front as the eye moves
   glm::ivec3 sorted_for{std::numeric_limits<int>::min()};  // eye half-block cell of the last sort
   std::uint64_t revision = ~std::uint64_t{0};
-  render::Buffer plants;
-  std::uint32_t plant_opaque = 0;
-  std::uint32_t plant_alpha = 0;
+  render::Buffer plants;       // plant_batch.hpp's layout
+  PlantBatch plant;          // its ranges and counts (the parts themselves are in `plants`)
+  std::uint32_t plant_parts() const { return plant.count[0][0] + plant.count[0][1]; }
   render::Buffer tufts;
   std::uint32_t tuft_count = 0;
   render::Aabb box;          // chunk box grown by its plants (world)
@@ -142,6 +125,10 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
     return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.leaf_back_faces_within: {} outside [0, 1e6] blocks",
                                                                settings.leaf_back_faces_within));
   }
+  if (!(settings.plant_far_beyond >= 0.0f && settings.plant_far_beyond <= 1.0e6f)) {
+    return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.plant_far_beyond: {} outside [0, 1e6] blocks",
+                                                               settings.plant_far_beyond));
+  }
   if (!(settings.sky_light >= 0.0f && settings.sky_light <= 8.0f)) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.sky_light: {} outside [0, 8]", settings.sky_light));
   }
@@ -165,6 +152,7 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   r->world_ = &world;
   r->generator_ = std::move(generator);
   r->settings_ = settings;
+  r->face_cache_ = std::make_unique<PlantFaceCache>();
   r->vao_ = render::VertexArray::create();
   r->no_shadows_ubo_ = render::make_disabled_shadow_block();
   r->no_point_lights_ubo_ = render::make_empty_point_light_block();
@@ -328,40 +316,13 @@ void VoxelRenderer::upload_tufts(const ChunkCoord& c, ChunkGpu& gpu) {
 
 void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
   gpu.plants = {};
-  gpu.plant_opaque = gpu.plant_alpha = 0;
+  gpu.plant = {};
   gpu.plant_box = {glm::dvec3(1e300), glm::dvec3(-1e300)};
-  const auto* plants = world_->plants(c);
-  if (!generator_ || !plants || plants->empty()) return;
-  const BlockPalette& palette = world_->palette();
-  std::vector<PlantPartGpu> opaque, alpha;
-  for (const PlantInstance& p : *plants) {
-    const PlantModel& model = generator_->variants(p.species).at(p.variant % generator_->variants(p.species).size());
-    const glm::quat yaw = glm::angleAxis(static_cast<float>(p.yaw_quarters) * 1.5707963f, glm::vec3(0, 1, 0));
-    // Ground block centre relative to the chunk origin.
-    const glm::vec3 base(static_cast<float>(p.ground.x - chunk_origin(c).x) + 0.5f,
-                         static_cast<float>(p.ground.y - chunk_origin(c).y) + 0.5f,
-                         static_cast<float>(p.ground.z - chunk_origin(c).z) + 0.5f);
-    for (int o = 0; o < kPlantOutputs; ++o) {
-      const BlockId block = generator_->part_block(p.species, o);
-      if (block == kAir) continue;
-      auto& list = palette.render(block) == RenderClass::kAlphaCut ? alpha : opaque;
-      for (const PlantPart& part : model.outputs[static_cast<std::size_t>(o)]) {
-        list.push_back(make_part(base + yaw * part.position, part.size, yaw * part.orientation, block, 0));
-      }
-    }
-    // Bounds: any turn about y keeps the model inside the circle through its farthest box corner.
-    const glm::vec3 lo = model.bounds_min, hi = model.bounds_max;
-    const double r = std::sqrt(std::max(lo.x * lo.x, hi.x * hi.x) + std::max(lo.z * lo.z, hi.z * hi.z));
-    const glm::dvec3 world_base = gpu.origin + glm::dvec3(base);
-    gpu.plant_box.min = glm::min(gpu.plant_box.min, world_base + glm::dvec3(-r, lo.y, -r));
-    gpu.plant_box.max = glm::max(gpu.plant_box.max, world_base + glm::dvec3(r, hi.y, r));
-  }
-  gpu.plant_opaque = static_cast<std::uint32_t>(opaque.size());
-  gpu.plant_alpha = static_cast<std::uint32_t>(alpha.size());
-  if (opaque.size() + alpha.size() > 0) {
-    opaque.insert(opaque.end(), alpha.begin(), alpha.end());
-    gpu.plants = render::Buffer::immutable(std::span<const PlantPartGpu>(opaque));
-  }
+  if (!generator_) return;
+  gpu.plant = build_plant_batch(*world_, *generator_, c, settings_.plant_hidden_faces, *face_cache_);
+  gpu.plant_box = gpu.plant.box;
+  if (!gpu.plant.parts.empty()) gpu.plants = render::Buffer::immutable(std::span<const PlantPartGpu>(gpu.plant.parts));
+  gpu.plant.parts = {};
 }
 
 void VoxelRenderer::update(const render::FrameContext& frame) {
@@ -409,8 +370,9 @@ void VoxelRenderer::update(const render::FrameContext& frame) {
   visible_.clear();
   for (auto& [c, gpu] : chunks_) {
     ++stats_.chunks_total;
+    stats_.plant_parts_hidden += gpu->plant.parts_hidden;
     const bool empty = gpu->opaque_quads + gpu->alpha_quads + gpu->translucent_quads + gpu->tuft_count == 0 &&
-                       gpu->plant_opaque + gpu->plant_alpha == 0;
+                       gpu->plant_parts() == 0;
     if (empty) continue;
     if (settings_.frustum_culling && !frustum.intersects(gpu->box)) continue;
     if (fade_.y > 0.0f && horizontal_distance(gpu->box, eye) > fade_.y) continue;  // wholly faded into the sky
@@ -478,7 +440,8 @@ void VoxelRenderer::bind_common(const render::Program& program, const render::Fr
 
 void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads,
                                 const render::Program& plants, bool alpha_cut, const glm::mat4& view_projection,
-                                const glm::dvec3& origin, double full_cubes_within, render::PassStats& stats) {
+                                const glm::dvec3& origin, double full_cubes_within, double far_beyond,
+                                const render::Frustum* culling, render::PassStats& stats) {
   quads.use();
   quads.set("u_view_projection", view_projection);
   for (ChunkGpu* gpu : chunks) {
@@ -495,20 +458,64 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
   if (!settings_.draw_plants) return;
   plants.use();
   plants.set("u_view_projection", view_projection);
+  const int cut = alpha_cut ? 1 : 0;
+  // Draws parts [first, first + n) of a chunk's buffer with `triangles` faces not hidden.
+  auto draw = [&](std::uint32_t first, std::uint32_t n, bool full, std::uint64_t triangles) {
+    if (n == 0) return;
+    plants.set("u_instance_base", first);
+    glDrawArraysInstanced(GL_TRIANGLES, 0, full ? 36 : 18, static_cast<GLsizei>(n));
+    ++stats.draw_calls;
+    stats.triangles += triangles;
+    stats.instances += n;
+    stats_.plant_parts_drawn += n;
+    stats_.plant_triangles += triangles;
+  };
   for (ChunkGpu* gpu : chunks) {
-    const std::uint32_t count = alpha_cut ? gpu->plant_alpha : gpu->plant_opaque;
-    if (count == 0) continue;
+    const PlantBatch& b = gpu->plant;
+    if (b.plants.empty()) continue;
+    const double d = distance(gpu->box, origin);
+    // Far chunks draw their plants' shells (plant_batch.hpp) in the opaque pass, leaves without
+    // the cut-out test (the crown's holes are below a pixel there).
+    const bool far = d >= far_beyond;
+    if (far && alpha_cut) continue;
+    const render::Containment seen = culling ? culling->classify(gpu->plant_box) : render::Containment::kInside;
+    if (seen == render::Containment::kOutside) continue;
     plants.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
-    plants.set("u_instance_base", alpha_cut ? gpu->plant_opaque : 0u);
     // All six faces, or only the three turned toward the eye (plant.vert): half the vertices.
-    const bool full = distance(gpu->box, origin) < full_cubes_within;
+    const bool full = !far && d < full_cubes_within;
     plants.set("u_front_faces_only", full ? 0 : 1);
     gpu->plants.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
-    glDrawArraysInstanced(GL_TRIANGLES, 0, full ? 36 : 18, static_cast<GLsizei>(count));
-    ++stats.draw_calls;
-    stats.triangles += (full ? 12ull : 6ull) * count;
-    stats.instances += count;
-    stats_.plant_parts_drawn += count;
+    const int lod = far ? 1 : 0;
+    if (far) ++stats_.plant_far_chunks;
+    const auto& tri = full ? b.triangles_all : b.triangles_front;
+    if (seen == render::Containment::kInside) {
+      // The whole chunk: one draw (far: its opaque and leaf shells are one range).
+      const std::uint32_t first = b.first[lod][far ? 0 : cut];
+      const std::uint32_t n = far ? b.count[1][0] + b.count[1][1] : b.count[0][cut];
+      draw(first, n, full, far ? tri[1][0] + tri[1][1] : tri[0][cut]);
+      continue;
+    }
+    // Per plant: runs of neighbouring plants inside the frustum, one draw each.
+    for (int k = far ? 0 : cut; k <= (far ? 1 : cut); ++k) {
+      const std::uint32_t end = b.first[lod][k] + b.count[lod][k];
+      const std::uint64_t tri_end = tri[lod][k];
+      auto start_of = [&](std::size_t i) { return i < b.plants.size() ? b.plants[i].first[lod][k] : end; };
+      auto tri_of = [&](std::size_t i) {
+        return i < b.plants.size() ? (full ? b.plants[i].triangles_all : b.plants[i].triangles_front)[lod][k] : tri_end;
+      };
+      std::size_t i = 0;
+      while (i < b.plants.size()) {
+        if (!culling->intersects(b.plants[i].box)) {
+          if (k == 0) ++stats_.plants_culled;  // counted once per chunk and pass pair
+          ++i;
+          continue;
+        }
+        std::size_t j = i + 1;
+        while (j < b.plants.size() && culling->intersects(b.plants[j].box)) ++j;
+        draw(start_of(i), start_of(j) - start_of(i), full, tri_of(j) - tri_of(i));
+        i = j;
+      }
+    }
   }
 }
 
@@ -619,11 +626,14 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   bind_common(plant_opaque_program_, &frame);
   // Opaque plant cubes are convex and back-face culled: the three faces turned to the eye are
   // all that can show. Leaf cubes show their far faces through their holes, near the camera.
-  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, stats);
+  const render::Frustum frustum = frame.camera.frustum();
+  const render::Frustum* culling = settings_.frustum_culling ? &frustum : nullptr;
+  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats);
   glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
   bind_common(alpha_program_, &frame);
   bind_common(plant_alpha_program_, &frame);
-  draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, settings_.leaf_back_faces_within, stats);
+  draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, settings_.leaf_back_faces_within,
+              settings_.plant_far_beyond, culling, stats);
   bind_common(tuft_program_, &frame);
   draw_tufts(visible_, vp, eye, stats);
   bind_common(horizon_program_, &frame);
@@ -713,7 +723,7 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
 }
 
 void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
-                                    const glm::dvec3& origin, render::PassStats& stats) {
+                                    const glm::dvec3& origin, const render::Frustum* culling, render::PassStats& stats) {
   if (chunks.empty()) return;
   vao_.bind();
   // Both sides: a closed voxel body casts the same either way, and open geometry (alpha-cut
@@ -731,10 +741,11 @@ void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm
   bind_common(opaque_plants, nullptr);
   // Every face: a light's view is no eye position, and leaves cast through both their sides.
   constexpr double kAll = std::numeric_limits<double>::infinity();
-  draw_chunks(chunks, opaque_chunks, opaque_plants, false, relative_view_projection, origin, kAll, stats);
+  draw_chunks(chunks, opaque_chunks, opaque_plants, false, relative_view_projection, origin, kAll, kNever, culling, stats);
   bind_common(cut_chunks, nullptr);
   bind_common(cut_plants, nullptr);
-  draw_chunks(chunks, cut_chunks, cut_plants, true, relative_view_projection, origin, kAll, stats);
+  // Shadows keep the exact plants: light passing a crown's outer holes falls on its inner leaves.
+  draw_chunks(chunks, cut_chunks, cut_plants, true, relative_view_projection, origin, kAll, kNever, culling, stats);
   if (cull_was) glEnable(GL_CULL_FACE);
 }
 
@@ -745,7 +756,7 @@ void VoxelRenderer::draw_shadow(const render::ShadowCasterContext& context) {
   // Cull with the cascade's light frustum (stretched toward the sun by caster_reach).
   shadow_list_.clear();
   for (auto& [c, gpu] : chunks_) {
-    const bool empty = gpu->opaque_quads + gpu->alpha_quads == 0 && gpu->plant_opaque + gpu->plant_alpha == 0;
+    const bool empty = gpu->opaque_quads + gpu->alpha_quads == 0 && gpu->plant_parts() == 0;
     if (empty) continue;
     if (settings_.shadow_chunk_culling && !context.light_frustum.intersects(gpu->box)) continue;
     shadow_list_.push_back(gpu.get());
@@ -753,7 +764,8 @@ void VoxelRenderer::draw_shadow(const render::ShadowCasterContext& context) {
   std::sort(shadow_list_.begin(), shadow_list_.end(),
             [](const ChunkGpu* a, const ChunkGpu* b) { return a->coord < b->coord; });
   stats_.shadow_chunks_cast += shadow_list_.size();
-  draw_depth_list(shadow_list_, context.relative_view_projection, context.camera->position(), stats);
+  draw_depth_list(shadow_list_, context.relative_view_projection, context.camera->position(),
+                  settings_.shadow_chunk_culling ? &context.light_frustum : nullptr, stats);
 }
 
 render::ShadowCaster& VoxelRenderer::shadow_caster() { return *caster_; }
@@ -768,7 +780,7 @@ void VoxelRenderer::draw_depth(const glm::mat4& relative_view_projection, const 
   all_list_.clear();
   for (auto& [c, gpu] : chunks_) all_list_.push_back(gpu.get());
   std::sort(all_list_.begin(), all_list_.end(), [](const ChunkGpu* a, const ChunkGpu* b) { return a->coord < b->coord; });
-  draw_depth_list(all_list_, relative_view_projection, origin, stats);
+  draw_depth_list(all_list_, relative_view_projection, origin, nullptr, stats);
 }
 
 }  // namespace sylva::voxel

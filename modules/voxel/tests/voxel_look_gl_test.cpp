@@ -179,8 +179,11 @@ TEST_F(VoxelLookGl, PlantCubesDrawnByTheirFacesTowardTheEyeLookTheSame) {
   ASSERT_TRUE(w);
   VoxelRenderSettings all;
   all.leaf_back_faces_within = 1.0e6f;  // every leaf cube with all six faces
+  all.plant_far_beyond = 1.0e6f;        // exact plants everywhere (no far shells: voxel_plants_gl)
+  VoxelRenderSettings near;
+  near.plant_far_beyond = 1.0e6f;
   auto full = VoxelRenderer::create(w->world, w->generator, all);
-  auto fast = VoxelRenderer::create(w->world, w->generator);  // default: within 48 blocks
+  auto fast = VoxelRenderer::create(w->world, w->generator, near);  // default: within 48 blocks
   ASSERT_TRUE(full.ok() && fast.ok());
   auto scene = testing::VoxelGlScene::create(256, 144);
   scene.camera.set_position({-70.0, 60.0, -70.0});

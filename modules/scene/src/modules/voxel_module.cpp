@@ -144,6 +144,8 @@ class VoxelInstance final : public ModuleInstance {
     const voxel::VoxelFrameStats& s = renderer_->frame_stats();
     return {{"chunks", s.chunks_total},       {"chunks_drawn", s.chunks_drawn}, {"quads_drawn", s.quads_drawn},
             {"plant_parts_drawn", s.plant_parts_drawn}, {"tufts_drawn", s.tufts_drawn},
+            {"plant_triangles", s.plant_triangles}, {"plant_parts_hidden", s.plant_parts_hidden}, {"plant_far_chunks", s.plant_far_chunks},
+            {"plants_culled", s.plants_culled},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
             {"shadow_chunks_cast", s.shadow_chunks_cast}, {"translucent_quads_drawn", s.translucent_quads_drawn},
             {"translucent_sorts", s.translucent_sorts},

@@ -38,6 +38,7 @@
 #include <sylva/core/result.hpp>
 #include <sylva/render/buffer.hpp>
 #include <sylva/render/drawable.hpp>
+#include <sylva/render/frustum.hpp>
 #include <sylva/render/shader_library.hpp>
 #include <sylva/render/point_lights.hpp>
 #include <sylva/render/shadow_maps.hpp>
@@ -58,6 +59,8 @@
 #include <vector>
 
 namespace sylva::voxel {
+
+class PlantFaceCache;  // plant_batch.hpp (internal)
 
 // Fragment shaders of the shadow (depth) pass, seed 004 §3.7.1 (R1): `discard` switches early depth
 // tests off, so the seed split the casters: an empty shader with early tests for opaque geometry and
@@ -88,6 +91,11 @@ struct VoxelRenderSettings {
   bool frustum_culling = true;
   bool draw_plants = true;
   float leaf_back_faces_within = 48.0f;  // blocks: nearer leaf cubes also draw the faces turned away
+  bool plant_hidden_faces = true;   // skip plant faces inside other parts (and parts with all six inside)
+  // Blocks, [0, 1e6]: chunks at least this far draw their plants as far shells (plant_faces.hpp's
+  // snap_to_grid: parts on a grid of the start block size, inner cubes and faces between cubes
+  // dropped, leaves opaque) in one draw; the colour pass only, shadows keep the exact plants.
+  float plant_far_beyond = 96.0f;
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -117,6 +125,8 @@ struct VoxelRenderSettings {
     v(frustum_culling, "frustum_culling", {.help = "Skip chunks outside the view frustum"});
     v(draw_plants, "draw_plants", {.help = "Draw the L-system plants"});
     v(leaf_back_faces_within, "leaf_back_faces_within", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Leaf cubes nearer than this also draw their far faces (seen through their holes); farther ones only the three faces turned to the camera"});
+    v(plant_hidden_faces, "plant_hidden_faces", {.help = "Skip plant faces hidden inside other parts, and parts with every face hidden (the same picture, fewer triangles)", .rebuild = Rebuild::kGpu});
+    v(plant_far_beyond, "plant_far_beyond", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Chunks at least this far draw plants as their outer shell on a block grid, leaves opaque, one draw per chunk (shadows keep the exact plants); 1e6 = never"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
@@ -145,6 +155,10 @@ struct VoxelFrameStats {
   std::size_t chunks_drawn = 0;
   std::size_t quads_drawn = 0;
   std::size_t plant_parts_drawn = 0;
+  std::size_t plant_triangles = 0;      // of plant faces not hidden, colour pass (front-face draws: at most)
+  std::size_t plant_parts_hidden = 0;   // loaded plant parts left out, every face inside other parts
+  std::size_t plant_far_chunks = 0;     // chunks whose plants were drawn as far shells
+  std::size_t plants_culled = 0;        // plants outside the frustum inside chunks it cuts (colour and shadow passes)
   std::size_t tufts_drawn = 0;
   float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame (0: no fade)
   std::size_t point_lights = 0;
@@ -207,9 +221,11 @@ class VoxelRenderer final : public render::Drawable {
   void bind_common(const render::Program& program, const render::FrameContext* frame) const;
   void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin,
-                   double full_cubes_within, render::PassStats& stats);
+                   double full_cubes_within, double far_beyond, const render::Frustum* culling,
+                   render::PassStats& stats);
+  // `culling` (may be null): per-plant culling inside chunks the frustum cuts.
   void draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
-                       const glm::dvec3& origin, render::PassStats& stats);
+                       const glm::dvec3& origin, const render::Frustum* culling, render::PassStats& stats);
   // Binds `fallback` (an all-zero "disabled" block) at uniform binding `index` unless use_host
   // and the host bound one there; returns the previous binding so it can be restored.
   struct UboBinding {
@@ -243,6 +259,7 @@ class VoxelRenderer final : public render::Drawable {
   std::uint64_t mesh_epoch_ = ~std::uint64_t{0};
   std::uint64_t plant_epoch_ = ~std::uint64_t{0};
   std::vector<ChunkGpu*> visible_;
+  std::unique_ptr<PlantFaceCache> face_cache_;  // hidden-face masks per plant model
   std::vector<std::pair<float, PackedQuad>> sort_keys_;  // sort_translucent's scratch, kept between frames
   glm::vec2 fade_{0.0f};      // fade start / end [blocks] this frame
   double lowest_block_ = 0.0; // world y of the lowest loaded chunk's bottom (the skirt's height)

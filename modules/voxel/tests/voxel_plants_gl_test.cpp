@@ -1,0 +1,156 @@
+// Plants at world scale (issue #18, "Voxel world"): hidden plant faces and parts are skipped
+// without changing the picture, far chunks draw plant shells within a bounded image change,
+// and plants are culled one by one inside chunks the view or a shadow cascade cuts.
+
+#include <sylva/render/shadow_maps.hpp>
+#include <sylva/render/testing.hpp>
+#include <sylva/voxel/voxel_renderer.hpp>
+#include <sylva/voxel/world_builder.hpp>
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+
+#include "support/voxel_gl_scene.hpp"
+
+namespace sylva::voxel {
+namespace {
+
+using VoxelPlantsGl = render::GlTest;
+
+struct GeneratedWorld {
+  std::shared_ptr<const WorldGenerator> generator;
+  World world;
+};
+
+// Seed 3's spawn (the shipped scene's), 3 x 3 chunk columns: meadow, savanna and birch forest.
+std::unique_ptr<GeneratedWorld> make_world() {
+  WorldGenSettings gs;
+  gs.seed = 3;
+  gs.variants_per_species = 4;
+  auto gen = WorldGenerator::create(gs);
+  if (!gen.ok()) return nullptr;
+  auto out = std::make_unique<GeneratedWorld>(GeneratedWorld{std::move(*gen), World(BlockPalette::standard())});
+  WorkerPool pool(2);
+  std::int64_t y0, y1;
+  chunk_y_range(gs, y0, y1);
+  populate(out->world, *out->generator, chunk_box({0, 0, 0}, 1, y0, y1), pool);
+  remesh_parallel(out->world, pool, MesherKind::kBitmask);
+  return out;
+}
+
+struct Shot {
+  Image image;
+  VoxelFrameStats stats;
+};
+
+Shot render_view(const GeneratedWorld& w, const VoxelRenderSettings& settings, const glm::dvec3& eye,
+                 const glm::dvec3& target) {
+  auto renderer = VoxelRenderer::create(w.world, w.generator, settings);
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  auto scene = testing::VoxelGlScene::create(320, 180);
+  scene.camera.set_position(eye);
+  scene.camera.look_at(target);
+  scene.render(**renderer);
+  return {scene.color(), (*renderer)->frame_stats()};
+}
+
+std::size_t differing_pixels(const Image& a, const Image& b, float tolerance) {
+  std::size_t n = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      bool differs = false;
+      for (int c = 0; c < 3; ++c) differs |= std::abs(a.at(x, y, c) - b.at(x, y, c)) > tolerance;
+      n += differs;
+    }
+  return n;
+}
+
+VoxelRenderSettings near_only() {
+  VoxelRenderSettings s;
+  s.plant_far_beyond = 1.0e6f;
+  return s;
+}
+
+TEST_F(VoxelPlantsGl, HiddenPlantFacesAreSkippedWithoutChangingThePicture) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  VoxelRenderSettings all = near_only();
+  all.plant_hidden_faces = false;
+  const glm::dvec3 eye(-12.0, 42.0, -12.0), target(16.0, 22.0, 16.0);
+  const Shot before = render_view(*w, all, eye, target);
+  const Shot after = render_view(*w, near_only(), eye, target);
+  testing::save_png(after.image, "voxel_plants_hidden_faces");
+  ASSERT_GT(before.stats.plant_parts_drawn, 1000u);
+  // Faces inside trunks and leaves inside logs are gone...
+  EXPECT_LT(after.stats.plant_triangles, before.stats.plant_triangles);
+  // ...and nothing a camera sees changed (they lie inside the union of the parts).
+  EXPECT_EQ(differing_pixels(before.image, after.image, 0.02f), 0u);
+}
+
+TEST_F(VoxelPlantsGl, FarChunksDrawPlantShellsCloseToTheExactPlants) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  const glm::dvec3 eye(-110.0, 70.0, -110.0), target(16.0, 22.0, 16.0);
+  const Shot exact = render_view(*w, near_only(), eye, target);
+  VoxelRenderSettings far = near_only();
+  far.plant_far_beyond = 96.0f;
+  const Shot shells = render_view(*w, far, eye, target);
+  testing::save_png(shells.image, "voxel_plants_far_shells");
+  EXPECT_EQ(exact.stats.plant_far_chunks, 0u);
+  EXPECT_GT(shells.stats.plant_far_chunks, 0u);
+  EXPECT_LT(shells.stats.plant_parts_drawn, exact.stats.plant_parts_drawn * 3 / 4);
+  EXPECT_LT(shells.stats.plant_triangles, exact.stats.plant_triangles * 3 / 4);
+  // The picture moves by at most half a block at 130-190 blocks (a few pixels here).
+  const std::size_t changed = differing_pixels(exact.image, shells.image, 0.1f);
+  EXPECT_GT(changed, 0u);
+  EXPECT_LT(changed, exact.image.pixel_count() * 3 / 100);
+}
+
+TEST_F(VoxelPlantsGl, PlantsAreCulledOneByOneInTheViewAndInShadowCascades) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  // Looking along the world's edge: the frustum cuts the chunks, so some of their plants lie outside.
+  const glm::dvec3 eye(16.0, 40.0, -20.0), target(20.0, 24.0, 40.0);
+  const Shot culled = render_view(*w, near_only(), eye, target);
+  VoxelRenderSettings off = near_only();
+  off.frustum_culling = false;
+  const Shot all = render_view(*w, off, eye, target);
+  EXPECT_GT(culled.stats.plants_culled, 0u);
+  EXPECT_EQ(all.stats.plants_culled, 0u);
+  EXPECT_LT(culled.stats.plant_parts_drawn, all.stats.plant_parts_drawn);
+  EXPECT_EQ(differing_pixels(culled.image, all.image, 0.0f), 0u);
+
+  // A cascade seeing a 20 x 20 block square of the middle chunk column casts only the plants in it.
+  auto renderer = VoxelRenderer::create(w->world, w->generator, near_only());
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  auto scene = testing::VoxelGlScene::create(64, 64);
+  scene.camera.set_position({16.0, 30.0, 16.0});
+  scene.render(**renderer);  // update(): uploads the chunks
+  const render::Camera& camera = scene.camera;
+  const glm::mat4 ortho = glm::ortho(-10.0f, 10.0f, -10.0f, 10.0f, -200.0f, 200.0f);
+  const glm::mat4 view = glm::lookAt(glm::vec3(0.0f), glm::vec3(0.0f, -1.0f, 0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+  auto cast = [&](bool chunk_culling) {
+    (*renderer)->settings().shadow_chunk_culling = chunk_culling;
+    const std::size_t culled_before = (*renderer)->frame_stats().plants_culled;
+    render::PassStats stats;
+    render::ShadowCasterContext context;
+    context.relative_view_projection = ortho * view;
+    context.light_frustum = render::Frustum::from_matrix(ortho * view, camera.position());
+    context.camera = &camera;
+    context.stats = &stats;
+    (*renderer)->draw_shadow(context);
+    return std::pair{stats.instances, (*renderer)->frame_stats().plants_culled - culled_before};
+  };
+  const auto [cut_instances, cut_culled] = cast(true);
+  const auto [all_instances, all_culled] = cast(false);
+  EXPECT_GT(cut_culled, 0u);
+  EXPECT_EQ(all_culled, 0u);
+  EXPECT_GT(cut_instances, 0u);
+  EXPECT_LT(cut_instances, all_instances);
+}
+
+}  // namespace
+}  // namespace sylva::voxel
