@@ -161,6 +161,43 @@ TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
   EXPECT_GT(t.frame_stats().skirt_triangles, 0u);
 }
 
+
+// Issue 18: the padding a 300^2 field leaves in its 512-interval root grid is not drawn now that
+// terrain.frag no longer discards it (that cost llvmpipe its early depth test; chunk.vert clips
+// it). Straight down over the field's far corner, one quadrant of the picture is field; the
+// padded chunks there reach 20 samples further. The flat view (its own program now) paints
+// exactly its colour.
+TEST_F(TerrainGl, NothingBeyondTheFieldIsDrawnAndTheFlatViewIsOneColour) {
+  GeneratedFieldSettings g;
+  g.size = 300;
+  g.spacing = 1.0;
+  g.height_scale = 20.0f;
+  g.feature_size = 60.0f;
+  Scene s = make_scene(generate_height_field(g).value(), 33);
+  ASSERT_LT(s.field.columns() - 1, static_cast<int>(s.tree->root_intervals())) << "the tree must be padded";
+  TerrainRenderSettings rs;
+  rs.receive_shadows = false;
+  rs.debug_view = DebugView::kFlat;
+  auto r = TerrainRenderer::create(s.tree, &s.field, rs);
+  ASSERT_TRUE(r.ok()) << r.error().describe();
+  GlTarget target = GlTarget::create(200, 200);
+  const glm::dvec2 corner = s.field.origin() + s.field.extent();
+  const render::Camera cam = camera_at({corner.x, 80.0, corner.y}, 0.0f, glm::radians(-89.9f), 40.0f, 200, 200);
+  const Image im = target.render(**r, cam, kMagenta);
+  save_png(im, "padding_clipped");
+  const glm::vec4 flat(0.6f, 0.6f, 0.6f, 1.0f);
+  std::size_t field_px = 0, other = 0;
+  for (int y = 0; y < 200; ++y)
+    for (int x = 0; x < 200; ++x) {
+      field_px += is_color(im, x, y, flat);
+      other += !is_color(im, x, y, flat) && !is_color(im, x, y, kMagenta);
+    }
+  EXPECT_EQ(other, 0u) << "the flat view paints only its colour";
+  // 1/4 of 40000 up to the perspective of 20 m of relief 80 m below the eye.
+  EXPECT_GT(field_px, 40000u * 18 / 100);
+  EXPECT_LT(field_px, 40000u * 34 / 100) << "padding beyond the field was drawn";
+}
+
 // The scripted poses of the crack test: grazing, high altitude, fast turns and random views.
 std::vector<render::Camera> crack_poses(const HeightField& f, int count, std::uint32_t seed) {
   std::vector<render::Camera> out;

@@ -190,5 +190,42 @@ TEST(Selection, CoarserNeighboursMatchABruteForceSearch) {
   EXPECT_GT(coarse_edges, 10);
 }
 
+
+// Front to back (issue 18): a software rasteriser's early depth test only saves shading when the
+// near ground is drawn first. Of any two drawn chunks, the one listed first lies in the child of
+// their lowest common ancestor whose box centre is nearer the eye (horizontally).
+TEST(Selection, ChunksComeOutNearestFirst) {
+  Fixture& fx = fixture();
+  LodSelector sel(fx.tree);
+  std::mt19937 rng(7);
+  LodSettings ls;
+  ls.frustum_cull = false;
+  auto ancestor = [&](const ChunkKey& k, int level) {
+    const int up = k.level - level;
+    const std::uint32_t x = k.x >> up, z = k.z >> up;
+    return fx.tree.nodes()[fx.tree.level_offset(level) + z * (1u << level) + x];
+  };
+  int compared = 0;
+  for (int pose = 0; pose < 30; ++pose) {
+    const LodView v = random_view(rng, fx.tree, fx.field, PoseOptions{});
+    const Selection& s = sel.select(v, ls);
+    auto distance2 = [&](const ChunkNode& n) {
+      const double dx = 0.5 * (n.lo.x + n.hi.x) - v.position.x, dz = 0.5 * (n.lo.z + n.hi.z) - v.position.z;
+      return dx * dx + dz * dz;
+    };
+    for (std::size_t i = 0; i < s.chunks.size(); ++i)
+      for (std::size_t j = i + 1; j < s.chunks.size(); ++j) {
+        const ChunkKey& a = fx.tree.chunk(s.chunks[i].index).key;
+        const ChunkKey& b = fx.tree.chunk(s.chunks[j].index).key;
+        int lca = std::min(a.level, b.level);
+        while (lca > 0 && (a.x >> (a.level - lca) != b.x >> (b.level - lca) || a.z >> (a.level - lca) != b.z >> (b.level - lca))) --lca;
+        // lca + 1 exists on both sides: two drawn chunks never contain one another.
+        ASSERT_LE(distance2(ancestor(a, lca + 1)), distance2(ancestor(b, lca + 1)))
+            << "pose " << pose << ": chunk " << i << " drawn before the nearer chunk " << j;
+        ++compared;
+      }
+  }
+  EXPECT_GT(compared, 1000);
+}
 }  // namespace
 }  // namespace sylva::terrain
