@@ -2,6 +2,7 @@
 // grammar files, and a mixed three-species forest against one species at the same tree count.
 #include "with_scene/species_suite.hpp"
 
+#include "with_scene/row_suite.hpp"
 #include "with_scene/scene_target.hpp"
 #include "with_scene/shipped_files.hpp"
 
@@ -108,14 +109,7 @@ struct Built {
 
 // The scene's target with the --set `settings` applied (not yet built).
 Result<std::unique_ptr<BenchTarget>> make_target(const std::string& scene, const std::vector<Assignment>& settings) {
-  auto target = scene_text_factory(scene, "<bench species suite>")();
-  if (!target.ok()) return target.error();
-  const std::vector<ParamDescriptor> params = (*target)->params();
-  for (const Assignment& a : settings) {
-    Status set = set_param(params, a.path, a.value);
-    if (!set.ok()) return make_error(set.error().code, fmt::format("--set {}={}: {}", a.path, a.value, set.error().message));
-  }
-  return target;
+  return make_scene_target(scene, "<bench species suite>", settings);
 }
 
 Result<Built> build(const std::string& scene, glm::ivec2 size, const std::vector<Assignment>& settings) {
@@ -150,13 +144,6 @@ Result<Frame> render_frame(BenchTarget& target, const render::Framebuffer& fb, d
   }
   return frame;
 }
-
-struct Row {
-  std::string kind, name;
-  double count = 0.0;
-  double value = 0.0;
-  std::string unit;
-};
 
 class Suite {
  public:
@@ -296,17 +283,13 @@ class Suite {
   // One row line, flushed: a long run shows its rows as they come.
   void print(const std::string& line) { out_ << line << std::flush; }
 
-  std::string csv() const {
-    std::string text = "kind,name,count,value,unit\n";
-    for (const Row& r : rows_) text += fmt::format("{},\"{}\",{},{},{}\n", r.kind, r.name, r.count, r.value, r.unit);
-    return text;
-  }
+  const std::vector<SuiteRow>& rows() const { return rows_; }
 
  private:
   const SpeciesSuiteOptions& o_;
   std::ostream& out_;
   fs::path cache_;
-  std::vector<Row> rows_;
+  std::vector<SuiteRow> rows_;
 };
 
 }  // namespace
@@ -344,13 +327,10 @@ int run_species_suite(const SpeciesSuiteOptions& options, std::ostream& out, std
   err << "sylva-bench: suite species: grammar: module not available: the voxel module is not part of this build\n";
 #endif
   part("forest", suite.forest_rows(*files));
-  std::error_code ec;
-  fs::create_directories(options.out, ec);
-  if (Status written = write_file_atomic(options.out / "results.csv", suite.csv()); !written.ok()) {
+  if (Status written = write_rows_csv(suite.rows(), options.out, out); !written.ok()) {
     err << "sylva-bench: " << written.error().message << "\n";
     return kExitFailed;
   }
-  out << fmt::format("sylva-bench: wrote {}\n", fs::absolute(options.out / "results.csv").string());
   return status;
 }
 

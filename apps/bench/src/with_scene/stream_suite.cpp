@@ -2,9 +2,8 @@
 // same terrain built in memory, flown along the same path in one run.
 #include "with_scene/stream_suite.hpp"
 
-#include "with_scene/scene_target.hpp"
+#include "with_scene/row_suite.hpp"
 
-#include <sylva/core/atomic_file.hpp>
 #include <sylva/core/params_json.hpp>
 #include <sylva/core/timer.hpp>
 #include <sylva/render/framebuffer.hpp>
@@ -50,14 +49,7 @@ std::string suite_scene(const fs::path& baked) {
 
 // The scene's target with the --set `settings` applied (not yet built).
 Result<std::unique_ptr<BenchTarget>> make_target(const std::string& scene, const std::vector<Assignment>& settings) {
-  auto target = scene_text_factory(scene, "<bench stream suite>")();
-  if (!target.ok()) return target.error();
-  const std::vector<ParamDescriptor> params = (*target)->params();
-  for (const Assignment& a : settings) {
-    Status set = set_param(params, a.path, a.value);
-    if (!set.ok()) return make_error(set.error().code, fmt::format("--set {}={}: {}", a.path, a.value, set.error().message));
-  }
-  return target;
+  return make_scene_target(scene, "<bench stream suite>", settings);
 }
 
 // Copies every parameter of `into` from the target's "<prefix><path>" (the values the in-memory
@@ -78,13 +70,6 @@ Result<HeightField> generate_field(const scene::HeightSourceSettings& source) {
   if (!grid.ok()) return grid.error();
   return scene::height_field_from_grid(*grid);
 }
-
-struct Row {
-  std::string kind, name;
-  double count = 0.0;
-  double value = 0.0;
-  std::string unit;
-};
 
 // Frame times [ms] of one scene and the metrics of each frame that the rows need.
 struct Flight {
@@ -212,18 +197,14 @@ class Suite {
   // One row line, flushed: a long run shows its rows as they come.
   void print(const std::string& line) { out_ << line << std::flush; }
 
-  std::string csv() const {
-    std::string text = "kind,name,count,value,unit\n";
-    for (const Row& r : rows_) text += fmt::format("{},\"{}\",{},{},{}\n", r.kind, r.name, r.count, r.value, r.unit);
-    return text;
-  }
+  const std::vector<SuiteRow>& rows() const { return rows_; }
 
  private:
   const StreamSuiteOptions& o_;
   std::ostream& out_;
   fs::path baked_;
   int resolution_ = 0;
-  std::vector<Row> rows_;
+  std::vector<SuiteRow> rows_;
 };
 
 }  // namespace
@@ -250,13 +231,10 @@ int run_stream_suite(const StreamSuiteOptions& options, std::ostream& out, std::
   if (status.ok()) status = suite.flight_rows("memory", memory_scene, options.overrides);
   if (status.ok()) status = suite.flight_rows("streamed", suite_scene(suite.baked()), options.overrides);
   if (!status.ok()) err << fmt::format("sylva-bench: suite stream: {}\n", status.error().message);
-  std::error_code ec;
-  fs::create_directories(options.out, ec);
-  if (Status written = write_file_atomic(options.out / "results.csv", suite.csv()); !written.ok()) {
+  if (Status written = write_rows_csv(suite.rows(), options.out, out); !written.ok()) {
     err << "sylva-bench: " << written.error().message << "\n";
     return kExitFailed;
   }
-  out << fmt::format("sylva-bench: wrote {}\n", fs::absolute(options.out / "results.csv").string());
   return status.ok() ? kExitOk : kExitFailed;
 }
 
