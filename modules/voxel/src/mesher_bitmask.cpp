@@ -194,17 +194,33 @@ class BitmaskMesher final : public Mesher {
  private:
   template <int kN>
   void mesh_faces(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao) {
+    x_unit_ = x_merged_ = 0;
     mesh_face<0, kN>(ids, render, edge_ao);
     mesh_face<1, kN>(ids, render, edge_ao);
     mesh_face<2, kN>(ids, render, edge_ao);
     mesh_face<3, kN>(ids, render, edge_ao);
-    mesh_face<4, kN>(ids, render, edge_ao);
-    mesh_face<5, kN>(ids, render, edge_ao);
+    // +-Z slices have two orientations. Rows along y (bits x, ids of a row contiguous) suit
+    // faces that stay unit quads (checkerboard, random: read their ids along a row); rows
+    // along x (bits y, like +-X) suit terrain without AO, whose side faces stack in columns
+    // (of a few ids): merged along the row, one slot update per face or set, instead of short
+    // runs along x and a vertical merge loop that mispredicts (issue #18: 62^3 3-type hills
+    // without AO, +-Z 130 -> 90 k cycles each). The +-X faces, meshed just before with the same
+    // orientation, tell which: rows along x when more of their quads came out of the merge than
+    // were written as unit quads at once. Both give the same surface (other rectangles, about
+    // as many).
+    if (x_merged_ > x_unit_) {
+      mesh_face<4, kN, true>(ids, render, edge_ao);
+      mesh_face<5, kN, true>(ids, render, edge_ao);
+    } else {
+      mesh_face<4, kN>(ids, render, edge_ao);
+      mesh_face<5, kN>(ids, render, edge_ao);
+    }
   }
 
   // One face direction, specialised so the axis mapping is resolved at compile time; kN as for
   // build_masks (32: strides and the face-row pass are constants).
-  template <int F, int kN>
+  // kZRowsX (+-Z only): rows along x, bits along y (see mesh_faces()).
+  template <int F, int kN, bool kZRowsX = false>
   void mesh_face(const BlockId* ids, const std::uint8_t* render, const AoSampler& edge_ao) {
     constexpr int kAxis = F >> 1;
     constexpr int kSign = (F & 1) ? -1 : 1;
@@ -215,23 +231,26 @@ class BitmaskMesher final : public Mesher {
     const int front = kSign * stride[kAxis];
     // Stride between consecutive bits of a row, in the padded id array: bits run along y for
     // +-X faces and along x otherwise.
-    const int bit_stride = kAxis == 0 ? p * p : 1;
-    constexpr int kBitShift = kAxis == 0 ? 6 : 0;  // PackedQuad word0 shift of the bit axis
+    constexpr bool kRowsAlongX = kAxis == 2 && kZRowsX;
+    constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
+    const int bit_stride = kBitsAlongY ? p * p : 1;
+    constexpr int kBitShift = kBitsAlongY ? 6 : 0;  // PackedQuad word0 shift of the bit axis
     // Rows run along z (+-X, +-Y faces) or y (+-Z faces): their id stride and word0 shift.
-    const int row_ids = kAxis == 2 ? p * p : p;
-    constexpr int kRowShift = kAxis == 2 ? 6 : 12;
+    const int row_ids = kRowsAlongX ? 1 : kAxis == 2 ? p * p : p;
+    constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
     // Raw pointers: stores into the output vectors would otherwise force reloads of every
     // member vector's data pointer inside the loops.
     // Non-air masks of the slices and opaque masks of the layers in front, rows contiguous:
     // +-X: bits y, rows z (ay_, oy_); +-Y: bits x, rows z (ax_, ox_); +-Z: bits x, rows y (az_, oz_).
-    const std::uint64_t* am = kAxis == 0 ? ay_.data() : kAxis == 1 ? ax_.data() : az_.data();
-    const std::uint64_t* lm = kAxis == 0 ? oy_.data() : kAxis == 1 ? ox_.data() : oz_.data();
+    // (+-Z with rows along x: bits y, rows x, gathered from ay_ / oy_ per slice below.)
+    const std::uint64_t* am = kAxis == 0 ? ay_.data() : kAxis == 1 ? ax_.data() : kRowsAlongX ? ay_.data() : az_.data();
+    const std::uint64_t* lm = kAxis == 0 ? oy_.data() : kAxis == 1 ? ox_.data() : kRowsAlongX ? oy_.data() : oz_.data();
     const std::uint8_t* flags = flags_.data();
     const BlockId single = single_;  // the chunk's one plain block id, or kAir
     // Flags that exclude a face of this direction outright / that need a closer look.
     constexpr std::uint8_t kSpecial = kFlagAlpha | (kAxis == 1 ? kFlagSidesOnly : 0);
     // AO neighbourhood table for this orientation, and the opaque masks of the layer's rows.
-    const std::uint16_t* ao_table = kAxis == 1 ? kAoRowU.data() : kAoBitU.data();
+    const std::uint16_t* ao_table = kAxis == 1 || kRowsAlongX ? kAoRowU.data() : kAoBitU.data();
     // Faces at bit 0 or n - 1 need the padding blocks beside the row (read from the ids).
     const std::uint64_t edges = std::uint64_t{1} | std::uint64_t{1} << (n - 1);
     for (int s = 0; s < n; ++s) {
@@ -239,7 +258,18 @@ class BitmaskMesher final : public Mesher {
       // Visible faces of every row of the slice, and the rows holding any (bit r), so the loop
       // below visits only those.
       const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
-      const std::uint64_t nonempty = face_rows<kN>(am + idx2(s, 0, p), lrows, n, face_rows_);
+      const std::uint64_t* srows = am + idx2(s, 0, p);
+      if constexpr (kRowsAlongX) {
+        // Rows x of slice z and of the layer in front: the (x, z) columns, p apart, gathered
+        // only for slices with a face (found from the contiguous (z, y) rows: most +-Z slices
+        // of a solid chunk have none).
+        if (face_rows<kN>(az_.data() + idx2(s, 0, p), oz_.data() + idx2(layer, 0, p), n, face_rows_) == 0) continue;
+        for (int x = 0; x < n; ++x) zslice_[x] = am[(x + 1) * p + s + 1];
+        for (int x = -1; x <= n; ++x) zlayer_[x + 1] = lm[(x + 1) * p + layer + 1];
+        srows = zslice_;
+        lrows = zlayer_ + 1;
+      }
+      const std::uint64_t nonempty = face_rows<kN>(srows, lrows, n, face_rows_);
       if (nonempty == 0) continue;  // no face in this slice: nothing to write or merge
       // Quads are written through raw pointers into the output lists, grown to leave room for
       // the slice: each quad covers at least one unit face, and the faces lie in the rows
@@ -273,7 +303,7 @@ class BitmaskMesher final : public Mesher {
       }
       // Padded id index and word0 of bit 0 of row 0; rows step by row_ids / 1 << kRowShift.
       int x0, y0, z0;
-      origin(F, s, 0, 0, x0, y0, z0);
+      origin(F, kRowsAlongX, s, 0, 0, x0, y0, z0);
       const int slice_base = (x0 + 1) + p * ((z0 + 1) + p * (y0 + 1));
       const std::uint32_t slice_word0 = pack_word0(x0, y0, z0, 1, 1);
       for (std::uint64_t rows_left = nonempty; rows_left; rows_left &= rows_left - 1) {
@@ -396,7 +426,7 @@ class BitmaskMesher final : public Mesher {
         }
         if (single != kAir) {  // one block id: the open faces are one set
           if (open_merge) add(pack_word1(single, F, 0xffu), open_merge);
-        } else if constexpr (kAxis != 0) {
+        } else if constexpr (!kBitsAlongY) {
           // Bits run along x here: open faces go in runs of one block id (same_next bit b: the
           // block at b + 1 has the same id as the one at b), one slot update per run instead of
           // per face. (A single face is a run of one: no need to compare the row's ids.)
@@ -429,13 +459,19 @@ class BitmaskMesher final : public Mesher {
           one(b, kEdge);
         }
       }
+      const PackedQuad* const unit_end[2] = {dst_opaque, dst_alpha};
       for (int k = 0; k < slot_count_; ++k) {
         const auto block = static_cast<BlockId>(keys_[static_cast<std::size_t>(k)] & 0xffffu);
         if (render[block] == static_cast<std::uint8_t>(RenderClass::kAlphaCut)) {
-          dst_alpha = merge_slot(k, F, s, dst_alpha);
+          dst_alpha = merge_slot(k, F, kRowsAlongX, s, dst_alpha);
         } else {
-          dst_opaque = merge_slot(k, F, s, dst_opaque);
+          dst_opaque = merge_slot(k, F, kRowsAlongX, s, dst_opaque);
         }
+      }
+      if constexpr (kAxis == 0) {
+        x_unit_ += static_cast<std::size_t>((unit_end[0] - lists_[0]->data()) + (unit_end[1] - lists_[1]->data())) -
+                   count_[0] - count_[1];
+        x_merged_ += static_cast<std::size_t>((dst_opaque - unit_end[0]) + (dst_alpha - unit_end[1]));
       }
       for (int list = 0; list < 2; ++list) {
         count_[list] = static_cast<std::size_t>((list == 0 ? dst_opaque : dst_alpha) - lists_[list]->data());
@@ -676,12 +712,16 @@ class BitmaskMesher final : public Mesher {
   }
 
 
-  // Block coordinates of bit b in row r of slice s for face f.
-  static void origin(int f, int s, int r, int b, int& x, int& y, int& z) {
+  // Block coordinates of bit b in row r of slice s for face f (rows_x: +-Z rows along x).
+  static void origin(int f, bool rows_x, int s, int r, int b, int& x, int& y, int& z) {
     switch (f >> 1) {
       case 0: x = s; y = b; z = r; break;
       case 1: x = b; y = s; z = r; break;
-      default: x = b; y = r; z = s; break;
+      default:
+        x = rows_x ? r : b;
+        y = rows_x ? b : r;
+        z = s;
+        break;
     }
   }
 
@@ -703,12 +743,13 @@ class BitmaskMesher final : public Mesher {
   }
 
   // Emits slot k's rectangles at `list`; returns the end of what it wrote.
-  PackedQuad* merge_slot(int k, int f, int s, PackedQuad* list) {
+  PackedQuad* merge_slot(int k, int f, bool rows_x, int s, PackedQuad* list) {
     const int n = n_;
     std::uint64_t* rows = rows_.data() + static_cast<std::size_t>(k) * 64;
     const std::uint32_t key = keys_[static_cast<std::size_t>(k)];
     const std::uint64_t used_rows = std::exchange(used_[static_cast<std::size_t>(k)], 0);
-    const bool rows_are_u = (f >> 1) == 1;  // +-Y: rows run along u (z), bits along v (x)
+    // +-Y: rows run along u (z), bits along v (x); +-Z with rows along x: u (x), v (y).
+    const bool rows_are_u = (f >> 1) == 1 || rows_x;
     // Only the rows that received a face (a slot of a slice usually touches a few).
     for (std::uint64_t used = used_rows; used; used &= used - 1) {
       const int r = std::countr_zero(used);
@@ -723,7 +764,7 @@ class BitmaskMesher final : public Mesher {
           ++h;
         }
         int x, y, z;
-        origin(f, s, r, b, x, y, z);
+        origin(f, rows_x, s, r, b, x, y, z);
         const int du = rows_are_u ? h : w;
         const int dv = rows_are_u ? w : h;
         *list++ = PackedQuad{pack_word0(x, y, z, du, dv), key};
@@ -746,6 +787,11 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint64_t> rows_;
   std::vector<std::uint64_t> used_;
   alignas(16) std::uint64_t face_rows_[64];
+  alignas(16) std::uint64_t zslice_[64];  // +-Z rows along x: the slice's and the layer's rows
+  alignas(16) std::uint64_t zlayer_[66];
+  // +-X quads of this chunk written as unit quads at once / out of the merge (mesh_faces()).
+  std::size_t x_unit_ = 0;
+  std::size_t x_merged_ = 0;
   std::vector<std::uint8_t> ends_;  // opaque bytes of the x = -1 and x = n padding blocks, per (z, y)
   // The ChunkMesh lists being written (opaque, alpha-cut) and the quads written so far.
   std::vector<PackedQuad>* lists_[2] = {nullptr, nullptr};

@@ -223,6 +223,33 @@ TEST(MesherBitmaskShapes, OccludedRowsSplitOpenFacesFromTheTableOnes) {
   }
 }
 
+TEST(MesherBitmaskShapes, MixedIdHillsCoverLikeTheReferenceWithAoOnAndOff) {
+  // Hills of stone under dirt under a grass top: their +-X faces merge more than they stay unit
+  // quads, so the +-Z slices are meshed with rows along x (bits along y) instead of along y.
+  // Same surface, blocks and AO either way: against the reference with AO and against the
+  // culled mesher without.
+  const auto& palette = testing::test_palette();
+  MesherOptions off;
+  off.ambient_occlusion = false;
+  for (int n : {17, 33, 62, 64}) {
+    const PaddedBlocks hills = fill(n, [n](int x, int y, int z) -> BlockId {
+      const int h = n / 3 + ((x + 1) * 3 + (z + 1) * 2) % (n / 2) - ((x + 1) / 5) % 3;
+      return y < h - 4 ? 1 : y < h - 1 ? 2 : y < h ? 3 : kAir;
+    });
+    const std::string what = "n=" + std::to_string(n);
+    expect_reference(hills, "ao " + what);
+    ChunkMesh reference, mesh;
+    make_mesher(MesherKind::kCulled, off)->mesh(hills, palette, reference);
+    make_mesher(MesherKind::kBitmask, off)->mesh(hills, palette, mesh);
+    const FaceCoverage want = testing::coverage_of(reference, n);
+    const FaceCoverage got = testing::coverage_of(mesh, n);
+    EXPECT_EQ(got.count, want.count) << what;
+    EXPECT_EQ(got.block, want.block) << what;
+    EXPECT_EQ(got.list, want.list) << what;
+    EXPECT_LT(mesh.quad_count(), reference.quad_count()) << what;
+  }
+}
+
 TEST(MesherBitmaskShapes, Avx2AndSse2RowPassesGiveTheSameMesh) {
   // The row pass runs AVX2 where the CPU has it (dispatch when the mesher is made) and SSE2
   // with SYLVA_VOXEL_NO_AVX2 set: both must give the same quads, in the same order.
