@@ -10,6 +10,7 @@
 #include <sylva/core/image.hpp>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -30,21 +31,36 @@ sylva::test::RunResult run_editor(const fs::path& script) {
   return sylva::test::run_command(SYLVA_EDITOR_EXE, "--headless --size 128x72 --script " + script.string());
 }
 
-}  // namespace
-
-TEST(EditorBakedPaint, PaintSaveReopenUndoRedoAreBitExact) {
-  const fs::path dir = fs::temp_directory_path() / ("sylva_editor_baked_paint_" + std::to_string(::getpid()));
+// A fresh folder holding a 257^2 16-bit height map (hills.png) and a scene (scene.json) whose
+// terrain paints it; the scripts import and bake it for streaming.
+fs::path make_hills_scene(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   sylva::Image h(257, 257, 1, sylva::PixelFormat::kU16);
   for (int y = 0; y < 257; ++y)
     for (int x = 0; x < 257; ++x)
       h.at(x, y) = static_cast<float>(0.5 + 0.3 * std::sin(x * 0.05) * std::cos(y * 0.07));
-  ASSERT_TRUE(sylva::write_image(dir / "hills.png", h, sylva::PixelFormat::kU16).ok());
-  ASSERT_TRUE(sylva::write_file_atomic(dir / "scene.json", R"({"sylva_scene": 1,
+  EXPECT_TRUE(sylva::write_image(dir / "hills.png", h, sylva::PixelFormat::kU16).ok());
+  EXPECT_TRUE(sylva::write_file_atomic(dir / "scene.json", R"({"sylva_scene": 1,
     "camera": {"position": [-60, 160, 420], "yaw_deg": -20, "pitch_deg": -30, "fov_deg": 60},
     "render": {"shadows": {"enabled": false}},
     "terrain": {"size": 512, "map_scale": 60, "maps": {"height": "hills.png"}, "tree": {"leaf_dimension": 17}}})").ok());
+  return dir;
+}
+
+// The terrain stats a script's last `print_stats terrain` printed.
+nlohmann::json last_terrain_stats(const std::string& output) {
+  const std::size_t at = output.rfind("terrain {");
+  if (at == std::string::npos) return nlohmann::json::object();
+  const std::size_t end = output.find('\n', at);
+  return nlohmann::json::parse(output.substr(at + 8, end == std::string::npos ? std::string::npos : end - at - 8));
+}
+
+}  // namespace
+
+TEST(EditorBakedPaint, PaintSaveReopenUndoRedoAreBitExact) {
+  const fs::path dir = make_hills_scene("sylva_editor_baked_paint");
   ASSERT_TRUE(sylva::write_file_atomic(dir / "paint.sylva", R"(load scene.json
 import_terrain hills.png bake hills.sylvaterrain
 wait_import
@@ -86,5 +102,40 @@ quit
   EXPECT_TRUE(*painted_layer == *redone_layer) << "undo + redo: the same heights, bit for bit";
   EXPECT_LT(painted_layer->size(), 257u * 257u * 4u) << "sparse: the stroke's tiles only";
   std::printf("%s%slayer %zu bytes\n", painting.output.c_str(), reopening.output.c_str(), painted_layer->size());
+  fs::remove_all(dir);
+}
+
+// Issue 15, "rebuilt chunk meshes count against the streaming budget", through the editor: strokes
+// on a baked terrain streamed with a budget far below what the view wants (0.3 MiB) keep the
+// resident bytes --stats reports, the rebuilt meshes included, within terrain.stream.budget_mb;
+// chunks are evicted to make room.
+TEST(EditorBakedPaint, StrokesKeepTheResidentBytesWithinTheBudget) {
+  const fs::path dir = make_hills_scene("sylva_editor_baked_budget");
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "budget.sylva", R"(load scene.json
+import_terrain hills.png bake hills.sylvaterrain
+wait_import
+set terrain.stream.budget_mb 0.3
+brush op=raise radius=40 strength=60 falloff=constant
+stroke terrain.height 100,100
+frames 20
+stroke terrain.height 300,200
+frames 20
+stroke terrain.height 200,400
+frames 20
+stroke terrain.height 420,420
+frames 20
+print_stats terrain
+quit
+)").ok());
+  const auto painting = run_editor(dir / "budget.sylva");
+  ASSERT_EQ(painting.exit_code, 0) << painting.output;
+  const nlohmann::json stats = last_terrain_stats(painting.output);
+  ASSERT_TRUE(stats.contains("stream_resident_bytes")) << painting.output;
+  EXPECT_GT(stats["stream_edited_chunks"].get<std::size_t>(), 20u) << stats.dump();
+  EXPECT_GT(stats["stream_evictions"].get<std::size_t>(), 0u) << stats.dump();
+  EXPECT_GT(stats["stream_resident_chunks"].get<std::size_t>(), 10u) << stats.dump();
+  EXPECT_LE(stats["stream_resident_bytes"].get<std::size_t>(), stats["stream_budget_bytes"].get<std::size_t>())
+      << stats.dump();
+  std::printf("%s\n", stats.dump().c_str());
   fs::remove_all(dir);
 }
