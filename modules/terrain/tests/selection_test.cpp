@@ -196,10 +196,10 @@ TEST(Selection, CoarserNeighboursMatchABruteForceSearch) {
 // their lowest common ancestor whose box centre is nearer the eye (horizontally).
 TEST(Selection, ChunksComeOutNearestFirst) {
   Fixture& fx = fixture();
+  LodSettings unculled;
+  unculled.frustum_cull = false;  // every chunk of the field is ordered, seen or not
   LodSelector sel(fx.tree);
   std::mt19937 rng(7);
-  LodSettings ls;
-  ls.frustum_cull = false;
   auto ancestor = [&](const ChunkKey& k, int level) {
     const int up = k.level - level;
     const std::uint32_t x = k.x >> up, z = k.z >> up;
@@ -208,7 +208,7 @@ TEST(Selection, ChunksComeOutNearestFirst) {
   int compared = 0;
   for (int pose = 0; pose < 30; ++pose) {
     const LodView v = random_view(rng, fx.tree, fx.field, PoseOptions{});
-    const Selection& s = sel.select(v, ls);
+    const Selection& s = sel.select(v, unculled);
     auto distance2 = [&](const ChunkNode& n) {
       const double dx = 0.5 * (n.lo.x + n.hi.x) - v.position.x, dz = 0.5 * (n.lo.z + n.hi.z) - v.position.z;
       return dx * dx + dz * dz;
