@@ -35,8 +35,8 @@ const PlantFaceCache::Model& PlantFaceCache::model(const PlantModel& model, cons
   }
   Model m;
   m.near = hidden_faces(parts, false);
-  // The grid of the start block size: trunks keep their thickness, leaves their block size.
-  const std::vector<FacePart> shell = snap_to_grid(parts, model.start_size);
+  // The grid of the start block size (far_cell 1): trunks keep their thickness, leaves their block size.
+  const std::vector<FacePart> shell = snap_to_grid(parts, model.start_size * far_cell_);
   const std::vector<std::uint8_t> hidden = hidden_faces(shell, true);
   for (std::size_t i = 0; i < shell.size(); ++i) {
     if (hidden[i] != kAllFaces) m.far.push_back({shell[i].part, shell[i].tag, hidden[i]});
@@ -110,8 +110,9 @@ PlantBatch build_plant_batch(const World& world, const WorldGenerator& generator
     }
     // Bounds: any turn about y keeps the model inside the circle through its farthest box corner.
     // (The far shell's cubes stay within half a cell of the parts' centres: inside these bounds
-    // grown by half a start size.)
-    const glm::vec3 lo = model.bounds_min - 0.5f * model.start_size, hi = model.bounds_max + 0.5f * model.start_size;
+    // grown by half a far cell.)
+    const float half_cell = 0.5f * model.start_size * std::max(cache.far_cell(), 1.0f);
+    const glm::vec3 lo = model.bounds_min - half_cell, hi = model.bounds_max + half_cell;
     const double r = std::sqrt(std::max(lo.x * lo.x, hi.x * hi.x) + std::max(lo.z * lo.z, hi.z * hi.z));
     const glm::dvec3 world_base = chunk_base + glm::dvec3(base);
     range.box = {world_base + glm::dvec3(-r, lo.y, -r), world_base + glm::dvec3(r, hi.y, r)};

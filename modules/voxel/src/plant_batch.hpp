@@ -61,6 +61,9 @@ struct PlantBatch {
 // plant of it). Not thread-safe.
 class PlantFaceCache {
  public:
+  // `far_cell`: the far grid's edge in start block sizes (VoxelRenderSettings::plant_far_cell).
+  explicit PlantFaceCache(float far_cell = 1.0f) : far_cell_(far_cell) {}
+  float far_cell() const { return far_cell_; }
   struct FarPart {
     PlantPart part;
     int output = 0;
@@ -74,6 +77,7 @@ class PlantFaceCache {
   void clear() { cache_.clear(); }
 
  private:
+  float far_cell_ = 1.0f;
   std::unordered_map<const PlantModel*, Model> cache_;
 };
 

@@ -129,6 +129,10 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
     return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.plant_far_beyond: {} outside [0, 1e6] blocks",
                                                                settings.plant_far_beyond));
   }
+  if (!(settings.plant_far_cell >= 1.0f && settings.plant_far_cell <= 8.0f)) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("voxel.render.plant_far_cell: {} outside [1, 8] start block sizes", settings.plant_far_cell));
+  }
   if (!(settings.sky_light >= 0.0f && settings.sky_light <= 8.0f)) {
     return make_error(ErrorCode::kInvalidArgument, fmt::format("voxel.render.sky_light: {} outside [0, 8]", settings.sky_light));
   }
@@ -152,7 +156,7 @@ Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
   r->world_ = &world;
   r->generator_ = std::move(generator);
   r->settings_ = settings;
-  r->face_cache_ = std::make_unique<PlantFaceCache>();
+  r->face_cache_ = std::make_unique<PlantFaceCache>(settings.plant_far_cell);
   r->vao_ = render::VertexArray::create();
   r->no_shadows_ubo_ = render::make_disabled_shadow_block();
   r->no_point_lights_ubo_ = render::make_empty_point_light_block();

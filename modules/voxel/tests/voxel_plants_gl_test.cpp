@@ -107,6 +107,15 @@ TEST_F(VoxelPlantsGl, FarChunksDrawPlantShellsCloseToTheExactPlants) {
   const std::size_t changed = differing_pixels(exact.image, shells.image, 0.1f);
   EXPECT_GT(changed, 0u);
   EXPECT_LT(changed, exact.image.pixel_count() * 3 / 100);
+  // plant_far_cell 2: shells on a grid twice as coarse, fewer cubes again.
+  far.plant_far_cell = 2.0f;
+  const Shot coarse = render_view(*w, far, eye, target);
+  EXPECT_LT(coarse.stats.plant_parts_drawn, shells.stats.plant_parts_drawn * 3 / 4);
+  EXPECT_LT(differing_pixels(exact.image, coarse.image, 0.1f), exact.image.pixel_count() * 6 / 100);
+  far.plant_far_cell = 0.5f;
+  auto refused = VoxelRenderer::create(w->world, w->generator, far);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_NE(refused.error().message.find("voxel.render.plant_far_cell"), std::string::npos) << refused.error().message;
 }
 
 TEST_F(VoxelPlantsGl, PlantsAreCulledOneByOneInTheViewAndInShadowCascades) {

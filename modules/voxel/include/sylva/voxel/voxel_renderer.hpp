@@ -96,6 +96,7 @@ struct VoxelRenderSettings {
   // snap_to_grid: parts on a grid of the start block size, inner cubes and faces between cubes
   // dropped, leaves opaque) in one draw; the colour pass only, shadows keep the exact plants.
   float plant_far_beyond = 96.0f;
+  float plant_far_cell = 1.0f;       // far grid edge in start block sizes, [1, 8]: 2 = coarser shells, fewer cubes
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -127,6 +128,7 @@ struct VoxelRenderSettings {
     v(leaf_back_faces_within, "leaf_back_faces_within", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Leaf cubes nearer than this also draw their far faces (seen through their holes); farther ones only the three faces turned to the camera"});
     v(plant_hidden_faces, "plant_hidden_faces", {.help = "Skip plant faces hidden inside other parts, and parts with every face hidden (the same picture, fewer triangles)", .rebuild = Rebuild::kGpu});
     v(plant_far_beyond, "plant_far_beyond", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Chunks at least this far draw plants as their outer shell on a block grid, leaves opaque, one draw per chunk (shadows keep the exact plants); 1e6 = never"});
+    v(plant_far_cell, "plant_far_cell", {.min = 1.0, .max = 8.0, .help = "Edge of the far plants' grid in start block sizes (1 = the plant's own block size; 2 = coarser shells, fewer cubes)", .rebuild = Rebuild::kGpu});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
