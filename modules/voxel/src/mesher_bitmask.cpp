@@ -383,28 +383,17 @@ class BitmaskMesher final : public Mesher {
           // may merge (rare) are added below with the open ones, in bit order, so slots are made
           // in the order the faces come (the mesh's quad order does not depend on this split).
           std::uint64_t rare = 0;
-          if (single != kAir) {
-            // One plain block id: no id, flag or list choice per face.
-            const std::uint32_t word1 = pack_word1(single, F, 0);
-            while (faces) {
-              const int b = std::countr_zero(faces);
-              faces &= faces - 1;
-              const std::uint32_t e = ao_entry(ao_table, l0, l1, l2, b);
-              if ((e & 0x100u) && !((alone >> b) & 1)) {
-                rare |= std::uint64_t{1} << b;
-                continue;
-              }
-              *dst_opaque++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), word1 | (e & 0xffu) << 19};
-            }
-          } else {
-            while (faces) {
-              const int b = std::countr_zero(faces);
-              faces &= faces - 1;
-              const std::uint32_t e = ao_entry(ao_table, l0, l1, l2, b);
-              if ((e & 0x100u) && !((alone >> b) & 1)) {
-                rare |= std::uint64_t{1} << b;
-                continue;
-              }
+          // One plain block id: no id, flag or list choice per face.
+          const std::uint32_t single_word1 = pack_word1(single, F, 0);
+          while (faces) {
+            const int b = std::countr_zero(faces);
+            faces &= faces - 1;
+            const std::uint32_t e = ao_entry(ao_table, l0, l1, l2, b);
+            if ((e & 0x100u) && !((alone >> b) & 1)) {
+              rare |= std::uint64_t{1} << b;
+            } else if (single != kAir) {
+              *dst_opaque++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), single_word1 | (e & 0xffu) << 19};
+            } else {
               one(b, kTable, e);
             }
           }
