@@ -624,6 +624,9 @@ Result<RegionRebuild> ChunkTree::rebuild_region(const HeightField& field, int x0
   // Morph data of the chunks not rebuilt: morph_target is the coarser level's surface, which
   // depends on points within chunk_size(intro - 1) of the vertex (the level's quadrant grown by
   // half a quadrant); morph_error follows the coarser chunks' bounds, which may change anywhere.
+  // The intro level itself follows the point's RTIN error, which gathers the point's whole
+  // triangle and so can change by an edit far beyond the chunk's reach: it is taken again for
+  // every vertex (as the streamed edit's patch does), and with it the morph target.
   std::vector<std::uint8_t> updated_flag(chunks_.size(), 0);
   std::vector<std::uint32_t> present;
   for (std::uint32_t i = 0; i < chunks_.size(); ++i)
@@ -633,8 +636,15 @@ Result<RegionRebuild> ChunkTree::rebuild_region(const HeightField& field, int x0
     Chunk& c = chunks_[i];
     bool changed = false;
     for (ChunkVertex& v : c.mesh.vertices) {
-      if (!rebuilt_flag[i] && v.intro_level > 0 &&
-          dist(v.gx, v.gz) <= static_cast<std::int64_t>(chunk_size(v.intro_level - 1))) {
+      const Pt p{static_cast<std::int32_t>(v.gx), static_cast<std::int32_t>(v.gz)};
+      const auto intro = static_cast<std::uint8_t>(std::min(rule.intro_level(p), static_cast<int>(c.key.level)));
+      if (!rebuilt_flag[i] && intro != v.intro_level) {
+        v.intro_level = intro;
+        v.morph_target =
+            intro == 0 ? v.height : static_cast<float>(detail::level_surface_height(rule, hg, intro - 1, p));
+        changed = true;
+      } else if (!rebuilt_flag[i] && v.intro_level > 0 &&
+                 dist(v.gx, v.gz) <= static_cast<std::int64_t>(chunk_size(v.intro_level - 1))) {
         const float t = static_cast<float>(detail::level_surface_height(
             rule, hg, v.intro_level - 1, Pt{static_cast<std::int32_t>(v.gx), static_cast<std::int32_t>(v.gz)}));
         if (t != v.morph_target) {

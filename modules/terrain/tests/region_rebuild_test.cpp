@@ -117,6 +117,24 @@ TEST(RegionRebuild, EqualsFullRebuildAndRebuildsOnlyTheNearChunks) {
   expect_same_tree(partial, build_or_die(f, s));
 }
 
+// A point's intro level (the coarsest level holding it) follows its RTIN error, which a stroke
+// far beyond the point's own chunk can change (the error of a coarse point gathers a large
+// triangle): on a nearly flat field, tall strokes make far vertices of chunks that are not
+// rebuilt enter coarser levels, so their intro level and morph target must be taken again.
+TEST(RegionRebuild, StrokesOnANearlyFlatFieldKeepEveryIntroLevelExact) {
+  HeightField f = fbm_field(257, 201, 2.0, 0.05f, 61);  // padded, non-square, 5 cm of relief
+  ChunkTreeSettings s;
+  s.leaf_dimension = 17;
+  ChunkTree partial = build_or_die(f, s);
+  int x0, z0, x1, z1;
+  const int strokes[][2] = {{60, 70}, {200, 40}, {128, 100}, {20, 180}, {240, 190}, {130, 20}};
+  for (const auto& at : strokes) {
+    paint(f, at[0], at[1], 14, 300.0f, x0, z0, x1, z1);
+    ASSERT_TRUE(partial.rebuild_region(f, x0, z0, x1, z1).ok());
+  }
+  expect_same_tree(partial, build_or_die(f, s));
+}
+
 TEST(RegionRebuild, EditAtAChunkCornerRebuildsEveryChunkSharingIt) {
   // A non-square field with padding: 200 x 150 samples in a 256-interval root grid.
   HeightField f = fbm_field(200, 150, 1.0, 20.0f, 5);
