@@ -13,15 +13,17 @@
 //    only those are visited (bit scan).
 // 3. Ambient occlusion per face from a 512-entry table: bits b - 1, b, b + 1 of the three opaque
 //    rows r - 1, r, r + 1 of the layer in front are the face's 3 x 3 neighbourhood. A row with
-//    nothing opaque in front (open ground) skips all AO work; faces on the chunk's edge bits read
-//    the padding blocks instead (AoSampler).
+//    nothing opaque in front (open ground) skips all AO work, and on the other rows the faces
+//    with nothing opaque around them are found bit-parallel and skip it too; faces on the
+//    chunk's edge bits read the padding blocks instead (AoSampler).
 // 4. Faces with uniform AO are bucketed by key (block, face, AO) into per-slice bit planes (open
 //    rows in runs of one block id, one update per run) and merged into rectangles with
 //    count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs between
 //    corners stay unit quads, so every mesher shades identically; so do faces with no face
 //    beside them in the slice (they could merge with nothing), without a slot.
 // 5. Whole-chunk shortcuts (issue #18): an all-air chunk is found by a scan and costs no masks;
-//    slabs of only empty and full rows are not transposed.
+//    slabs of only empty and full rows are not transposed; +-Z slices take rows along x instead
+//    of y when the chunk's +-X faces mostly merged (terrain without AO, see mesh_faces()).
 //
 // The public binary greedy mesher (cgerikj/binary-greedy-meshing) pads 62^3 chunks into 64-bit
 // columns and has no AO merging rule; this one also handles 64^3 chunks.
