@@ -329,8 +329,12 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
   // from behind lies behind the ground in front of it: culled in the colour pass, half of a
   // grazing view's triangles never reach the rasteriser. The shadow pass keeps both faces (the
   // sun may see the field from below its horizon line), and seam fans are vertical (drawn after).
+  // Skirts only hang down from the edges: a crack between two chunks is then closed partly by
+  // the far body's back face seen through it, so with skirts the bodies keep both faces
+  // (SkirtsAlsoLeaveNoCracksOnTheCliffField: 613 background pixels with the bodies culled).
+  const bool cull_backs = !shadow && settings_.lod.crack_fix != CrackFix::kSkirts;
   GLint front_face = GL_CCW, cull_mode = GL_BACK;
-  if (!shadow) {
+  if (cull_backs) {
     glGetIntegerv(GL_FRONT_FACE, &front_face);
     glGetIntegerv(GL_CULL_FACE_MODE, &cull_mode);
     glFrontFace(GL_CCW);
@@ -351,7 +355,7 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     stats.triangles += g->index_count / 3;
     ++stats.draw_calls;
   }
-  if (!shadow) {
+  if (cull_backs) {
     glDisable(GL_CULL_FACE);
     glFrontFace(static_cast<GLenum>(front_face));
     glCullFace(static_cast<GLenum>(cull_mode));
