@@ -161,6 +161,18 @@ void Framebuffer::resolve() const {
   if (!multisampled()) return;
   const GLint w = desc_.width;
   const GLint h = desc_.height;
+  // A blit obeys the scissor test (GL 4.5 §18.3.1), and NVIDIA's driver also honours the depth
+  // and colour write masks in it: a pass that left depth writes off made every resolved depth
+  // the allocation's garbage there (NaN at all 921 600 pixels of a 1280x720 bench frame on an
+  // H200), while Mesa copied. Resolve with both open, as clear() does, and restore them.
+  GLboolean depth_mask = GL_TRUE;
+  GLboolean color_mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
+  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
+  const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDisable(GL_SCISSOR_TEST);
   for (std::size_t i = 0; i < color_.size(); ++i) {
     const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
     glNamedFramebufferReadBuffer(id(), attachment);
@@ -176,6 +188,9 @@ void Framebuffer::resolve() const {
     glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0);
     glNamedFramebufferDrawBuffers(resolve_fbo_.get(), static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
   }
+  glDepthMask(depth_mask);
+  glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
+  if (scissor) glEnable(GL_SCISSOR_TEST);
 }
 
 const Texture& Framebuffer::color_texture(int i) const {

@@ -54,6 +54,36 @@ TEST_F(ClearColorTest, MultisampledTargetResolves) {
   EXPECT_EQ(test::count_color(*image, 1.0f, 0.0f, 128.0f / 255.0f), 32 * 16);
 }
 
+// The resolve copies every pixel whatever state the last pass left: a scissor rectangle (blits
+// obey it) and closed write masks (NVIDIA's driver honours them in blits; a pass ending with
+// depth writes off left the resolved depth uninitialised there: NaN on an H200). The state is
+// restored afterwards.
+TEST_F(ClearColorTest, ResolveCopiesEveryPixelWhateverTheLastPassLeft) {
+  Framebuffer fb = test::make_target(32, 16, 4);
+  ASSERT_TRUE(fb.multisampled());
+  fb.bind();
+  fb.clear({1.0f, 0.0f, 0.5f, 1.0f}, 0.625f);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, 0, 1, 1);
+  glDepthMask(GL_FALSE);
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  Result<Image> depth = read_depth(fb);
+  Result<Image> image = read_color(fb);
+  EXPECT_TRUE(glIsEnabled(GL_SCISSOR_TEST));
+  GLboolean depth_mask = GL_TRUE;
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
+  EXPECT_EQ(depth_mask, GL_FALSE);
+  glDisable(GL_SCISSOR_TEST);
+  glDepthMask(GL_TRUE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  ASSERT_TRUE(depth.ok()) << depth.error().describe();
+  ASSERT_TRUE(image.ok()) << image.error().describe();
+  std::size_t wrong_depth = 0;
+  for (float v : depth->data()) wrong_depth += v == 0.625f ? 0 : 1;
+  EXPECT_EQ(wrong_depth, 0u);
+  EXPECT_EQ(test::count_color(*image, 1.0f, 0.0f, 128.0f / 255.0f), 32 * 16);
+}
+
 TEST_F(ClearColorTest, SeveralColourAttachments) {
   Result<Framebuffer> fb = Framebuffer::create({.width = 8, .height = 8, .color_formats = {GL_RGBA8, GL_RGBA16F}});
   ASSERT_TRUE(fb.ok()) << fb.error().describe();
