@@ -6,6 +6,7 @@
 #include <sylva/render/frustum.hpp>
 #include <sylva/render/vertex_array.hpp>
 #include <sylva/voxel/block_textures.hpp>
+#include <sylva/voxel/plant_mesh.hpp>
 #include <sylva/voxel/tufts.hpp>
 
 #include "plant_batch.hpp"
@@ -100,6 +101,12 @@ struct VoxelRenderer::ChunkGpu {
   render::Buffer plants;       // plant_batch.hpp's layout
   PlantBatch plant;          // its ranges and counts (the parts themselves are in `plants`)
   std::uint32_t plant_parts() const { return plant.count[0][0] + plant.count[0][1]; }
+  // The far shells baked (settings plant_far_mesh, plant_mesh.hpp): vertices pulled from an
+  // SSBO by index, the index buffer in its own VAO; groups without their vertices.
+  render::Buffer mesh_vertices, mesh_indices;
+  render::VertexArray mesh_vao;
+  std::array<PlantMesh::Group, kPlantMeshGroups> mesh_groups{};
+  bool has_mesh = false;
   render::Buffer tufts;
   std::uint32_t tuft_count = 0;
   render::Aabb box;          // chunk box grown by its plants (world)
@@ -243,6 +250,7 @@ Status VoxelRenderer::build_programs() {
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, {}, plant_opaque_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, alpha, plant_alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, tuft, tuft_program_));
+  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/shade.frag"}, {}, plant_mesh_program_));
   SYLVA_TRY(make({"voxel/horizon.vert", "voxel/horizon.frag"}, {}, horizon_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
@@ -318,6 +326,32 @@ void VoxelRenderer::upload_tufts(const ChunkCoord& c, ChunkGpu& gpu) {
   gpu.tufts = render::Buffer::immutable(std::span<const PlantPartGpu>(parts));
 }
 
+void VoxelRenderer::bake_far_mesh(ChunkGpu& gpu) {
+  // The far range (opaque then cut-out shells, plant_batch.hpp) as baked parts.
+  const PlantBatch& b = gpu.plant;
+  std::vector<PlantMeshPart> parts;
+  parts.reserve(b.count[1][0] + b.count[1][1]);
+  for (std::uint32_t i = b.first[1][0]; i < b.first[1][1] + b.count[1][1]; ++i) {
+    const PlantPartGpu& g = b.parts[i];
+    const glm::vec2 xy = glm::unpackSnorm2x16(g.data[0]), zw = glm::unpackSnorm2x16(g.data[1]);
+    PlantMeshPart p;
+    p.center = glm::vec3(g.center_size[0], g.center_size[1], g.center_size[2]);
+    p.size = g.center_size[3];
+    p.orientation = glm::quat(zw.y, xy.x, xy.y, zw.x);
+    p.block = static_cast<BlockId>(g.data[2]);
+    p.hidden = static_cast<std::uint8_t>(g.data[3]);
+    parts.push_back(p);
+  }
+  const PlantMesh mesh = bake_plant_mesh(parts);
+  if (mesh.indices.empty()) return;
+  gpu.mesh_vertices = render::Buffer::immutable(std::span<const PlantMeshVertex>(mesh.vertices));
+  gpu.mesh_indices = render::Buffer::immutable(std::span<const std::uint32_t>(mesh.indices));
+  gpu.mesh_vao = render::VertexArray::create();
+  gpu.mesh_vao.index_buffer(gpu.mesh_indices);
+  gpu.mesh_groups = mesh.groups;
+  gpu.has_mesh = true;
+}
+
 void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
   gpu.plants = {};
   gpu.plant = {};
@@ -325,6 +359,8 @@ void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
   if (!generator_) return;
   gpu.plant = build_plant_batch(*world_, *generator_, c, settings_.plant_hidden_faces, *face_cache_);
   gpu.plant_box = gpu.plant.box;
+  gpu.has_mesh = false;
+  if (settings_.plant_far_mesh) bake_far_mesh(gpu);
   if (!gpu.plant.parts.empty()) gpu.plants = render::Buffer::immutable(std::span<const PlantPartGpu>(gpu.plant.parts));
   gpu.plant.parts = {};
 }
@@ -482,6 +518,7 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
     // the cut-out test (the crown's holes are below a pixel there).
     const bool far = d >= far_beyond;
     if (far && alpha_cut) continue;
+    if (far && settings_.plant_far_mesh) continue;  // draw_far_meshes
     const render::Containment seen = culling ? culling->classify(gpu->plant_box) : render::Containment::kInside;
     if (seen == render::Containment::kOutside) continue;
     plants.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
@@ -521,6 +558,40 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
       }
     }
   }
+}
+
+void VoxelRenderer::draw_far_meshes(const glm::mat4& view_projection, const glm::dvec3& origin,
+                                    const render::Frustum* culling, render::PassStats& stats) {
+  plant_mesh_program_.use();
+  plant_mesh_program_.set("u_view_projection", view_projection);
+  for (ChunkGpu* gpu : visible_) {
+    if (!gpu->has_mesh || distance(gpu->box, origin) < settings_.plant_far_beyond) continue;
+    if (culling && culling->classify(gpu->plant_box) == render::Containment::kOutside) continue;
+    const glm::vec3 offset(gpu->origin - origin);
+    plant_mesh_program_.set("u_chunk_offset", offset);
+    gpu->mesh_vertices.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
+    gpu->mesh_vao.bind();
+    ++stats_.plant_far_chunks;
+    // Eye in the chunk's frame: -offset (the mesh is chunk-relative).
+    PlantMesh probe;  // visible_groups reads the groups only
+    probe.groups = gpu->mesh_groups;
+    const std::uint32_t seen = probe.visible_groups(-offset);
+    for (int g = 0; g < kPlantMeshGroups; ++g) {
+      const PlantMesh::Group& group = gpu->mesh_groups[static_cast<std::size_t>(g)];
+      if (group.count == 0) continue;
+      if (((seen >> g) & 1u) == 0) {
+        ++stats_.plant_mesh_groups_skipped;
+        continue;
+      }
+      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(group.count), GL_UNSIGNED_INT,
+                     reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group.first) * sizeof(std::uint32_t)));
+      ++stats.draw_calls;
+      stats.triangles += group.count / 3;
+      stats_.plant_triangles += group.count / 3;
+      stats_.plant_mesh_triangles += group.count / 3;
+    }
+  }
+  vao_.bind();
 }
 
 void VoxelRenderer::draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection,
@@ -628,11 +699,13 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   const glm::dvec3 eye = frame.camera.position();
   bind_common(opaque_program_, &frame);
   bind_common(plant_opaque_program_, &frame);
+  bind_common(plant_mesh_program_, &frame);
   // Opaque plant cubes are convex and back-face culled: the three faces turned to the eye are
   // all that can show. Leaf cubes show their far faces through their holes, near the camera.
   const render::Frustum frustum = frame.camera.frustum();
   const render::Frustum* culling = settings_.frustum_culling ? &frustum : nullptr;
   draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats);
+  if (settings_.plant_far_mesh && settings_.draw_plants) draw_far_meshes(vp, eye, culling, stats);
   glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
   bind_common(alpha_program_, &frame);
   bind_common(plant_alpha_program_, &frame);

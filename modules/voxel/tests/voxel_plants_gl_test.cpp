@@ -68,6 +68,11 @@ std::size_t differing_pixels(const Image& a, const Image& b, float tolerance) {
   return n;
 }
 
+// Baked far shells against instanced ones (320 x 180): the same faces, rasterised from the same
+// corner positions up to float rounding of the quaternion turn: 0 pixels on llvmpipe, a handful
+// of edge pixels allowed for other rasterisers.
+constexpr std::size_t kBakedMeshPixelBudget = 20;
+
 VoxelRenderSettings near_only() {
   VoxelRenderSettings s;
   s.plant_far_beyond = 1.0e6f;
@@ -116,6 +121,33 @@ TEST_F(VoxelPlantsGl, FarChunksDrawPlantShellsCloseToTheExactPlants) {
   auto refused = VoxelRenderer::create(w->world, w->generator, far);
   ASSERT_FALSE(refused.ok());
   EXPECT_NE(refused.error().message.find("voxel.render.plant_far_cell"), std::string::npos) << refused.error().message;
+}
+
+TEST_F(VoxelPlantsGl, FarShellsBakedIntoMeshesDrawTheInstancedPicture) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  const glm::dvec3 eye(-110.0, 70.0, -110.0), target(16.0, 22.0, 16.0);
+  VoxelRenderSettings far = near_only();
+  far.plant_far_beyond = 96.0f;
+  const Shot instanced = render_view(*w, far, eye, target);
+  far.plant_far_mesh = true;
+  const Shot baked = render_view(*w, far, eye, target);
+  testing::save_png(baked.image, "voxel_plants_far_mesh");
+  EXPECT_EQ(baked.stats.plant_far_chunks, instanced.stats.plant_far_chunks);
+  ASSERT_GT(baked.stats.plant_far_chunks, 0u);
+  EXPECT_EQ(instanced.stats.plant_mesh_triangles, 0u);
+  EXPECT_GT(baked.stats.plant_mesh_triangles, 0u);
+  // The eye is off the chunks' -x and -z sides: the +x and +z groups of far chunks face away.
+  EXPECT_GT(baked.stats.plant_mesh_groups_skipped, 0u);
+  // No far instances any more; the baked triangles are those of the faces turned to the eye.
+  EXPECT_LT(baked.stats.plant_parts_drawn, instanced.stats.plant_parts_drawn);
+  EXPECT_LE(baked.stats.plant_triangles, instanced.stats.plant_triangles);
+  const std::size_t changed = differing_pixels(instanced.image, baked.image, 0.02f);
+  RecordProperty("pixels_changed", static_cast<int>(changed));
+  RecordProperty("triangles_instanced", static_cast<int>(instanced.stats.plant_triangles));
+  RecordProperty("triangles_baked", static_cast<int>(baked.stats.plant_triangles));
+  RecordProperty("groups_skipped", static_cast<int>(baked.stats.plant_mesh_groups_skipped));
+  EXPECT_LE(changed, kBakedMeshPixelBudget);
 }
 
 TEST_F(VoxelPlantsGl, PlantsAreCulledOneByOneInTheViewAndInShadowCascades) {

@@ -97,6 +97,9 @@ struct VoxelRenderSettings {
   // dropped, leaves opaque) in one draw; the colour pass only, shadows keep the exact plants.
   float plant_far_beyond = 96.0f;
   float plant_far_cell = 1.0f;       // far grid edge in start block sizes, [1, 8]: 2 = coarser shells, fewer cubes
+  // Far shells baked per chunk into one static indexed mesh (plant_mesh.hpp), face groups turned
+  // away from the eye skipped; off: instanced cubes (plant.vert). Experimental, off by default.
+  bool plant_far_mesh = false;
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -129,6 +132,7 @@ struct VoxelRenderSettings {
     v(plant_hidden_faces, "plant_hidden_faces", {.help = "Skip plant faces hidden inside other parts, and parts with every face hidden (the same picture, fewer triangles)", .rebuild = Rebuild::kGpu});
     v(plant_far_beyond, "plant_far_beyond", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Chunks at least this far draw plants as their outer shell on a block grid, leaves opaque, one draw per chunk (shadows keep the exact plants); 1e6 = never"});
     v(plant_far_cell, "plant_far_cell", {.min = 1.0, .max = 8.0, .help = "Edge of the far plants' grid in start block sizes (1 = the plant's own block size; 2 = coarser shells, fewer cubes)", .rebuild = Rebuild::kGpu});
+    v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes; experimental", .rebuild = Rebuild::kGpu});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
@@ -160,6 +164,8 @@ struct VoxelFrameStats {
   std::size_t plant_triangles = 0;      // of plant faces not hidden, colour pass (front-face draws: at most)
   std::size_t plant_parts_hidden = 0;   // loaded plant parts left out, every face inside other parts
   std::size_t plant_far_chunks = 0;     // chunks whose plants were drawn as far shells
+  std::size_t plant_mesh_triangles = 0; // far shell triangles drawn from baked meshes (plant_far_mesh)
+  std::size_t plant_mesh_groups_skipped = 0;  // their face groups left out, turned away from the eye
   std::size_t plants_culled = 0;        // plants outside the frustum inside chunks it cuts (colour and shadow passes)
   std::size_t tufts_drawn = 0;
   float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame (0: no fade)
@@ -213,6 +219,7 @@ class VoxelRenderer final : public render::Drawable {
   Status build_programs();
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
   void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
+  void bake_far_mesh(ChunkGpu& gpu);  // settings_.plant_far_mesh: gpu.plant's far range -> gpu's baked mesh
   void upload_tufts(const ChunkCoord& c, ChunkGpu& gpu);
   void update_view_distance(const glm::dvec3& eye);
   void draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection, const glm::dvec3& origin,
@@ -225,6 +232,9 @@ class VoxelRenderer final : public render::Drawable {
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin,
                    double full_cubes_within, double far_beyond, const render::Frustum* culling,
                    render::PassStats& stats);
+  // The far chunks' baked shells (plant_far_mesh), in the opaque colour pass after draw_chunks.
+  void draw_far_meshes(const glm::mat4& view_projection, const glm::dvec3& origin, const render::Frustum* culling,
+                       render::PassStats& stats);
   // `culling` (may be null): per-plant culling inside chunks the frustum cuts.
   void draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
                        const glm::dvec3& origin, const render::Frustum* culling, render::PassStats& stats);
@@ -242,7 +252,7 @@ class VoxelRenderer final : public render::Drawable {
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
-  render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_;
+  render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_, plant_mesh_program_;
   render::Program tuft_program_, horizon_program_, translucent_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Buffer no_shadows_ubo_;
