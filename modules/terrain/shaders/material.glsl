@@ -25,6 +25,14 @@ uniform vec3 u_rock_color;
 uniform vec3 u_snow_color;
 uniform vec3 u_sand_color;
 
+// The finest detail scale the program fetches (0-3; 3: none), chosen per chunk by the renderer
+// (first_detail_scale in material_gpu.hpp) where every pixel of the chunk lies beyond the
+// distance at which the finer scales' fades reach 0: the same picture, bit for bit, without
+// their fetches, which llvmpipe would run under an all-off mask (it does not skip branches).
+#ifndef SYLVA_TERRAIN_FIRST_SCALE
+#define SYLVA_TERRAIN_FIRST_SCALE 0
+#endif
+
 // Tile ratios between the scales: not integers, so the repeats of one never line up with another's.
 const float kScale1 = 5.3, kScale2 = 28.0;
 
@@ -83,9 +91,15 @@ TerrainSurface terrain_surface(vec3 p, vec3 n, float curvature, float h, float m
   float f2 = detail_fade(footprint, inv_tile0 / kScale2);
   vec3 g0 = vec3(0.0), g1 = vec3(0.0), g2 = vec3(0.0);
   vec2 d0 = vec2(0.0), d1 = vec2(0.0), d2 = vec2(0.0);
+#if SYLVA_TERRAIN_FIRST_SCALE <= 0
   if (f0 > 0.0) d0 = f0 * detail_scale(p.xz, pside, xside, inv_tile0, wy, g0);
+#endif
+#if SYLVA_TERRAIN_FIRST_SCALE <= 1
   if (f1 > 0.0) d1 = f1 * detail_scale(p.xz, pside, xside, inv_tile0 / kScale1, wy, g1);
+#endif
+#if SYLVA_TERRAIN_FIRST_SCALE <= 2
   if (f2 > 0.0) d2 = f2 * detail_scale(p.xz, pside, xside, inv_tile0 / kScale2, wy, g2);
+#endif
 
   // Breakup of the layer borders in metres of altitude and in slope, from the coarse scales.
   float breakup = d2.g + 1.0 * macro + 0.35 * d1.g;  // sd ~0.5

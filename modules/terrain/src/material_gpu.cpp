@@ -72,4 +72,19 @@ void set_material_uniforms(const render::Program& program, const MaterialSetting
   program.set("u_sand_color", m.sand_color);
 }
 
+int first_detail_scale(double min_depth_m, double fov_y_rad, double aspect, int viewport_height, float detail_scale_m) {
+  if (!(min_depth_m > 0.0) || viewport_height <= 0 || !(detail_scale_m > 0.0f)) return 0;
+  const double ty = std::tan(0.5 * fov_y_rad), tx = ty * aspect;
+  const double focal_px = 0.5 * viewport_height / ty;
+  const double footprint_m = min_depth_m / (focal_px * (1.0 + tx * tx + ty * ty));
+  // Tiles of the three scales (kScale1, kScale2 in material.glsl); a scale's fade is 0 once its
+  // texel count per pixel, footprint / tile, passes 1/32.
+  constexpr double kTileRatio[3] = {1.0, 5.3, 28.0};
+  constexpr double kFadeEnd = 1.0 / 32.0, kMargin = 2.0;
+  for (int k = 0; k < 3; ++k) {
+    if (footprint_m / (detail_scale_m * kTileRatio[k]) < kMargin * kFadeEnd) return k;
+  }
+  return 3;
+}
+
 }  // namespace sylva::terrain

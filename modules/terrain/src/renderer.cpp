@@ -21,11 +21,28 @@ namespace sylva::terrain {
 namespace {
 constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2, kAttrCentre = 3;
 
-// The colour-pass program of one debug view, with or without received shadows (terrain.frag).
-Result<render::Program> make_shaded_program(bool shadows, DebugView view) {
+// The colour-pass program of one debug view, with or without received shadows, fetching the
+// detail scales from first_scale on (terrain.frag, material.glsl).
+Result<render::Program> make_shaded_program(bool shadows, DebugView view, int first_scale = 0) {
   return render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
                                  {{"SYLVA_TERRAIN_SHADOWS", shadows ? "1" : "0"},
-                                  {"SYLVA_TERRAIN_VIEW", std::to_string(static_cast<int>(view))}});
+                                  {"SYLVA_TERRAIN_VIEW", std::to_string(static_cast<int>(view))},
+                                  {"SYLVA_TERRAIN_FIRST_SCALE", std::to_string(first_scale)}});
+}
+
+bool uses_material(DebugView view) { return view == DebugView::kShaded || view == DebugView::kMaterials; }
+
+// shaded_coarse_ for a view: the variants without the finer detail scales (empty where the view
+// has no material). Errors: the first variant that does not compile.
+Status make_coarse_programs(bool shadows, DebugView view, render::Program (&coarse)[3]) {
+  for (int k = 0; k < 3; ++k) {
+    coarse[k] = {};
+    if (!uses_material(view)) continue;
+    auto p = make_shaded_program(shadows, view, k + 1);
+    if (!p.ok()) return p.error();
+    coarse[k] = std::move(p).value();
+  }
+  return {};
 }
 }  // namespace
 
@@ -137,6 +154,7 @@ Status TerrainRenderer::init(const HeightField* field) {
   auto shaded = make_shaded_program(shaded_with_shadows_, shaded_view_);
   if (!shaded.ok()) return shaded.error();
   shaded_ = std::move(shaded).value();
+  SYLVA_TRY(make_coarse_programs(shaded_with_shadows_, shaded_view_, shaded_coarse_));
   auto depth = render::Program::create({"terrain/chunk.vert", "terrain/depth.frag"});
   if (!depth.ok()) return depth.error();
   depth_ = std::move(depth).value();
@@ -309,7 +327,8 @@ void TerrainRenderer::set_frame_uniforms(const render::Program& program, const g
 
 void TerrainRenderer::draw_geometry(const render::Program& program, const glm::mat4& view_projection,
                                     bool debug_levels, render::PassStats& stats, bool shadow,
-                                    const render::Frustum* cull) {
+                                    const render::Frustum* cull,
+                                    const std::vector<const render::Program*>* chunk_programs) {
   const Selection& selection = shadow ? *shadow_selection_ : *selection_;
   const std::vector<BatchVertex>& batch = shadow ? shadow_batch_ : batch_;
   render::Buffer& buffer = shadow ? shadow_batch_buffer_ : batch_buffer_;
@@ -341,7 +360,9 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     glCullFace(GL_BACK);
     glEnable(GL_CULL_FACE);
   }
-  for (const SelectedChunk& s : selection.chunks) {
+  const render::Program* current = &program;
+  for (std::size_t i = 0; i < selection.chunks.size(); ++i) {
+    const SelectedChunk& s = selection.chunks[i];
     if (cull != nullptr) {
       render::Aabb box;
       tree_->chunk_bounds(s.index, box.min, box.max);
@@ -349,6 +370,10 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     }
     GpuMesh* g = gpu_mesh(s.index);
     if (g == nullptr) continue;
+    if (chunk_programs != nullptr && (*chunk_programs)[i] != current) {
+      current = (*chunk_programs)[i];
+      current->use();
+    }
     if (debug_levels) program.set("u_level", tree_->chunk(s.index).key.level);
     g->vao.bind();
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(g->index_count), GL_UNSIGNED_INT, nullptr);
@@ -360,6 +385,7 @@ void TerrainRenderer::draw_geometry(const render::Program& program, const glm::m
     glFrontFace(static_cast<GLenum>(front_face));
     glCullFace(static_cast<GLenum>(cull_mode));
   }
+  if (current != &program) program.use();
   if (!batch.empty()) {
     // Uploaded once per frame (the shadow batch is drawn once per cascade).
     if (!uploaded) {
@@ -392,6 +418,9 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
   } else {
     if (settings_.receive_shadows != shaded_with_shadows_ || settings_.debug_view != shaded_view_) {
       auto p = make_shaded_program(settings_.receive_shadows, settings_.debug_view);
+      Status coarse = p.ok() ? make_coarse_programs(settings_.receive_shadows, settings_.debug_view, shaded_coarse_)
+                             : Status{};
+      if (p.ok() && !coarse.ok()) p = coarse.error();
       if (p.ok()) {
         shaded_ = std::move(p).value();
         shaded_with_shadows_ = settings_.receive_shadows;
@@ -403,19 +432,41 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     const glm::mat4 vp = frame.camera.view_projection();
     // Each view's program has only the uniforms its view reads (the others are compiled out).
     const DebugView view = shaded_view_;
-    shaded_.use();
-    if (view == DebugView::kFlat) {
-      shaded_.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
-    } else {
-      shaded_.set("u_has_shape", shape_ ? 1 : 0);
-      if (view == DebugView::kShaded || view == DebugView::kMaterials) {
-        set_material_uniforms(shaded_, settings_.material, climate_);
+    const bool coarse = uses_material(view) && static_cast<bool>(shaded_coarse_[0]);
+    for (int k = 0; k < (coarse ? 4 : 1); ++k) {
+      const render::Program& p = k == 0 ? shaded_ : shaded_coarse_[k - 1];
+      p.use();
+      if (view == DebugView::kFlat) {
+        p.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
+      } else {
+        p.set("u_has_shape", shape_ ? 1 : 0);
+        if (uses_material(view)) set_material_uniforms(p, settings_.material, climate_);
       }
+      if (k > 0) set_frame_uniforms(p, vp);
     }
     detail_.bind(1);
     if (shape_) shape_.bind(2);
     const bool levels = view == DebugView::kLodColors;
-    draw_geometry(shaded_, vp, levels, stats, false, nullptr);
+    std::vector<const render::Program*> chunk_programs;
+    if (coarse) {
+      // Per chunk, the variant without the detail scales that have faded out on all of it: the
+      // nearest corner of its box in view depth bounds its pixels' footprints (first_detail_scale).
+      const glm::dvec3 eye = frame.camera.position(), forward(frame.camera.forward());
+      const render::PerspectiveParams& lens = frame.camera.perspective();
+      chunk_programs.reserve(selection_->chunks.size());
+      for (const SelectedChunk& s : selection_->chunks) {
+        glm::dvec3 lo, hi;
+        tree_->chunk_bounds(s.index, lo, hi);
+        double depth = std::numeric_limits<double>::infinity();
+        for (int c = 0; c < 8; ++c) {
+          const glm::dvec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+          depth = std::min(depth, glm::dot(corner - eye, forward));
+        }
+        const int k = first_detail_scale(depth, lens.fov_y, lens.aspect, frame.viewport.y, settings_.material.detail_scale_m);
+        chunk_programs.push_back(k == 0 ? &shaded_ : &shaded_coarse_[k - 1]);
+      }
+    }
+    draw_geometry(shaded_, vp, levels, stats, false, nullptr, coarse ? &chunk_programs : nullptr);
     if (settings_.wireframe && !flat_) {
       auto p = make_shaded_program(false, DebugView::kFlat);
       if (p.ok()) {

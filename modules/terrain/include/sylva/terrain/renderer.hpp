@@ -135,9 +135,11 @@ class TerrainRenderer final : public render::Drawable {
   void update_height_textures(const HeightField& field, int x0, int z0, int x1, int z1);
   void set_frame_uniforms(const render::Program& program, const glm::mat4& view_projection) const;
   struct BatchVertex;
-  // shadow: the unculled caster selection and its batch; cull: chunk boxes outside are skipped.
+  // shadow: the unculled caster selection and its batch; cull: chunk boxes outside are skipped;
+  // chunk_programs: one per selected chunk (its frame uniforms set) to draw it with instead.
   void draw_geometry(const render::Program& program, const glm::mat4& view_projection, bool debug_levels,
-                     render::PassStats& stats, bool shadow, const render::Frustum* cull);
+                     render::PassStats& stats, bool shadow, const render::Frustum* cull,
+                     const std::vector<const render::Program*>* chunk_programs = nullptr);
   void assemble_batch(const Selection& selection, std::vector<BatchVertex>& batch);
 
   TerrainRenderSettings settings_;
@@ -156,6 +158,9 @@ class TerrainRenderer final : public render::Drawable {
   // shaded_ is compiled for one debug view and the shadow switch (terrain.frag); flat_ draws the
   // wireframe overlay, compiled when first asked for.
   render::Program shaded_, flat_, depth_, bounds_;
+  // shaded_ without the detail scales finer than 1, 2, 3 (none), for chunks beyond their fades
+  // (first_detail_scale); compiled for the shaded and materials views only.
+  render::Program shaded_coarse_[3];
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
   render::Texture heights_;
