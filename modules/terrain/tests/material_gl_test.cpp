@@ -4,12 +4,14 @@
 #include <sylva/render/testing.hpp>
 #include <sylva/terrain/renderer.hpp>
 
+#include "../src/material_gpu.hpp"
 #include "support/gl_support.hpp"
 #include "support/terrain_test_support.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 namespace sylva::terrain {
 namespace {
@@ -177,6 +179,65 @@ TEST_F(TerrainMaterialGl, CliffTextureIsNotStretched) {
   EXPECT_GT(gx, 1e-3) << "the wall has no texture";
   EXPECT_GT(gy / gx, 0.4) << "the wall's texture is stretched vertically";
   EXPECT_LT(gy / gx, 2.5);
+}
+
+// The per-chunk variants (material.glsl SYLVA_TERRAIN_FIRST_SCALE) leave out a detail scale only
+// where its fade is 0 on every pixel: for ground at least `depth` in front of the camera, on any
+// plane through a pixel's point, anywhere on the screen, the coarse derivatives of every 2x2 quad
+// holding that pixel (neighbours' rays met on the same plane, as the rasteriser extrapolates)
+// span at least 1/32 of each dropped scale's tile.
+TEST(TerrainMaterialVariants, DroppedDetailScalesHaveFadedOnEveryPixel) {
+  const double fov = 45.0 * 3.14159265358979 / 180.0, tile = 2.5;
+  const int width = 1920, height = 1080;
+  const double focal = 0.5 * height / std::tan(0.5 * fov);
+  const double ratio[3] = {1.0, 5.3, 28.0};
+  auto ray = [&](double x, double y) { return glm::dvec3((x + 0.5 - 0.5 * width) / focal, (0.5 * height - y - 0.5) / focal, 1.0); };
+  int dropped = 0;
+  double tightest = 1e9;
+  for (double depth : {3.0, 40.0, 110.0, 250.0, 600.0, 1500.0, 3500.0, 8000.0, 30000.0}) {
+    const int k = first_detail_scale(depth, fov, double(width) / height, height, static_cast<float>(tile));
+    dropped += k;
+    for (int px : {0, 1, width / 3, width / 2, width - 2}) {
+      for (int py : {0, 1, height / 2, height - 2}) {
+        const glm::dvec3 p = ray(px, py) * depth;  // view depth (z) = depth
+        for (int a = 0; a < 90; a += 8) {
+          for (int b = 0; b < 360; b += 30) {
+            const double ar = a * 3.14159265358979 / 180.0, br = b * 3.14159265358979 / 180.0;
+            glm::dvec3 n(std::sin(ar) * std::cos(br), std::sin(ar) * std::sin(br), -std::cos(ar));
+            const glm::dvec3 dir = glm::normalize(ray(px, py));
+            if (std::abs(glm::dot(n, dir)) < 1e-3) continue;
+            if (glm::dot(n, dir) > 0.0) n = -n;
+            auto on_plane = [&](double x, double y, glm::dvec3& q) {
+              const glm::dvec3 r = ray(x, y);
+              const double t = glm::dot(p, n) / glm::dot(r, n);
+              q = r * t;
+              return t > 0.0;
+            };
+            for (int ox : {-1, 0}) {
+              for (int oy : {-1, 0}) {
+                glm::dvec3 o, qx, qy;
+                if (!on_plane(px + ox, py + oy, o) || !on_plane(px + ox + 1, py + oy, qx) ||
+                    !on_plane(px + ox, py + oy + 1, qy)) {
+                  continue;  // a neighbour's ray misses the plane: an unbounded footprint
+                }
+                const double footprint = std::max(glm::length(qx - o), glm::length(qy - o));
+                for (int j = 0; j < k; ++j) {
+                  const double texels = footprint / (tile * ratio[j]);
+                  tightest = std::min(tightest, texels * 32.0);
+                  ASSERT_GE(texels, 1.0 / 32.0) << "scale " << j << " dropped at depth " << depth << " pixel (" << px
+                                                << ", " << py << ") tilt " << a << " azimuth " << b;
+                }
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(dropped, 9);  // first scales 0 0 0 0 1 1 2 2 3 over the depths
+  EXPECT_EQ(first_detail_scale(3.0, fov, 16.0 / 9.0, height, 2.5f), 0);
+  EXPECT_EQ(first_detail_scale(30000.0, fov, 16.0 / 9.0, height, 2.5f), 3);
+  std::printf("tightest dropped-scale footprint: %.3f x the fade's end\n", tightest);
 }
 
 }  // namespace
