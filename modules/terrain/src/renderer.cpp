@@ -132,10 +132,13 @@ Result<RegionRebuild> TerrainRenderer::apply_streamed_edit(const HeightField& fi
 }
 
 void TerrainRenderer::update_height_textures(const HeightField& field, int x0, int z0, int x1, int z1) {
-  if (has_heights_) {
+  if (has_heights_ && heights_.width() == field.columns() && heights_.height() == field.rows()) {
+    height_texels_uploaded_ += update_height_texture(heights_, field, x0, z0, x1, z1);
+  } else if (has_heights_) {
     auto heights = make_height_texture(field);
     if (heights.ok()) {
       heights_ = std::move(heights).value();
+      height_texels_uploaded_ += static_cast<std::int64_t>(field.columns()) * field.rows();
     } else {
       log_warn("{}; normals come from the triangles", heights.error().message);
       has_heights_ = false;

@@ -105,6 +105,42 @@ TEST_F(TerrainGl, HeightTextureHoldsTheSamplesAndMapsWorldPositions) {
   EXPECT_NE(refused.error().message.find("GL_MAX_TEXTURE_SIZE"), std::string::npos) << refused.error().message;
 }
 
+// Issue 15: painting re-uploads only the stroke's rectangle of the height texture. The same
+// 41x41 stroke on a 513^2 and a 2049^2 field uploads 1681 texels on both, and the texture then
+// holds every edited sample and still every untouched one; through the renderer's
+// apply_height_edit the counter grows by the edit's rectangle only.
+TEST_F(TerrainGl, HeightTextureEditUploadsOnlyTheStrokesTexels) {
+  for (const int size : {513, 2049}) {
+    HeightField field(size, size, 2.0);
+    for (std::size_t i = 0; i < field.samples().size(); ++i) field.samples()[i] = static_cast<float>(i % 977);
+    auto tex = make_height_texture(field);
+    ASSERT_TRUE(tex.ok());
+    for (int z = 200; z < 241; ++z)
+      for (int x = 300; x < 341; ++x) field.samples()[static_cast<std::size_t>(z) * size + x] += 5.5f;
+    EXPECT_EQ(update_height_texture(*tex, field, 300, 200, 341, 241), 41 * 41) << size;
+    std::vector<float> back(field.samples().size());
+    glGetTextureImage(tex->id(), 0, GL_RED, GL_FLOAT, static_cast<GLsizei>(back.size() * sizeof(float)), back.data());
+    EXPECT_TRUE(back == field.samples()) << size;
+    EXPECT_EQ(update_height_texture(*tex, field, size - 3, size - 2, size + 9, size + 9), 3 * 2) << "clamped";
+    EXPECT_EQ(update_height_texture(*tex, field, 5, 5, 5, 9), 0) << "empty";
+  }
+
+  HeightField field(37, 23, 3.0);
+  ChunkTreeSettings ts;
+  ts.leaf_dimension = 9;
+  auto tree = std::make_shared<const ChunkTree>(std::move(ChunkTree::build(field, ts)).value());
+  auto renderer = TerrainRenderer::create(tree, &field, {});
+  ASSERT_TRUE(renderer.ok());
+  const std::int64_t before = (*renderer)->height_texels_uploaded();
+  field.samples()[7 * 37 + 10] = 40.0f;
+  ASSERT_TRUE((*renderer)->apply_height_edit(field, 10, 7, 11, 8).ok());
+  EXPECT_EQ((*renderer)->height_texels_uploaded() - before, 1);
+  std::vector<float> back(field.samples().size());
+  glGetTextureImage((*renderer)->height_texture()->id(), 0, GL_RED, GL_FLOAT,
+                    static_cast<GLsizei>(back.size() * sizeof(float)), back.data());
+  EXPECT_TRUE(back == field.samples());
+}
+
 TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
   GeneratedFieldSettings g;
   g.size = 513;

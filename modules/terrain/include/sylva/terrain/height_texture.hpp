@@ -13,6 +13,8 @@
 
 #include <glm/glm.hpp>
 
+#include <cstdint>
+
 namespace sylva::terrain {
 
 struct HeightTextureInfo {
@@ -24,6 +26,12 @@ struct HeightTextureInfo {
 // Needs a current GL 4.5 context. Errors: kInvalidArgument (empty field), kLimit when a side
 // exceeds GL_MAX_TEXTURE_SIZE (the message names the field size and the limit).
 Result<render::Texture> make_height_texture(const HeightField& field);
+// Re-uploads only the samples [x0, x1) x [z0, z1) (x1/z1 exclusive, clamped to the field) of
+// `field` into `texture`, which make_height_texture made from a field of the same columns x rows
+// (one level, no mips to refresh). Per-stroke cost proportional to the stroke, not the field
+// (issue 15). Returns the texels uploaded (0 for an empty rectangle). Needs a current context.
+std::int64_t update_height_texture(const render::Texture& texture, const HeightField& field, int x0, int z0, int x1,
+                                   int z1);
 HeightTextureInfo height_texture_info(const HeightField& field);
 
 }  // namespace sylva::terrain

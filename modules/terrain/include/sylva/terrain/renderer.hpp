@@ -28,6 +28,7 @@
 #include <sylva/terrain/vertex_position.hpp>
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <unordered_map>
 #include <vector>
@@ -116,6 +117,9 @@ class TerrainRenderer final : public render::Drawable {
   // The full-resolution height texture (make_height_texture) when a field was given and fits
   // GL_MAX_TEXTURE_SIZE, else null. Other modules may sample it (height_texture_info for uv).
   const render::Texture* height_texture() const { return has_heights_ ? &heights_ : nullptr; }
+  // Texels of the height texture re-uploaded by apply_height_edit so far: only each edit's
+  // rectangle (update_height_texture), independent of the field size (issue 15).
+  std::int64_t height_texels_uploaded() const { return height_texels_uploaded_; }
 
   // The LodView a camera and viewport give (what update() selects with).
   static LodView view_for(const render::Camera& camera, glm::ivec2 viewport);
@@ -165,6 +169,7 @@ class TerrainRenderer final : public render::Drawable {
   DebugView shaded_view_ = DebugView::kShaded;
   render::Texture heights_;
   bool has_heights_ = false;
+  std::int64_t height_texels_uploaded_ = 0;
   // Material: the tiling detail noise, the field's normal + curvature (when the heights fit on
   // the GPU) and the curvature radius it was computed with.
   render::Texture detail_, shape_;
