@@ -7,8 +7,8 @@
 // by the direction they point so a whole group that no eye position can see is skipped by one
 // comparison per group (PlantMesh::visible_groups) instead of per vertex.
 //
-// Used by the renderer for far plant shells with VoxelRenderSettings::plant_far_mesh (off by
-// default); near plants stay instanced (plant.vert).
+// Used by the renderer for far plant shells with VoxelRenderSettings::plant_far_mesh (default
+// on); near plants stay instanced (plant.vert).
 
 #include <sylva/voxel/block.hpp>
 

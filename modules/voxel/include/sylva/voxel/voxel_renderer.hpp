@@ -98,8 +98,8 @@ struct VoxelRenderSettings {
   float plant_far_beyond = 96.0f;
   float plant_far_cell = 1.0f;       // far grid edge in start block sizes, [1, 8]: 2 = coarser shells, fewer cubes
   // Far shells baked per chunk into one static indexed mesh (plant_mesh.hpp), face groups turned
-  // away from the eye skipped; off: instanced cubes (plant.vert). Experimental, off by default.
-  bool plant_far_mesh = false;
+  // away from the eye skipped; off: instanced cubes (plant.vert). The same picture (issue #18).
+  bool plant_far_mesh = true;
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -132,7 +132,7 @@ struct VoxelRenderSettings {
     v(plant_hidden_faces, "plant_hidden_faces", {.help = "Skip plant faces hidden inside other parts, and parts with every face hidden (the same picture, fewer triangles)", .rebuild = Rebuild::kGpu});
     v(plant_far_beyond, "plant_far_beyond", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Chunks at least this far draw plants as their outer shell on a block grid, leaves opaque, one draw per chunk (shadows keep the exact plants); 1e6 = never"});
     v(plant_far_cell, "plant_far_cell", {.min = 1.0, .max = 8.0, .help = "Edge of the far plants' grid in start block sizes (1 = the plant's own block size; 2 = coarser shells, fewer cubes)", .rebuild = Rebuild::kGpu});
-    v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes; experimental", .rebuild = Rebuild::kGpu});
+    v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
