@@ -31,31 +31,42 @@ struct ErrorPass {
     return e(x, z);
   }
 
-  // Side midpoints of cells of size t on row z.
-  void sides(std::int32_t t, std::int32_t z) const {
+  // The first x >= lo with x = offset mod t (offset < t).
+  static std::int32_t first(std::int32_t offset, std::int32_t t, std::int32_t lo) {
+    if (lo <= offset) return offset;
+    return offset + (lo - offset + t - 1) / t * t;
+  }
+
+  // Side midpoints of cells of size t on row z, columns [lo, hi].
+  std::int64_t sides(std::int32_t t, std::int32_t z, std::int32_t lo, std::int32_t hi) const {
+    std::int64_t count = 0;
     const std::int32_t half = t / 2, quarter = t / 4;
     if (z % t == 0) {  // horizontal sides: x = t/2 mod t
-      for (std::int32_t x = half; x <= n; x += t) {
+      for (std::int32_t x = first(half, t, lo); x <= std::min(n, hi); x += t) {
         float err = own_error(h(x, z), h(x - half, z), h(x + half, z));
         err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
                         e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
         set(x, z, err);
+        ++count;
       }
     } else if (z % t == half) {  // vertical sides: x = 0 mod t
-      for (std::int32_t x = 0; x <= n; x += t) {
+      for (std::int32_t x = first(0, t, lo); x <= std::min(n, hi); x += t) {
         float err = own_error(h(x, z), h(x, z - half), h(x, z + half));
         err = std::max({err, e_or0(x - quarter, z - quarter), e_or0(x + quarter, z - quarter),
                         e_or0(x - quarter, z + quarter), e_or0(x + quarter, z + quarter)});
         set(x, z, err);
+        ++count;
       }
     }
+    return count;
   }
 
-  // Cell centres of cells of size t on row z (z = t/2 mod t).
-  void centres(std::int32_t t, std::int32_t z) const {
+  // Cell centres of cells of size t on row z (z = t/2 mod t), columns [lo, hi].
+  std::int64_t centres(std::int32_t t, std::int32_t z, std::int32_t lo, std::int32_t hi) const {
+    std::int64_t count = 0;
     const std::int32_t half = t / 2;
     const std::int32_t cz = (z - half) / t;
-    for (std::int32_t x = half; x <= n; x += t) {
+    for (std::int32_t x = first(half, t, lo); x <= std::min(n, hi); x += t) {
       const std::int32_t cx = (x - half) / t;
       float ha, hb;
       if (((cx + cz) & 1) == 0) {
@@ -68,7 +79,9 @@ struct ErrorPass {
       float err = own_error(h(x, z), ha, hb);
       err = std::max({err, e(x - half, z), e(x + half, z), e(x, z - half), e(x, z + half)});
       set(x, z, err);
+      ++count;
     }
+    return count;
   }
 };
 
@@ -99,13 +112,31 @@ ErrorGrid compute_errors(const HeightGrid& heights, int threads) {
     // Rows of side midpoints: z multiple of t/2. Each row writes only its own points and reads
     // the finer pass, so rows are independent.
     const std::size_t side_rows = static_cast<std::size_t>(heights.n / (t / 2)) + 1;
-    parallel_for(side_rows, threads, [&](std::size_t r) { pass.sides(t, static_cast<std::int32_t>(r) * (t / 2)); },
+    parallel_for(side_rows, threads, [&](std::size_t r) { (void)pass.sides(t, static_cast<std::int32_t>(r) * (t / 2), 0, heights.n); },
                  nullptr, 16);
     const std::size_t centre_rows = static_cast<std::size_t>(heights.n / t);
     parallel_for(centre_rows, threads,
-                 [&](std::size_t r) { pass.centres(t, t / 2 + static_cast<std::int32_t>(r) * t); }, nullptr, 16);
+                 [&](std::size_t r) { (void)pass.centres(t, t / 2 + static_cast<std::int32_t>(r) * t, 0, heights.n); }, nullptr, 16);
   }
   return eg;
+}
+
+std::int64_t update_errors(ErrorGrid& errors, std::int32_t x0, std::int32_t z0, std::int32_t x1, std::int32_t z1) {
+  const std::int32_t n = errors.n;
+  ErrorPass pass{*errors.heights, errors, n};
+  std::int64_t recomputed = 0;
+  for (std::int32_t t = 4; t <= n; t *= 2) {
+    // A pass-t point reads heights and finer errors within 1.5 t - 1 of itself (the recursion
+    // t/2 + t/4 + ...: see the header): every point farther than 2 t from the changed heights
+    // keeps its value, and every nearer one is recomputed with the same float operations in the
+    // same pass order as compute_errors, so the grid stays bit-identical.
+    const std::int32_t lo_x = std::max(x0 - 2 * t, 0), hi_x = std::min(x1 + 2 * t, n);
+    const std::int32_t lo_z = std::max(z0 - 2 * t, 0), hi_z = std::min(z1 + 2 * t, n);
+    const std::int32_t half = t / 2;
+    for (std::int32_t z = ErrorPass::first(0, half, lo_z); z <= hi_z; z += half) recomputed += pass.sides(t, z, lo_x, hi_x);
+    for (std::int32_t z = ErrorPass::first(half, t, lo_z); z <= hi_z; z += t) recomputed += pass.centres(t, z, lo_x, hi_x);
+  }
+  return recomputed;
 }
 
 double level_surface_height(const ActiveRule& rule, const HeightGrid& heights, int level, Pt p) {

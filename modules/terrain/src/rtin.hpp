@@ -80,6 +80,14 @@ struct ErrorGrid {
 // Computes ErrorGrid from the heights, finest triangles first, rows in parallel.
 ErrorGrid compute_errors(const HeightGrid& heights, int threads);
 
+// After the heights of the root-grid points [x0, x1] x [z0, z1] (inclusive) changed in
+// *errors.heights, recomputes the stored errors that can depend on them (those within 2 t of the
+// rectangle on pass t), leaving `errors` bit-identical to compute_errors of the new heights
+// (issue 15: a paint stroke's cost follows the stroke, not the field). Returns the count of
+// stored error cells recomputed: about the rectangle grown by 2 t per pass (area / 4 in all) plus a few per
+// coarse pass that reaches the border (log2 n of them), not the field's (n / 2 + 1)^2.
+std::int64_t update_errors(ErrorGrid& errors, std::int32_t x0, std::int32_t z0, std::int32_t x1, std::int32_t z1);
+
 // Whether a point belongs to a level's vertex set: it lies on the level's grid and is either
 // forced (on the half-chunk grid, which keeps every chunk split down to its four quadrants so
 // that the next level's chunks nest inside it) or its error exceeds the level's tolerance.

@@ -6,6 +6,7 @@
 #include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/streaming.hpp>
 
+#include "../src/rtin.hpp"
 #include "support/terrain_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,33 @@ namespace {
 
 using namespace testing;
 namespace fs = std::filesystem;
+
+// Issue 15 (a): after a stroke changes the heights of a rectangle, update_errors recomputes only
+// the RTIN errors near it and the error grid is bit-identical to a full compute_errors. The same
+// 21x21 stroke on a 512^2 and a 2048^2 root grid recomputes nearly the same count (690 and 749:
+// the larger grid's coarse passes, whose windows reach the border, add a few cells each: a
+// log2 n term), a small fraction of either grid (66 049 and 1 050 625 cells).
+TEST(StreamEditsErrors, UpdatingTheStrokesErrorsEqualsAFullRecompute) {
+  std::int64_t counts[2] = {0, 0};
+  int k = 0;
+  for (const std::int32_t n : {512, 2048}) {
+    detail::HeightGrid heights;
+    heights.n = n;
+    heights.h.resize(static_cast<std::size_t>(n + 1) * (n + 1));
+    for (std::size_t i = 0; i < heights.h.size(); ++i)
+      heights.h[i] = static_cast<float>((i * 2654435761u) % 1000u) * 0.37f;
+    detail::ErrorGrid errors = detail::compute_errors(heights, 1);
+    for (std::int32_t z = 200; z <= 220; ++z)
+      for (std::int32_t x = 300; x <= 320; ++x) heights.h[static_cast<std::size_t>(z) * (n + 1) + x] += 57.25f;
+    counts[k] = detail::update_errors(errors, 300, 200, 320, 220);
+    const detail::ErrorGrid full = detail::compute_errors(heights, 1);
+    EXPECT_EQ(std::memcmp(errors.even.data(), full.even.data(), full.even.size() * sizeof(float)), 0) << n;
+    EXPECT_LT(counts[k] * 20, static_cast<std::int64_t>(full.even.size())) << n;
+    ++k;
+  }
+  EXPECT_LE((counts[1] - counts[0]) * 10, counts[0]) << counts[0] << " " << counts[1];
+  EXPECT_GE(counts[1], counts[0]);
+}
 
 ChunkTreeSettings tree_settings() {
   ChunkTreeSettings s;
