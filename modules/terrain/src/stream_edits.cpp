@@ -18,6 +18,44 @@ ChunkMesh RebuildSource::build(std::uint32_t index) const {
   return std::move(chunk.mesh);
 }
 
+namespace {
+
+// The previous edit's grids brought up to `field` (issue 15 (a)): copied (streaming threads may
+// still build from the old ones), the padded heights rewritten in the edits' root-grid rectangles
+// (padding clamps to the last sample, as prepare's padded_heights does) and the RTIN errors near
+// them recomputed (update_errors), so the result equals prepare(field) bit for bit at a cost of
+// one copy plus the strokes' own work, not prepare's whole-field error passes.
+Result<std::unique_ptr<TreeGrids>> updated_grids(const TreeGrids& old, const HeightField& field,
+                                                 const std::vector<std::array<std::int64_t, 4>>& edits) {
+  auto g = std::make_unique<TreeGrids>(old);
+  g->errors.heights = &g->heights;
+  g->rule.errors = &g->errors;
+  const std::size_t side = static_cast<std::size_t>(g->heights.n) + 1;
+  for (const auto& e : edits) {
+    for (std::int64_t z = e[1]; z <= e[3]; ++z) {
+      const int fz = std::min(static_cast<int>(z), field.rows() - 1);
+      for (std::int64_t x = e[0]; x <= e[2]; ++x) {
+        const int fx = std::min(static_cast<int>(x), field.columns() - 1);
+        const float h = field.sample(fx, fz);
+        if (!std::isfinite(h)) {
+          return make_error(ErrorCode::kInvalidArgument,
+                            fmt::format("terrain: the height field has a NaN/Inf sample at column {} row {} "
+                                        "(load with non_finite = repair to replace them)",
+                                        fx, fz));
+        }
+        g->heights.h[static_cast<std::size_t>(z) * side + static_cast<std::size_t>(x)] = h;
+      }
+    }
+  }
+  for (const auto& e : edits) {
+    update_errors(g->errors, static_cast<std::int32_t>(e[0]), static_cast<std::int32_t>(e[1]),
+                  static_cast<std::int32_t>(e[2]), static_cast<std::int32_t>(e[3]));
+  }
+  return g;
+}
+
+}  // namespace
+
 StreamEdits::StreamEdits(const ChunkTree& file_tree) : tree_(file_tree) {}
 
 Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::vector<SampleRect>& rects,
@@ -51,7 +89,8 @@ Result<RegionRebuild> StreamEdits::apply(const HeightField& field, const std::ve
   // The bake's own grids of the edited field (chunk_build.hpp); validates NaN/Inf.
   ChunkTreeSettings settings = tree_.settings();
   settings.keep_meshes = true;  // the rebuilt meshes are what the overlay is for
-  auto grids = ChunkTreeBuilder::prepare(HeightField(field), settings, {});
+  auto grids = source_ ? updated_grids(*source_->grids, field, edits)
+                       : ChunkTreeBuilder::prepare(HeightField(field), settings, {});
   if (!grids.ok()) return grids.error();
 
   // The chunks rebuild_region re-triangulates: the square grown by half a chunk meets an edit (a
