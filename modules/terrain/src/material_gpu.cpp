@@ -80,9 +80,9 @@ int first_detail_scale(double min_depth_m, double fov_y_rad, double aspect, int 
   // Tiles of the three scales (kScale1, kScale2 in material.glsl); a scale's fade is 0 once its
   // texel count per pixel, footprint / tile, passes 1/32.
   constexpr double kTileRatio[3] = {1.0, 5.3, 28.0};
-  constexpr double kFadeEnd = 1.0 / 32.0, kMargin = 2.0;
+  constexpr double kFadeEnd = 1.0 / 32.0;
   for (int k = 0; k < 3; ++k) {
-    if (footprint_m / (detail_scale_m * kTileRatio[k]) < kMargin * kFadeEnd) return k;
+    if (footprint_m / (detail_scale_m * kTileRatio[k]) < kFadeEnd) return k;
   }
   return 3;
 }

@@ -234,7 +234,7 @@ TEST(TerrainMaterialVariants, DroppedDetailScalesHaveFadedOnEveryPixel) {
       }
     }
   }
-  EXPECT_EQ(dropped, 9);  // first scales 0 0 0 0 1 1 2 2 3 over the depths
+  EXPECT_EQ(dropped, 12);  // first scales 0 0 0 1 1 2 2 3 3 over the depths
   EXPECT_EQ(first_detail_scale(3.0, fov, 16.0 / 9.0, height, 2.5f), 0);
   EXPECT_EQ(first_detail_scale(30000.0, fov, 16.0 / 9.0, height, 2.5f), 3);
   std::printf("tightest dropped-scale footprint: %.3f x the fade's end\n", tightest);
