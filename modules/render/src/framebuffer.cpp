@@ -7,9 +7,38 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 
 namespace sylva::render {
 namespace {
+
+// Clears and blits write every pixel of a target only with the write masks open and the
+// scissor test off: both obey the scissor test (GL 4.5 §17.4.3, §18.3.1), clears obey the
+// masks, and NVIDIA's driver honours the depth and colour masks in blits too (Mesa does not).
+// Opens them for one operation and restores what the caller had.
+class OpenWrites {
+ public:
+  OpenWrites() {
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
+    glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
+    scissor_ = glIsEnabled(GL_SCISSOR_TEST);
+    glDepthMask(GL_TRUE);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_SCISSOR_TEST);
+  }
+  ~OpenWrites() {
+    glDepthMask(depth_mask_);
+    glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
+    if (scissor_) glEnable(GL_SCISSOR_TEST);
+  }
+  OpenWrites(const OpenWrites&) = delete;
+  OpenWrites& operator=(const OpenWrites&) = delete;
+
+ private:
+  GLboolean depth_mask_ = GL_TRUE;
+  GLboolean color_mask_[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+  GLboolean scissor_ = GL_FALSE;
+};
 
 const char* status_name(GLenum status) {
   switch (status) {
@@ -142,37 +171,20 @@ void Framebuffer::bind_default(int width, int height) {
 }
 
 void Framebuffer::clear(const glm::vec4& color, float depth) const {
-  // Clears obey the write masks; force them on and restore them afterwards.
-  GLboolean depth_mask = GL_TRUE;
-  GLboolean color_mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
-  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  const OpenWrites open;
   for (std::size_t i = 0; i < color_.size(); ++i) {
     glClearNamedFramebufferfv(id(), GL_COLOR, static_cast<GLint>(i), &color.x);
   }
   if (depth_) glClearNamedFramebufferfv(id(), GL_DEPTH, 0, &depth);
-  glDepthMask(depth_mask);
-  glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
 }
 
 void Framebuffer::resolve() const {
   if (!multisampled()) return;
   const GLint w = desc_.width;
   const GLint h = desc_.height;
-  // A blit obeys the scissor test (GL 4.5 §18.3.1), and NVIDIA's driver also honours the depth
-  // and colour write masks in it: a pass that left depth writes off made every resolved depth
-  // the allocation's garbage there (NaN at all 921 600 pixels of a 1280x720 bench frame on an
-  // H200), while Mesa copied. Resolve with both open, as clear() does, and restore them.
-  GLboolean depth_mask = GL_TRUE;
-  GLboolean color_mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
-  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
-  const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
-  glDepthMask(GL_TRUE);
-  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDisable(GL_SCISSOR_TEST);
+  // With the masks open (OpenWrites): a pass that had left depth writes off made every resolved
+  // depth the allocation's garbage on NVIDIA, while Mesa copied.
+  const OpenWrites open;
   for (std::size_t i = 0; i < color_.size(); ++i) {
     const GLenum attachment = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
     glNamedFramebufferReadBuffer(id(), attachment);
@@ -183,14 +195,21 @@ void Framebuffer::resolve() const {
     glBlitNamedFramebuffer(id(), resolve_fbo_.get(), 0, 0, w, h, 0, 0, w, h, GL_DEPTH_BUFFER_BIT, GL_NEAREST);
   }
   if (!color_.empty()) {
-    std::vector<GLenum> draw_buffers;
-    for (std::size_t i = 0; i < color_.size(); ++i) draw_buffers.push_back(GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i));
+    // Runs every frame: the draw-buffer list lives on the stack (create() refused more than
+    // GL_MAX_COLOR_ATTACHMENTS, 8 on Mesa and the GPUs seen; the array has room for 32).
+    std::array<GLenum, 32> draw_buffers{};
+    const std::size_t n = std::min(color_.size(), draw_buffers.size());
+    for (std::size_t i = 0; i < n; ++i) draw_buffers[i] = GL_COLOR_ATTACHMENT0 + static_cast<GLenum>(i);
     glNamedFramebufferReadBuffer(id(), GL_COLOR_ATTACHMENT0);
-    glNamedFramebufferDrawBuffers(resolve_fbo_.get(), static_cast<GLsizei>(draw_buffers.size()), draw_buffers.data());
+    glNamedFramebufferDrawBuffers(resolve_fbo_.get(), static_cast<GLsizei>(n), draw_buffers.data());
   }
-  glDepthMask(depth_mask);
-  glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
-  if (scissor) glEnable(GL_SCISSOR_TEST);
+}
+
+void Framebuffer::copy_depth_to(const Framebuffer& to) const {
+  if (!depth_ || !to.depth_ || desc_.depth_format != to.desc_.depth_format || size() != to.size()) return;
+  const OpenWrites open;
+  glBlitNamedFramebuffer(read_id(), to.id(), 0, 0, width(), height(), 0, 0, width(), height(), GL_DEPTH_BUFFER_BIT,
+                         GL_NEAREST);
 }
 
 const Texture& Framebuffer::color_texture(int i) const {

@@ -415,22 +415,6 @@ void Scene::draw_pass(render::Pass pass, render::FrameProfiler& profiler) {
   profiler.end(pass_name);
 }
 
-// The tone-mapping pass writes colour only: the caller's target gets the scene's depth by a blit
-// (sylva-bench's silhouette metric reads it). A blit obeys the scissor test and, on NVIDIA, the
-// depth write mask, so both are opened for it.
-static void copy_depth(const render::Framebuffer& from, const render::Framebuffer& to) {
-  if (from.desc().depth_format == GL_NONE || to.desc().depth_format != from.desc().depth_format) return;
-  GLboolean depth_mask = GL_TRUE;
-  glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
-  const GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
-  glDepthMask(GL_TRUE);
-  glDisable(GL_SCISSOR_TEST);
-  glBlitNamedFramebuffer(from.read_id(), to.id(), 0, 0, to.width(), to.height(), 0, 0, to.width(), to.height(),
-                         GL_DEPTH_BUFFER_BIT, GL_NEAREST);
-  glDepthMask(depth_mask);
-  if (scissor) glEnable(GL_SCISSOR_TEST);
-}
-
 void Scene::render(const render::Framebuffer& target, render::FrameProfiler& profiler) {
   const render::FrameContext ctx{camera_, time_, dt_, wind_, lighting_, viewport_, frame_};
   const SceneRenderSettings& rs = document_->render;
@@ -543,7 +527,9 @@ void Scene::render(const render::Framebuffer& target, render::FrameProfiler& pro
       target.bind();
       gpu_->tone->apply(colour->color_texture(), rs.tone);
       render::apply_reversed_z_state();
-      copy_depth(*colour, target);
+      // The tone map writes colour only: the caller's target gets the scene's depth too
+      // (sylva-bench's silhouette metric reads it).
+      colour->copy_depth_to(target);
       profiler.end("tone_map");
       profiler.add_cpu_counts("tone_map", render::PassStats{.draw_calls = 1});
     } else {

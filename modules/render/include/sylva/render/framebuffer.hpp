@@ -55,11 +55,17 @@ class Framebuffer {
   void bind() const;
   static void bind_default(int width, int height);
 
-  // Clears every colour attachment to `color` and depth to `depth` (0 = far with reversed-Z).
+  // Clears every colour attachment to `color` and depth to `depth` (0 = far with reversed-Z),
+  // whole: whatever write masks and scissor the caller left (restored afterwards).
   void clear(const glm::vec4& color, float depth = 0.0f) const;
 
   // MSAA: blits colour (and depth) into the resolve textures. No-op for single-sampled targets.
   void resolve() const;
+
+  // Copies this target's depth (the resolved one when multisampled: call resolve() first) into
+  // `to`'s, pixel for pixel. Nothing when either has no depth, or their sizes or depth formats
+  // differ (a blit cannot convert them).
+  void copy_depth_to(const Framebuffer& to) const;
 
   // The single-sample texture holding attachment i (the resolve target for MSAA).
   const Texture& color_texture(int i = 0) const;
