@@ -106,6 +106,18 @@ std::string suites_index_html(const std::vector<SuiteOutcome>& outcomes) {
   return h + "</table>\n</body>\n</html>\n";
 }
 
+#ifdef SYLVA_BENCH_WITH_SCENE
+// The row-printing suites (species_suite.hpp, stream_suite.hpp) take the same command-line
+// options: warm-up, --set, --out, and --size / --frames where given.
+template <class SuiteOptions, class Run>
+int run_row_suite(const BenchOptions& o, const std::filesystem::path& out_dir, Run run, std::ostream& out, std::ostream& err) {
+  SuiteOptions so{.warmup = o.warmup, .overrides = o.overrides, .out = out_dir};
+  if (o.size) so.size = *o.size;
+  if (o.frames) so.frames = *o.frames;
+  return run(so, out, err);
+}
+#endif
+
 }  // namespace
 
 int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostream& err) {
@@ -190,24 +202,13 @@ int run_bench(const std::vector<std::string>& args, std::ostream& out, std::ostr
     merge(run_and_write(spec, o.embed_images, out, err));
   }
 
-  if (o.suite && *o.suite == "species") {  // its own rows, not an error/time sweep (species_suite.hpp)
+  if (o.suite && (*o.suite == "species" || *o.suite == "stream")) {  // rows, not an error/time sweep
 #ifdef SYLVA_BENCH_WITH_SCENE
-    SpeciesSuiteOptions so{.warmup = o.warmup, .overrides = o.overrides, .out = out_dir};
-    if (o.size) so.size = *o.size;
-    if (o.frames) so.frames = *o.frames;
-    merge(run_species_suite(so, out, err));
+    merge(*o.suite == "species" ? run_row_suite<SpeciesSuiteOptions>(o, out_dir, run_species_suite, out, err)
+                                : run_row_suite<StreamSuiteOptions>(o, out_dir, run_stream_suite, out, err));
 #else
-    err << "sylva-bench: suite species: module not available: it needs the scene module, which is not part of this build\n";
-    merge(kExitUnavailable);
-#endif
-  } else if (o.suite && *o.suite == "stream") {  // rows too: streamed against in-memory terrain (stream_suite.hpp)
-#ifdef SYLVA_BENCH_WITH_SCENE
-    StreamSuiteOptions so{.warmup = o.warmup, .overrides = o.overrides, .out = out_dir};
-    if (o.size) so.size = *o.size;
-    if (o.frames) so.frames = *o.frames;
-    merge(run_stream_suite(so, out, err));
-#else
-    err << "sylva-bench: suite stream: module not available: it needs the scene module, which is not part of this build\n";
+    err << "sylva-bench: suite " << *o.suite
+        << ": module not available: it needs the scene module, which is not part of this build\n";
     merge(kExitUnavailable);
 #endif
   } else if (o.suite) {

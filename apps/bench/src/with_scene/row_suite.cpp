@@ -4,6 +4,8 @@
 #include "with_scene/scene_target.hpp"
 
 #include <sylva/core/atomic_file.hpp>
+#include <sylva/core/timer.hpp>
+#include <sylva/render/framebuffer.hpp>
 
 #include <fmt/format.h>
 
@@ -22,6 +24,16 @@ Result<std::unique_ptr<BenchTarget>> make_scene_target(const std::string& scene,
     if (!set.ok()) return make_error(set.error().code, fmt::format("--set {}={}: {}", a.path, a.value, set.error().message));
   }
   return target;
+}
+
+Result<BuiltTarget> build_scene_target(const std::string& scene, const std::string& source, glm::ivec2 size,
+                                       const std::vector<Assignment>& settings) {
+  Stopwatch wall;
+  auto target = make_scene_target(scene, source, settings);
+  if (!target.ok()) return target.error();
+  SYLVA_TRY((*target)->prepare(size));
+  glFinish();
+  return BuiltTarget{std::move(*target), wall.elapsed_ms()};
 }
 
 Status write_rows_csv(const std::vector<SuiteRow>& rows, const std::filesystem::path& dir, std::ostream& out) {

@@ -101,11 +101,7 @@ std::string forest_scene(const std::vector<fs::path>& files, const fs::path& cac
                      vegetation);
 }
 
-// A built scene and the wall time its build took (factory + prepare: files, textures, bake).
-struct Built {
-  std::unique_ptr<BenchTarget> target;
-  double build_ms = 0.0;
-};
+using Built = BuiltTarget;
 
 // The scene's target with the --set `settings` applied (not yet built).
 Result<std::unique_ptr<BenchTarget>> make_target(const std::string& scene, const std::vector<Assignment>& settings) {
@@ -113,12 +109,7 @@ Result<std::unique_ptr<BenchTarget>> make_target(const std::string& scene, const
 }
 
 Result<Built> build(const std::string& scene, glm::ivec2 size, const std::vector<Assignment>& settings) {
-  Stopwatch wall;
-  auto target = make_target(scene, settings);
-  if (!target.ok()) return target.error();
-  SYLVA_TRY((*target)->prepare(size));
-  glFinish();
-  return Built{std::move(*target), wall.elapsed_ms()};
+  return build_scene_target(scene, "<bench species suite>", size, settings);
 }
 
 // One frame at the scene's camera at `time`; its wall time [ms] (render + glFinish) and the
@@ -147,13 +138,9 @@ Result<Frame> render_frame(BenchTarget& target, const render::Framebuffer& fb, d
 
 class Suite {
  public:
-  Suite(const SpeciesSuiteOptions& o, std::ostream& out) : o_(o), out_(out) {
-    cache_ = fs::temp_directory_path() / fmt::format("sylva-bench-species-{}", ::getpid());
-  }
-  ~Suite() {
-    std::error_code ec;
-    fs::remove_all(cache_, ec);
-  }
+  Suite(const SpeciesSuiteOptions& o, std::ostream& out)
+      : o_(o), out_(out), scratch_(fs::temp_directory_path() / fmt::format("sylva-bench-species-{}", ::getpid())),
+        cache_(scratch_.path()) {}
 
   // Cold and cached builds of each species alone, and the ground without trees. A file that
   // fails does not stop the others; the first failure is returned.
@@ -288,7 +275,8 @@ class Suite {
  private:
   const SpeciesSuiteOptions& o_;
   std::ostream& out_;
-  fs::path cache_;
+  ScratchPath scratch_;  // the species cache, removed when the suite ends
+  const fs::path& cache_;
   std::vector<SuiteRow> rows_;
 };
 

@@ -97,21 +97,20 @@ double metric(const std::map<std::string, double>& m, const std::string& key) {
 // along it; the target is gone when this returns (one scene's memory at a time).
 Result<Flight> fly(const std::string& scene, const StreamSuiteOptions& o, const std::vector<Assignment>& settings) {
   Flight flight;
+  auto built = build_scene_target(scene, "<bench stream suite>", o.size, settings);
+  if (!built.ok()) return built.error();
+  BenchTarget* target = built->target.get();
+  flight.build_ms = built->build_ms;
   Stopwatch wall;
-  auto target = make_target(scene, settings);
-  if (!target.ok()) return target.error();
-  SYLVA_TRY((*target)->prepare(o.size));
-  glFinish();
-  flight.build_ms = wall.elapsed_ms();
   auto fb = render::Framebuffer::create({.width = o.size.x, .height = o.size.y, .color_formats = {GL_RGBA8}});
   if (!fb.ok()) return fb.error();
   const float dt = 1.0f / 30.0f;
   for (int i = -o.warmup; i < o.frames; ++i) {
-    auto pose = (*target)->camera_pose(kPath, std::max(i, 0), o.frames);
+    auto pose = target->camera_pose(kPath, std::max(i, 0), o.frames);
     if (!pose.ok()) return pose.error();
     FrameOutput out;
     wall.restart();
-    SYLVA_TRY((*target)->render({i, (i + o.warmup) * static_cast<double>(dt), dt, *pose}, *fb, out));
+    SYLVA_TRY(target->render({i, (i + o.warmup) * static_cast<double>(dt), dt, *pose}, *fb, out));
     glFinish();
     const double ms = wall.elapsed_ms();
     if (i < 0) continue;
@@ -125,13 +124,9 @@ Result<Flight> fly(const std::string& scene, const StreamSuiteOptions& o, const 
 
 class Suite {
  public:
-  Suite(const StreamSuiteOptions& o, std::ostream& out) : o_(o), out_(out) {
-    baked_ = fs::temp_directory_path() / fmt::format("sylva-bench-stream-{}.sylvaterrain", ::getpid());
-  }
-  ~Suite() {
-    std::error_code ec;
-    fs::remove(baked_, ec);
-  }
+  Suite(const StreamSuiteOptions& o, std::ostream& out)
+      : o_(o), out_(out),
+        baked_(fs::temp_directory_path() / fmt::format("sylva-bench-stream-{}.sylvaterrain", ::getpid())) {}
 
   // The in-memory scene's field and tree settings, baked into the temporary chunk file.
   Status bake(const std::vector<ParamDescriptor>& memory_params) {
@@ -143,7 +138,7 @@ class Suite {
     if (!field.ok()) return field.error();
     resolution_ = field->columns();
     Stopwatch wall;
-    auto report = terrain::bake_chunk_file(std::move(*field), baked_, options);
+    auto report = terrain::bake_chunk_file(std::move(*field), baked_.path(), options);
     if (!report.ok()) return report.error();
     const double ms = wall.elapsed_ms();
     print(fmt::format("stream: bake field={}^2 chunks={} triangles={} file_bytes={} bake_ms={:.0f} (grids {:.0f}, meshes "
@@ -192,7 +187,7 @@ class Suite {
     return {};
   }
 
-  const fs::path& baked() const { return baked_; }
+  const fs::path& baked() const { return baked_.path(); }
 
   // One row line, flushed: a long run shows its rows as they come.
   void print(const std::string& line) { out_ << line << std::flush; }
@@ -202,7 +197,7 @@ class Suite {
  private:
   const StreamSuiteOptions& o_;
   std::ostream& out_;
-  fs::path baked_;
+  ScratchPath baked_;  // the temporary chunk file, removed when the suite ends
   int resolution_ = 0;
   std::vector<SuiteRow> rows_;
 };
