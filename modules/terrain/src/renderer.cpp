@@ -450,7 +450,8 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     detail_.bind(1);
     if (shape_) shape_.bind(2);
     const bool levels = view == DebugView::kLodColors;
-    std::vector<const render::Program*> chunk_programs;
+    std::vector<const render::Program*>& chunk_programs = chunk_programs_;  // no allocation per frame
+    chunk_programs.clear();
     if (coarse) {
       // Per chunk, the variant without the detail scales that have faded out on all of it: the
       // nearest corner of its box in view depth bounds its pixels' footprints (first_detail_scale).

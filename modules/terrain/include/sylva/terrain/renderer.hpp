@@ -165,6 +165,7 @@ class TerrainRenderer final : public render::Drawable {
   // shaded_ without the detail scales finer than 1, 2, 3 (none), for chunks beyond their fades
   // (first_detail_scale); compiled for the shaded and materials views only.
   render::Program shaded_coarse_[3];
+  std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
   render::Texture heights_;
