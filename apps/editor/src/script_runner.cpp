@@ -193,16 +193,25 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
   }
   if (c.name == "wait_stream") {
     const int max_frames = a.size() == 1 ? c.count : 2000;
+    nlohmann::json t;
     const auto settled = [&] {
-      const nlohmann::json t = s.scene().module_stats().value("terrain", nlohmann::json::object());
-      return t.value("stream_pending", 0) == 0 && t.value("stream_misses_frame", 0) == 0;
+      t = s.scene().module_stats().value("terrain", nlohmann::json::object());
+      return t.value("stream_pending", 0) == 0 &&
+             (t.value("stream_misses_frame", 0) == 0 || t.value("stream_budget_limited", 0) == 1);
     };
     for (int k = 0; k < max_frames; ++k) {
       SYLVA_TRY(s.render_frame(1.0 / 30.0));
-      if (settled()) return {};
+      if (settled()) {
+        if (t.value("stream_budget_limited", 0) == 1) {
+          out << fmt::format("sylva-editor: wait_stream: terrain.stream.budget_mb ({:.2f} MiB) limits the view: {} "
+                             "chunks do not fit, coarser parents are drawn there\n",
+                             t.value("stream_budget_bytes", 0.0) / 1048576.0, t.value("stream_budget_refused", 0));
+        }
+        return {};
+      }
       std::this_thread::sleep_for(std::chrono::milliseconds(2));  // the loader thread reads meanwhile
     }
-    return make_error(ErrorCode::kLimit, fmt::format("wait_stream: the terrain still streams after {} frames", max_frames));
+    return make_error(ErrorCode::kLimit, fmt::format("the terrain still streams after {} frames", max_frames));
   }
   if (c.name == "print_stats") {
     const nlohmann::json stats = s.scene().module_stats();

@@ -139,3 +139,36 @@ quit
   std::printf("%s\n", stats.dump().c_str());
   fs::remove_all(dir);
 }
+
+// A view that needs more than terrain.stream.budget_mb settles: the chunks that do not fit are not
+// read again every frame (their parents are drawn, as designed), wait_stream returns and says the
+// budget limits the view, and the stats report it (stream_budget_limited 1, within the budget).
+TEST(EditorBakedPaint, WaitStreamSettlesWhenTheBudgetLimitsTheView) {
+  const fs::path dir = make_hills_scene("sylva_editor_stream_budget");
+  // The same hills in metres (a float raster is read as metres; hills.png would be 0.2-0.8 m high,
+  // flat enough for the root chunk alone to meet the error bound).
+  sylva::Image relief(257, 257, 1, sylva::PixelFormat::kF32);
+  for (int y = 0; y < 257; ++y)
+    for (int x = 0; x < 257; ++x) relief.at(x, y) = static_cast<float>(60.0 * std::sin(x * 0.05) * std::cos(y * 0.07));
+  ASSERT_TRUE(sylva::write_image(dir / "relief.tif", relief, sylva::PixelFormat::kF32).ok());
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "tiny.sylva", R"(load scene.json
+import_terrain relief.tif bake relief.sylvaterrain
+wait_import
+set terrain.stream.budget_mb 0.1
+wait_stream 600
+print_stats terrain
+quit
+)").ok());
+  const auto run = run_editor(dir / "tiny.sylva");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("wait_stream: terrain.stream.budget_mb (0.10 MiB) limits the view"), std::string::npos)
+      << run.output;
+  const nlohmann::json stats = last_terrain_stats(run.output);
+  ASSERT_TRUE(stats.contains("stream_budget_limited")) << run.output;
+  EXPECT_EQ(stats["stream_budget_limited"].get<int>(), 1) << stats.dump();
+  EXPECT_GT(stats["stream_budget_refused"].get<std::size_t>(), 0u) << stats.dump();
+  EXPECT_EQ(stats["stream_pending"].get<std::size_t>(), 0u) << stats.dump();
+  EXPECT_LE(stats["stream_resident_bytes"].get<std::size_t>(), stats["stream_budget_bytes"].get<std::size_t>())
+      << stats.dump();
+  fs::remove_all(dir);
+}

@@ -118,13 +118,25 @@ void ChunkStreamer::update() {
     const std::size_t bytes = bytes_of(*loaded);
     if (!make_room(bytes)) {
       ++stats_.dropped;
+      refused_[chunk] = Refusal{bytes, 0};
       continue;
     }
+    refused_.erase(chunk);
     resident_[chunk] = Resident{std::move(loaded), bytes, frame_};
     resident_bytes_ += bytes;
     ++stats_.loads;
   }
   if (edited_nodes) edits_->refresh_nodes();  // the resolved chunks' height ranges
+  update_reclaimable();
+}
+
+void ChunkStreamer::update_reclaimable() {
+  // What make_room could free for a load integrated in a later frame: the free bytes and every
+  // chunk the last selection did not use (for a still view, the same chunks next frame).
+  reclaimable_ = budget_ - resident_bytes_;
+  for (const auto& [id, r] : resident_)
+    if (id != 0 && r.last_used + 1 < frame_) reclaimable_ += r.bytes;
+  stats_.budget_refused = 0;
 }
 
 bool ChunkStreamer::make_room(std::size_t bytes, bool recently_used_too) {
@@ -167,6 +179,7 @@ Result<RegionRebuild> ChunkStreamer::apply_height_edit(const HeightField& field,
   // Rebuilt meshes may be bigger: other chunks make room (the root stays: it is always drawn).
   // Any of them may go, as every selection and mesh pointer is renewed after an edit.
   make_room(0, true);
+  refused_.clear();  // their sizes were the unedited meshes'
   edits_->refresh_nodes();
   tree_ = &edits_->tree();
   return changed;
@@ -184,6 +197,13 @@ Residency ChunkStreamer::residency() {
   };
   r.request = [this](std::uint32_t chunk, double priority) {
     if (failed_[chunk] || resident_.count(chunk)) return;
+    // Dropped before and still cannot fit: reading it again would only drop it again, and the
+    // view would never settle. Its parent is drawn instead, as for any missing chunk.
+    if (auto refused = refused_.find(chunk); refused != refused_.end() && refused->second.bytes > reclaimable_) {
+      if (refused->second.counted_frame != frame_) ++stats_.budget_refused;  // once per frame
+      refused->second.counted_frame = frame_;
+      return;
+    }
     {
       std::lock_guard<std::mutex> lock(mutex_);
       // Being read or read and not yet integrated: asking again would read it twice.
@@ -240,6 +260,7 @@ StreamingStats ChunkStreamer::stats() const {
   s.resident_bytes = resident_bytes_;
   std::lock_guard<std::mutex> lock(mutex_);
   s.pending_requests = requests_.size();
+  s.budget_limited = s.budget_refused > 0 && requests_.empty() && loading_ == kNoChunk && done_.empty();
   return s;
 }
 

@@ -210,6 +210,8 @@ class TerrainInstance final : public ModuleInstance {
       out["stream_misses_frame"] = s.selection.substituted;
       out["stream_evictions"] = st.evictions;
       out["stream_dropped"] = st.dropped;
+      out["stream_budget_refused"] = st.budget_refused;
+      out["stream_budget_limited"] = st.budget_limited ? 1 : 0;
       out["stream_failures"] = st.failures;
       out["stream_edited_chunks"] = streamer->edited_chunks();
       out["baked_file_bytes"] = baked_bytes_;

@@ -7,7 +7,9 @@
 // frame is drawn with meshes(). Eviction only happens in update(), so nothing drawn in a frame is
 // evicted before it is drawn; the root is loaded when the streamer is created and never evicted.
 // The budget is never exceeded: a load that does not fit after evicting everything not used in
-// the current or previous frame is dropped and asked for again later. A chunk that fails to load
+// the current or previous frame is dropped; it is asked for again only once what could be evicted
+// would make room for it (stats: budget_refused, budget_limited), so a view that needs more than
+// the budget settles with parents drawn for the chunks that do not fit. A chunk that fails to load
 // (corrupt data) is reported once and never requested again; its parent keeps being drawn.
 
 #include <sylva/core/params.hpp>
@@ -53,6 +55,12 @@ struct StreamingStats {
   std::uint64_t failures = 0;    // chunks that could not be read
   std::uint64_t requests = 0;    // chunks newly asked for (once until loaded, however often repeated)
   std::uint64_t misses = 0;      // chunks drawn in place of non-resident children, summed over frames
+  // Chunks the last frame's selection wanted that were dropped before and still do not fit the
+  // budget (nothing it could evict frees enough): not asked for again; their parents are drawn.
+  std::size_t budget_refused = 0;
+  // Settled within the budget: every chunk the view wants is resident or refused by the budget
+  // (budget_refused > 0), and nothing is pending, being read or waiting to be integrated.
+  bool budget_limited = false;
   std::string last_error;
 };
 
@@ -107,6 +115,8 @@ class ChunkStreamer {
   // Evicts chunks not used in this or the previous frame (or any, `recently_used_too`; never the
   // root), least recently used first, until `bytes` more fit; false if they do not.
   bool make_room(std::size_t bytes, bool recently_used_too = false);
+  // Sets reclaimable_ after update() integrated and starts the frame's budget_refused count.
+  void update_reclaimable();
 
   struct Resident {
     std::shared_ptr<const ChunkMesh> mesh;
@@ -126,6 +136,14 @@ class ChunkStreamer {
   std::unordered_map<std::uint32_t, Resident> resident_;  // main thread only
   std::vector<std::uint8_t> failed_;                      // main thread only
   std::size_t resident_bytes_ = 0;
+  // Chunks dropped because they did not fit, with their size (main thread only): asked for again
+  // only when reclaimable_ (free bytes + chunks the last selection did not use) can hold them.
+  struct Refusal {
+    std::size_t bytes = 0;
+    std::uint64_t counted_frame = 0;  // budget_refused counts each chunk once per frame
+  };
+  std::unordered_map<std::uint32_t, Refusal> refused_;
+  std::size_t reclaimable_ = 0;
   StreamingStats stats_;
 
   mutable std::mutex mutex_;  // guards the fields below
