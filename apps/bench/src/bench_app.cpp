@@ -45,6 +45,27 @@ void print_paths(BenchTarget& target, std::ostream& out) {
   for (const CameraPathInfo& p : target.camera_paths()) out << fmt::format("{}: {}\n", p.name, p.description);
 }
 
+// Issue 18: a terrain's triangles per covered pixel beside the drawn chunks' projected-error
+// histogram (metrics "terrain.triangles_per_pixel", "terrain.error_hist.chunks.<bin>" from the
+// scene target), one line per setting that has them; means over the frames (every frame's
+// figures are in results.json).
+void print_terrain_lod_summary(const BenchReport& report, std::ostream& out) {
+  const std::string chunks_prefix = "terrain.error_hist.chunks.";
+  for (const SettingResult& r : report.settings) {
+    auto tpp = r.metrics.find("terrain.triangles_per_pixel");
+    if (tpp == r.metrics.end()) continue;
+    std::string hist;
+    for (const auto& [name, m] : r.metrics) {
+      if (name.rfind(chunks_prefix, 0) != 0) continue;
+      const std::string bin = name.substr(chunks_prefix.size());
+      const auto tri = r.metrics.find("terrain.error_hist.triangles." + bin);
+      hist += fmt::format(" {} {:.1f} ({:.0f} tri)", bin, m.mean, tri == r.metrics.end() ? 0.0 : tri->second.mean);
+    }
+    out << fmt::format("terrain {}{}: triangles/pixel mean {:.3f} max {:.3f}; chunks by projected error:{}\n",
+                       r.setting.label(), r.reference ? " (reference)" : "", tpp->second.mean, tpp->second.max, hist);
+  }
+}
+
 // Runs one sweep and writes its outputs; returns the exit code.
 int run_and_write(const RunSpec& spec, bool embed, std::ostream& out, std::ostream& err) {
   Status valid = validate_spec(spec);
@@ -62,6 +83,7 @@ int run_and_write(const RunSpec& spec, bool embed, std::ostream& out, std::ostre
     err << "sylva-bench: " << written.error().message << "\n";
     return kExitFailed;
   }
+  print_terrain_lod_summary(*report, out);
   out << fmt::format("sylva-bench: wrote {}\n", std::filesystem::absolute(spec.out / "report.html").string());
   for (const SettingResult& r : report->settings) {
     if (!r.error_message.empty()) return kExitFailed;

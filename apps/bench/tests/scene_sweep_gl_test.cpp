@@ -110,6 +110,35 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
     }
     EXPECT_TRUE(has_level) << s["totals"].dump();
   }
+  // Issue 18: triangles per covered pixel beside the drawn chunks' projected-error histogram.
+  // The histogram holds every drawn chunk (its bins sum to the renderer's chunks_drawn) and no
+  // chunk above tau (the leaves are exact); a coarser tau draws fewer triangles per pixel.
+  double per_pixel[2] = {0.0, 0.0};
+  for (int i = 0; i < 2; ++i) {
+    const nlohmann::json& m = j["settings"][i]["metrics"];
+    ASSERT_TRUE(m.contains("terrain.triangles_per_pixel")) << m.dump();
+    per_pixel[i] = m["terrain.triangles_per_pixel"]["mean"].get<double>();
+    EXPECT_GT(per_pixel[i], 0.0);
+    double chunks = 0.0, above_tau = 0.0;
+    for (auto it = m.begin(); it != m.end(); ++it) {
+      const std::string prefix = "terrain.error_hist.chunks.";
+      if (it.key().rfind(prefix, 0) != 0) continue;
+      chunks += it.value()["mean"].get<double>();
+      const std::string bin = it.key().substr(prefix.size());
+      const double low = bin == "exact" ? 0.0 : std::stod(bin);
+      if (low >= taus[i]) above_tau += it.value()["max"].get<double>();
+    }
+    ASSERT_TRUE(m.contains("terrain.chunks_drawn")) << m.dump();
+    EXPECT_NEAR(chunks, m["terrain.chunks_drawn"]["mean"].get<double>(), 1e-9) << "tau " << taus[i];
+    EXPECT_EQ(above_tau, 0.0) << "tau " << taus[i] << ": chunks in a histogram bin at or above tau";
+    // Every frame's figure is in the JSON, not only the aggregate.
+    for (const nlohmann::json& f : j["settings"][i]["frame_records"]) {
+      EXPECT_TRUE(f["metrics"].contains("terrain.triangles_per_pixel")) << f.dump();
+    }
+  }
+  EXPECT_LT(per_pixel[1], per_pixel[0]) << "tau 4 against tau 1";
+  EXPECT_NE(output.find("terrain terrain.render.lod.max_pixel_error=1: triangles/pixel mean"), std::string::npos)
+      << output;
   // The chunk-tree cache (issue 15) as columns: every setting builds its own scene from the file,
   // so the first one built the tree into the scene's cache folder and the second reopened it.
   ASSERT_TRUE(j["settings"][1]["metrics"].contains("terrain.tree_cache_hit")) << j["settings"][1]["metrics"].dump();

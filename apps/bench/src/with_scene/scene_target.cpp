@@ -18,7 +18,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <string>
 
 namespace sylva::bench {
 namespace {
@@ -52,9 +54,32 @@ void collect_stats(const nlohmann::json& j, const std::string& prefix, const std
 // `drawn` covers every drawn chunk; `certified` only chunks that had finer children to refine
 // into, which is what tau bounds: a leaf chunk is drawn however close the camera comes, with the
 // error its flat-vertex reduction left (ChunkTreeSettings::flat_tolerance). Capped at 1e4 px.
+//
+// Beside it (issue 18: "triangles per pixel along the flight beside the projected-error
+// histogram"), the drawn chunks by their projected error in px, bins kErrorBinEdges (the chunk
+// count and their triangles per bin; exact leaves, error 0, in their own bin), so a run shows
+// whether the triangles at tau sit near the bound (what it needs) or far below it (wasted).
 struct TerrainError {
   double drawn = 0.0;
   double certified = 0.0;
+  static constexpr std::array<double, 7> kErrorBinEdges{0.0, 0.25, 0.5, 1.0, 2.0, 4.0, 8.0};
+  // [0] "exact": error exactly 0; [i >= 1]: kErrorBinEdges[i-1] <= rho < kErrorBinEdges[i]; last: >= 8.
+  std::array<double, kErrorBinEdges.size() + 1> chunks{};
+  std::array<double, kErrorBinEdges.size() + 1> triangles{};
+  static std::string bin_name(std::size_t bin) {
+    if (bin == 0) return "exact";
+    if (bin == kErrorBinEdges.size()) return fmt::format("{:g}+px", kErrorBinEdges.back());
+    return fmt::format("{:g}-{:g}px", kErrorBinEdges[bin - 1], kErrorBinEdges[bin]);
+  }
+  void add(double rho, double chunk_triangles) {
+    std::size_t bin = 0;
+    if (rho > 0.0) {
+      bin = 1;
+      while (bin < kErrorBinEdges.size() && rho >= kErrorBinEdges[bin]) ++bin;
+    }
+    chunks[bin] += 1.0;
+    triangles[bin] += chunk_triangles;
+  }
 };
 
 std::optional<TerrainError> terrain_projected_error_px(scene::Scene& scene, const render::Camera& camera,
@@ -69,17 +94,38 @@ std::optional<TerrainError> terrain_projected_error_px(scene::Scene& scene, cons
     TerrainError e;
     for (const terrain::SelectedChunk& s : renderer->selection().chunks) {
       const terrain::Chunk& c = tree.chunk(s.index);
-      if (c.error <= 0.0f) continue;
+      if (c.error <= 0.0f) {
+        e.add(0.0, c.triangle_count);
+        continue;
+      }
       glm::dvec3 lo, hi;
       tree.chunk_bounds(s.index, lo, hi);
       const double dist = view.distance_to_box(lo, hi) - c.error;
       const double rho = std::min(dist > 1e-3 ? view.k * c.error / dist : 1.0e4, 1.0e4);
       e.drawn = std::max(e.drawn, rho);
+      e.add(rho, c.triangle_count);
       if (c.key.level + 1 < tree.levels()) e.certified = std::max(e.certified, rho);
     }
     return e;
   }
   return std::nullopt;
+}
+
+// Terrain triangles drawn in the colour pass per pixel covered by opaque geometry: the sky pass
+// shades exactly the samples no opaque draw covered (it passes only at the cleared depth), so the
+// covered pixels are the screen minus its samples per pixel. In a scene whose only opaque module
+// is the terrain (the terrain suite, the CDLOD race scene) that is the terrain's own coverage.
+// nullopt when nothing is covered or the counts are missing.
+std::optional<double> terrain_triangles_per_pixel(const scene::SceneFrameStats& s, glm::ivec2 size, int msaa_samples) {
+  const auto module = s.modules.find("terrain");
+  const auto sky = s.passes.find("sky");
+  if (module == s.modules.end() || sky == s.passes.end()) return std::nullopt;
+  const auto opaque = module->second.find("opaque");
+  if (opaque == module->second.end()) return std::nullopt;
+  const double screen = static_cast<double>(size.x) * size.y;
+  const double covered = screen - static_cast<double>(sky->second.samples) / std::max(msaa_samples, 1);
+  if (covered < 1.0) return std::nullopt;
+  return static_cast<double>(opaque->second.triangles) / covered;
 }
 #endif
 
@@ -167,6 +213,13 @@ class SceneTarget final : public BenchTarget {
     if (std::optional<TerrainError> e = terrain_projected_error_px(*scene_, camera, size_)) {
       out.metrics["terrain.max_projected_error_px"] = e->drawn;
       out.metrics["terrain.certified_projected_error_px"] = e->certified;
+      for (std::size_t b = 0; b < e->chunks.size(); ++b) {
+        out.metrics["terrain.error_hist.chunks." + TerrainError::bin_name(b)] = e->chunks[b];
+        out.metrics["terrain.error_hist.triangles." + TerrainError::bin_name(b)] = e->triangles[b];
+      }
+      if (std::optional<double> tpp = terrain_triangles_per_pixel(s, size_, scene_->document().render.msaa_samples)) {
+        out.metrics["terrain.triangles_per_pixel"] = *tpp;
+      }
     }
 #endif
     // GPU time per pass, per module and per module and pass (issue #20: the per-pass columns of
