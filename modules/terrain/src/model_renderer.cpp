@@ -128,16 +128,12 @@ void ModelRenderer::update(const render::FrameContext& frame) {
   stats_ = ModelFrameStats{};
   const LodView view = TerrainRenderer::view_for(frame.camera, frame.viewport);
   const LodSettings lod = settings_.lod.lod();
-  selection_ = select_segments(*tree_, view, lod);
-  if (settings_.cast_shadows) {
-    // Casters: the camera's LOD decisions without its frustum (as the height-field terrain), so
-    // relief beside or behind the camera still shadows the view; each cascade culls by its box.
-    LodSettings unculled = lod;
-    unculled.frustum_cull = false;
-    shadow_selection_ = select_segments(*tree_, view, unculled);
-  } else {
-    shadow_selection_ = ModelSelection{};
-  }
+  // Casters: the camera's LOD decisions without its frustum (as the height-field terrain), so
+  // relief beside or behind the camera still shadows the view; each cascade culls by its box.
+  // Both come from one traversal.
+  shadow_selection_ = ModelSelection{};
+  selection_ = select_segments(*tree_, view, lod, settings_.cast_shadows ? &shadow_selection_ : nullptr);
+  stats_.selections = 1;
   stats_.segments = static_cast<std::uint32_t>(selection_.segments.size());
   stats_.culled = selection_.culled;
   stats_.triangles = selection_.triangles;

@@ -231,20 +231,32 @@ Result<ModelTree> ModelTree::build(const TriangleMesh& mesh, const ModelTreeSett
   return tree;
 }
 
-ModelSelection select_segments(const ModelTree& tree, const LodView& view, const LodSettings& settings) {
+ModelSelection select_segments(const ModelTree& tree, const LodView& view, const LodSettings& settings,
+                               ModelSelection* unculled) {
   Stopwatch watch;
   ModelSelection sel;
-  std::vector<std::uint32_t> stack;
-  if (tree.segment_count() > 0 && tree.segment(0).present) stack.push_back(0);
+  if (unculled != nullptr) *unculled = ModelSelection{};
+  // A segment is in view while it and every ancestor pass the frustum test. With `unculled`, the
+  // traversal goes on below a culled segment (its LOD decisions do not depend on the frustum),
+  // feeding `unculled` only.
+  struct Entry {
+    std::uint32_t segment;
+    bool in_view;
+  };
+  std::vector<Entry> stack;
+  if (tree.segment_count() > 0 && tree.segment(0).present) stack.push_back({0, true});
   while (!stack.empty()) {
-    const std::uint32_t i = stack.back();
+    const auto [i, parent_in_view] = stack.back();
     stack.pop_back();
     const Segment& s = tree.segment(i);
     const glm::dvec3 lo(s.lo), hi(s.hi);
-    if (settings.frustum_cull && !view.box_visible(lo - glm::dvec3(s.error_bound), hi + glm::dvec3(s.error_bound))) {
+    bool in_view = parent_in_view;
+    const glm::dvec3 margin(s.error_bound);
+    if (in_view && settings.frustum_cull && !view.box_visible(lo - margin, hi + margin)) {
       ++sel.culled;
-      continue;
+      in_view = false;
     }
+    if (!in_view && unculled == nullptr) continue;
     bool accept = s.key.level + 1 >= tree.levels() || s.error_bound <= 0.0f;
     if (!accept) {
       const double delta = s.error_bound;
@@ -252,15 +264,24 @@ ModelSelection select_segments(const ModelTree& tree, const LodView& view, const
       accept = d > 0.0 && view.k * delta <= static_cast<double>(settings.max_pixel_error) * d;
     }
     if (accept) {
-      sel.segments.push_back(i);
-      sel.triangles += s.triangle_count();
+      if (in_view) {
+        sel.segments.push_back(i);
+        sel.triangles += s.triangle_count();
+      }
+      if (unculled != nullptr) {
+        unculled->segments.push_back(i);
+        unculled->triangles += s.triangle_count();
+      }
       continue;
     }
     const auto children = tree.child_indices(i);
-    for (int k = 3; k >= 0; --k)
-      if (tree.segment(children[static_cast<std::size_t>(k)]).present) stack.push_back(children[static_cast<std::size_t>(k)]);
+    for (int k = 3; k >= 0; --k) {
+      const std::uint32_t c = children[static_cast<std::size_t>(k)];
+      if (tree.segment(c).present) stack.push_back({c, in_view});
+    }
   }
   sel.cpu_ms = watch.elapsed_ms();
+  if (unculled != nullptr) unculled->cpu_ms = sel.cpu_ms;
   return sel;
 }
 

@@ -142,6 +142,38 @@ TEST_F(ModelGl, DrawsTheTreeWithStatsAndTrackedGpuBytes) {
   save_png(target.render(**renderer, cam, kMagenta), "model_lod_colors");
 }
 
+// With shadows cast, one LOD selection per frame serves the camera and the shadow casters: the
+// casters are exactly what a selection without frustum culling picks, the camera's exactly the
+// culled one, and the pose sees only part of the model (so the two differ).
+TEST_F(ModelGl, OneSelectionPerFrameServesTheCameraAndTheShadowCasters) {
+  const Model& m = model();
+  ModelRenderSettings s;
+  s.receive_shadows = false;
+  s.cast_shadows = true;
+  auto renderer = ModelRenderer::create(m.tree, s);
+  ASSERT_TRUE(renderer.ok()) << renderer.error().describe();
+  GlTarget target = GlTarget::create(kWidth, kHeight);
+  const render::Camera cam = camera_looking({20.0, 60.0, 20.0}, {60.0, 30.0, 60.0});
+  target.render(**renderer, cam, kMagenta);
+  const ModelFrameStats& st = (*renderer)->frame_stats();
+  EXPECT_EQ(st.selections, 1u) << "one LOD selection per frame";
+  const LodView view = TerrainRenderer::view_for(cam, glm::ivec2(kWidth, kHeight));
+  LodSettings lod = s.lod.lod();
+  const ModelSelection culled = select_segments(*m.tree, view, lod);
+  lod.frustum_cull = false;
+  const ModelSelection all = select_segments(*m.tree, view, lod);
+  EXPECT_EQ((*renderer)->selection().segments, culled.segments);
+  EXPECT_EQ(st.culled, culled.culled);
+  EXPECT_EQ((*renderer)->caster_selection().segments, all.segments);
+  EXPECT_EQ((*renderer)->caster_selection().triangles, all.triangles);
+  EXPECT_GT(culled.culled, 0u) << "the pose must see only part of the model";
+  EXPECT_LT(culled.segments.size(), all.segments.size());
+  (*renderer)->settings().cast_shadows = false;
+  target.render(**renderer, cam, kMagenta);
+  EXPECT_EQ((*renderer)->frame_stats().selections, 1u);
+  EXPECT_TRUE((*renderer)->caster_selection().segments.empty());
+}
+
 // Both reducers (QEM passes and the seed's shortest edge, §4.3) with the borders locked (§4.2).
 // Seen red: with the border rule switched off in ModelTree::build, the shortest-edge tree showed
 // 46631 background pixels over the 150 poses (the QEM tree stays closed: its pass-wise reducer

@@ -109,6 +109,7 @@ class ModelTerrainInstance final : public ModuleInstance {
             {"instances_per_lod", per_level},
             {"max_projected_error_px", s.max_projected_error_px},
             {"select_ms", s.select_ms},
+            {"selections", s.selections},  // LOD selections this frame: 1 (casters share it)
             {"gpu_bytes", s.gpu_bytes},
             {"mesh_vertices", vertices_},
             {"mesh_triangles", triangles_},

@@ -87,6 +87,9 @@ struct ModelFrameStats {
   std::uint64_t triangles = 0;      // of the drawn segments
   std::vector<std::uint32_t> segments_per_level;
   double select_ms = 0.0;
+  // LOD selections (tree traversals) run this frame: 1, shadows or not (the casters' selection
+  // comes from the same traversal as the camera's).
+  std::uint32_t selections = 0;
   double max_projected_error_px = 0.0;  // largest rho of a drawn segment (0 for leaves)
   std::size_t gpu_bytes = 0;        // vertex + index buffers
 };
@@ -109,6 +112,9 @@ class ModelRenderer final : public render::Drawable {
   const ModelRenderSettings& settings() const { return settings_; }
   const ModelTree& tree() const { return *tree_; }
   const ModelSelection& selection() const { return selection_; }
+  // The shadow casters of the frame: the camera's LOD decisions without its frustum (empty
+  // unless settings().cast_shadows); each cascade culls them by its own box.
+  const ModelSelection& caster_selection() const { return shadow_selection_; }
   const ModelFrameStats& frame_stats() const { return stats_; }
 
   // The projected error rho = K * delta / (D - delta) of a segment seen from `view` (the rule of

@@ -129,6 +129,10 @@ struct ModelSelection {
 // Screen-space selection (rho = K * delta / (D - delta) <= tau, frustum culling); the seed's
 // distance criterion is not offered here because the seed's general model used SoLOD ranges it
 // does not give.
-ModelSelection select_segments(const ModelTree& tree, const LodView& view, const LodSettings& settings);
+// With `unculled` (not null), the same traversal also fills it with what settings without
+// frustum_cull would select (the shadow casters: the camera's LOD decisions, no frustum), so one
+// selection serves both; `unculled` is overwritten.
+ModelSelection select_segments(const ModelTree& tree, const LodView& view, const LodSettings& settings,
+                               ModelSelection* unculled = nullptr);
 
 }  // namespace sylva::terrain
