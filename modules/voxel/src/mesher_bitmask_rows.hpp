@@ -6,6 +6,7 @@
 
 #include <sylva/voxel/block.hpp>
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -31,46 +32,67 @@ struct RowMasks {
   std::uint8_t* hi_end;  // same for x = n
 };
 
-// Spread of the ids of the chunk proper (the ring aside): the OR of every id and the AND of the
-// non-air ones (air counted as all ones). The two are equal exactly when the chunk holds one block
-// id besides air (an underground stone chunk, a one-type terrain): the face loop then groups
-// faces by block without reading ids (issue #18).
+// Spread of the ids of the chunk proper (the ring aside): the OR of every id and the AND of
+// every id minus one (16-bit wrap: air counts as all ones). The two agree (any - 1 == all_m1)
+// exactly when the chunk holds one block id besides air (an underground stone chunk, a one-type
+// terrain): each non-air id v has v <= any (a subset of its bits) and v - 1 >= any - 1 (a
+// superset), so v == any. The face loop then groups faces by block without reading ids (issue
+// #18). Minus one rather than "v, or all ones for air" spares the vector passes an air compare.
 struct IdSpread {
   std::uint16_t any = 0;
-  std::uint16_t all = 0xffff;
+  std::uint16_t all_m1 = 0xffff;
   void add(BlockId id) {
     any = static_cast<std::uint16_t>(any | id);
-    all = static_cast<std::uint16_t>(all & (id == kAir ? 0xffffu : id));
+    all_m1 = static_cast<std::uint16_t>(all_m1 & static_cast<std::uint16_t>(id - 1));
   }
   void add(const IdSpread& o) {
     any = static_cast<std::uint16_t>(any | o.any);
-    all = static_cast<std::uint16_t>(all & o.all);
+    all_m1 = static_cast<std::uint16_t>(all_m1 & o.all_m1);
   }
   // The one non-air id of the chunk, or kAir when it holds none or several.
-  BlockId single() const { return any == all ? any : kAir; }
+  BlockId single() const { return static_cast<std::uint16_t>(any - 1) == all_m1 ? any : kAir; }
 };
 
 #if defined(__SSE2__)
 // IdSpread of the ids seen, eight lanes at a time.
 struct SpreadAcc {
   __m128i any = _mm_setzero_si128();
-  __m128i all = _mm_set1_epi32(-1);
+  __m128i all_m1 = _mm_set1_epi32(-1);
   IdSpread scalar;  // ids classified one by one
-  // v: eight ids; is_air: their compare with zero.
-  void add(__m128i v, __m128i is_air) {
-    any = _mm_or_si128(any, v);
-    all = _mm_and_si128(all, _mm_or_si128(v, is_air));
+  // Sixteen ids.
+  void add(__m128i v0, __m128i v1) {
+    const __m128i ones = _mm_set1_epi32(-1);
+    any = _mm_or_si128(any, _mm_or_si128(v0, v1));
+    all_m1 = _mm_and_si128(all_m1, _mm_and_si128(_mm_add_epi16(v0, ones), _mm_add_epi16(v1, ones)));
   }
   IdSpread reduce() const {
     alignas(16) std::uint16_t a[8];
     alignas(16) std::uint16_t b[8];
     _mm_store_si128(reinterpret_cast<__m128i*>(a), any);
-    _mm_store_si128(reinterpret_cast<__m128i*>(b), all);
+    _mm_store_si128(reinterpret_cast<__m128i*>(b), all_m1);
     IdSpread r = scalar;
     for (int i = 0; i < 8; ++i) r.add(IdSpread{a[i], b[i]});
     return r;
   }
 };
+
+// Bits of the ids >= first_special among 16 ids per group at row + 16 c (the last group ending
+// at row + covered - 1, overlapping the one before; covered >= 16): the slow half of a row's
+// classification, run only for rows holding such an id (alpha-cut blocks: leaves, glass).
+inline std::uint64_t special_bits(const BlockId* row, int covered, __m128i limit) {
+  const __m128i zero = _mm_setzero_si128();
+  std::uint64_t special = 0;
+  for (int c = 0; c < covered; c += 16) {
+    const int i = std::min(c, covered - 16);
+    const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
+    const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
+    const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
+    const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
+    const auto ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1)));
+    special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << i;
+  }
+  return special;
+}
 #else
 struct SpreadAcc {
   IdSpread scalar;
@@ -93,6 +115,10 @@ inline bool use_avx2() {
 // equal, so OR-ing them is harmless). A fixed count unrolls like the specialised sizes: with a
 // run-time loop and a scalar tail, 62^3 chunks cost 1.4x a 64^3 one per voxel (issue #18).
 // With track, the ids also go into acc.
+// Per 16 ids the vector part is two loads, a signed saturating pack (zero exactly for air: a
+// non-zero id packs to a non-zero byte), one byte compare and one movemask; ids >= first_special
+// are only OR-ed into a saturating difference and classified (special_bits()) when the row has
+// any (issue #18: the SSE2 baseline's row pass was 13 us of a 62^3 terrain chunk behind AVX2's).
 template <int kN, int kChunks>
 inline void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
                          std::uint64_t& special, SpreadAcc& acc, bool track) {
@@ -103,65 +129,28 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
     const __m128i zero = _mm_setzero_si128();
     // v - (first_special - 1), saturated at 0, is zero exactly for the ids below first_special.
     const __m128i limit = _mm_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
-    // 16 ids at row + i: bit j of air / ordinary for row[i + j].
-    auto classify16 = [&](int i, std::uint32_t& air, std::uint32_t& ordinary) {
+    __m128i above = zero;  // OR of those differences: non-zero when some id >= first_special
+    // 16 ids at row + i: bit j of the result is set when row[i + j] is air.
+    auto air16 = [&](int i) -> std::uint32_t {
       const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
       const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
-      const __m128i a0 = _mm_cmpeq_epi16(v0, zero);
-      const __m128i a1 = _mm_cmpeq_epi16(v1, zero);
-      air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a0, a1)));
-      if (track) {
-        acc.add(v0, a0);
-        acc.add(v1, a1);
-      }
-      const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
-      const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
-      ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1)));
+      if (track) acc.add(v0, v1);
+      above = _mm_or_si128(above, _mm_or_si128(_mm_subs_epu16(v0, limit), _mm_subs_epu16(v1, limit)));
+      return static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_packs_epi16(v0, v1), zero)));
     };
     if constexpr (kN == 0 && kChunks > 0) {
       for (int c = 0; c < kChunks; ++c) {
         const int i = c + 1 < kChunks ? 16 * c : n - 16;
-        std::uint32_t air, ordinary;
-        classify16(i, air, ordinary);
-        nonair |= static_cast<std::uint64_t>(~air & 0xffff) << i;
-        special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << i;
+        nonair |= static_cast<std::uint64_t>(~air16(i) & 0xffff) << i;
       }
-      return;
+      x = n;
+    } else {
+      // 32 ids per step (one step for a 32^3 chunk's row): one complement per mask instead of
+      // a loop iteration per 16.
+      for (; x + 32 <= n; x += 32) nonair |= static_cast<std::uint64_t>(~(air16(x) | air16(x + 16) << 16)) << x;
+      for (; x + 16 <= n; x += 16) nonair |= static_cast<std::uint64_t>(~air16(x) & 0xffff) << x;
     }
-    // 32 ids per step (one step for a 32^3 chunk's row): one movemask pair and one
-    // complement per mask instead of a loop iteration per 16.
-    for (; x + 32 <= n; x += 32) {
-      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
-      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
-      const __m128i v2 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 16));
-      const __m128i v3 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 24));
-      const __m128i a0 = _mm_cmpeq_epi16(v0, zero);
-      const __m128i a1 = _mm_cmpeq_epi16(v1, zero);
-      const __m128i a2 = _mm_cmpeq_epi16(v2, zero);
-      const __m128i a3 = _mm_cmpeq_epi16(v3, zero);
-      const auto air = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a0, a1))) |
-                       static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(a2, a3))) << 16;
-      if (track) {
-        acc.add(v0, a0);
-        acc.add(v1, a1);
-        acc.add(v2, a2);
-        acc.add(v3, a3);
-      }
-      const __m128i s0 = _mm_cmpeq_epi16(_mm_subs_epu16(v0, limit), zero);
-      const __m128i s1 = _mm_cmpeq_epi16(_mm_subs_epu16(v1, limit), zero);
-      const __m128i s2 = _mm_cmpeq_epi16(_mm_subs_epu16(v2, limit), zero);
-      const __m128i s3 = _mm_cmpeq_epi16(_mm_subs_epu16(v3, limit), zero);
-      const auto ordinary = static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s0, s1))) |
-                            static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_packs_epi16(s2, s3))) << 16;
-      nonair |= static_cast<std::uint64_t>(~air) << x;
-      special |= static_cast<std::uint64_t>(~ordinary) << x;
-    }
-    for (; x + 16 <= n; x += 16) {
-      std::uint32_t air, ordinary;
-      classify16(x, air, ordinary);
-      nonair |= static_cast<std::uint64_t>(~air & 0xffff) << x;
-      special |= static_cast<std::uint64_t>(~ordinary & 0xffff) << x;
-    }
+    if (x > 0 && _mm_movemask_epi8(_mm_cmpeq_epi8(above, zero)) != 0xffff) special |= special_bits(row, x, limit);
   }
 #endif
   for (; x < n; ++x) {
@@ -226,51 +215,47 @@ inline IdSpread row_pass(const BlockId* ids, const std::uint8_t* opaque, BlockId
 }
 
 #if defined(SYLVA_VOXEL_AVX2)
-// 32 ids at row + i: bit j of air / ordinary (below first_special) for row[i + j]. packs works
-// within 128-bit lanes, so the bytes come out as ids 0-7, 16-23, 8-15, 24-31: one 64-bit lane
-// permute puts them in order before the movemask.
-// With track, the ids also go into any / all (IdSpread lanes).
-__attribute__((target("avx2"))) inline void classify32_avx2(const BlockId* row, __m256i limit, std::uint32_t& air,
-                                                            std::uint32_t& ordinary, bool track, __m256i& any,
-                                                            __m256i& all) {
-  const __m256i zero = _mm256_setzero_si256();
+// 32 ids at row: bit j of the result is set when row[j] is air (the pack as in classify_row();
+// packs works within 128-bit lanes, so the bytes come out as ids 0-7, 16-23, 8-15, 24-31: one
+// 64-bit lane permute puts them in order before the movemask). The saturating differences from
+// limit are OR-ed into above; with track, the ids go into any / all_m1 (IdSpread lanes).
+__attribute__((target("avx2"))) inline std::uint32_t air32_avx2(const BlockId* row, __m256i limit, bool track,
+                                                                __m256i& any, __m256i& all_m1, __m256i& above) {
   const __m256i v0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row));
   const __m256i v1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row + 16));
-  const __m256i a0 = _mm256_cmpeq_epi16(v0, zero);
-  const __m256i a1 = _mm256_cmpeq_epi16(v1, zero);
   if (track) {
+    const __m256i ones = _mm256_set1_epi32(-1);
     any = _mm256_or_si256(any, _mm256_or_si256(v0, v1));
-    all = _mm256_and_si256(all, _mm256_and_si256(_mm256_or_si256(v0, a0), _mm256_or_si256(v1, a1)));
+    all_m1 = _mm256_and_si256(all_m1, _mm256_and_si256(_mm256_add_epi16(v0, ones), _mm256_add_epi16(v1, ones)));
   }
-  const __m256i a = _mm256_packs_epi16(a0, a1);
-  air = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_permute4x64_epi64(a, 0xd8)));
-  const __m256i s = _mm256_packs_epi16(_mm256_cmpeq_epi16(_mm256_subs_epu16(v0, limit), zero),
-                                       _mm256_cmpeq_epi16(_mm256_subs_epu16(v1, limit), zero));
-  ordinary = static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_permute4x64_epi64(s, 0xd8)));
+  above = _mm256_or_si256(above, _mm256_or_si256(_mm256_subs_epu16(v0, limit), _mm256_subs_epu16(v1, limit)));
+  const __m256i air = _mm256_cmpeq_epi8(_mm256_packs_epi16(v0, v1), _mm256_setzero_si256());
+  return static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_permute4x64_epi64(air, 0xd8)));
 }
 
 // Rows of 32 to 64 ids: two groups of 32, the second ending at row[n - 1] (overlapping the first
 // for n < 64; shared bits are equal).
 struct ClassifyAvx2 {
   __m256i any;  // IdSpread lanes, set by start()
-  __m256i all;
+  __m256i all_m1;
   __attribute__((target("avx2"))) void start() {
     any = _mm256_setzero_si256();
-    all = _mm256_set1_epi32(-1);
+    all_m1 = _mm256_set1_epi32(-1);
   }
   __attribute__((target("avx2"))) void operator()(const BlockId* row, int n, BlockId first_special,
                                                   std::uint64_t& nonair, std::uint64_t& special, bool interior) {
     const __m256i limit = _mm256_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
-    std::uint32_t air0, ord0, air1, ord1;
-    classify32_avx2(row, limit, air0, ord0, interior, any, all);
-    classify32_avx2(row + n - 32, limit, air1, ord1, interior, any, all);
+    __m256i above = _mm256_setzero_si256();
+    const std::uint32_t air0 = air32_avx2(row, limit, interior, any, all_m1, above);
+    const std::uint32_t air1 = air32_avx2(row + n - 32, limit, interior, any, all_m1, above);
     nonair = static_cast<std::uint64_t>(~air0) | static_cast<std::uint64_t>(~air1) << (n - 32);
-    special = static_cast<std::uint64_t>(~ord0) | static_cast<std::uint64_t>(~ord1) << (n - 32);
+    special = 0;
+    if (!_mm256_testz_si256(above, above)) special = special_bits(row, n, _mm256_castsi256_si128(limit));
   }
   __attribute__((target("avx2"))) IdSpread spread() const {
     SpreadAcc acc;
     acc.any = _mm_or_si128(_mm256_castsi256_si128(any), _mm256_extracti128_si256(any, 1));
-    acc.all = _mm_and_si128(_mm256_castsi256_si128(all), _mm256_extracti128_si256(all, 1));
+    acc.all_m1 = _mm_and_si128(_mm256_castsi256_si128(all_m1), _mm256_extracti128_si256(all_m1, 1));
     return acc.reduce();
   }
 };

@@ -250,6 +250,54 @@ TEST(MesherBitmaskShapes, MixedIdHillsCoverLikeTheReferenceWithAoOnAndOff) {
   }
 }
 
+// A quad of `list` with block `id` on face -Y (3) covers the unit face at (x, y, z) (+-Y quads:
+// du along z, dv along x).
+bool covers_bottom(const std::vector<PackedQuad>& list, BlockId id, int x, int y, int z) {
+  for (const PackedQuad& q : list) {
+    const auto w = [&q](int shift, std::uint32_t mask) { return static_cast<int>((q.word0 >> shift) & mask); };
+    if ((q.word1 & 0xffffu) != id || ((q.word1 >> 16) & 7u) != 3u || w(6, 63) != y) continue;
+    if (x >= w(0, 63) && x <= w(0, 63) + w(24, 63) && z >= w(12, 63) && z <= w(12, 63) + w(18, 63)) return true;
+  }
+  return false;
+}
+
+TEST(MesherBitmaskShapes, OneLeavesOrDirtBlockAtAnyBitOfAStoneRowIsFound) {
+  // The row pass looks closer at ids >= the first alpha-cut id only in rows that hold one, and
+  // tells one-id chunks by the OR of the ids against the AND of the ids minus one (issue #18).
+  // Two stone layers, one block of the lower replaced by leaves (alpha-cut: the stone above it
+  // shows its bottom face) or dirt (shows its own bottom face), at every x: on both row passes
+  // (every 16- and 32-id group, the overlapping last ones too).
+  const auto& palette = testing::test_palette();
+  for (bool avx2 : {true, false}) {
+    if (!avx2) {
+      ASSERT_EQ(setenv("SYLVA_VOXEL_NO_AVX2", "1", 1), 0);
+    }
+    auto mesher = make_mesher(MesherKind::kBitmask);
+    for (int n : {16, 17, 31, 32, 33, 47, 62, 63, 64}) {
+      for (BlockId id : {BlockId{4}, BlockId{2}}) {
+        for (int bx = 0; bx < n; ++bx) {
+          const int bz = (bx * 7) % n;
+          const PaddedBlocks b = fill(n, [&](int x, int y, int z) -> BlockId {
+            if (!inside(n, x, y, z) || y > 1) return kAir;
+            return x == bx && y == 0 && z == bz ? id : 1;
+          });
+          ChunkMesh mesh;
+          mesher->mesh(b, palette, mesh);
+          const std::string what = "avx2 " + std::to_string(avx2) + " id " + std::to_string(id) +
+                                   " n=" + std::to_string(n) + " x=" + std::to_string(bx);
+          if (id == 4) {
+            EXPECT_TRUE(covers_bottom(mesh.alpha_cut, 4, bx, 0, bz)) << what;
+            EXPECT_TRUE(covers_bottom(mesh.opaque, 1, bx, 1, bz)) << what;
+          } else {
+            EXPECT_TRUE(covers_bottom(mesh.opaque, 2, bx, 0, bz)) << what;
+          }
+        }
+      }
+    }
+    unsetenv("SYLVA_VOXEL_NO_AVX2");
+  }
+}
+
 TEST(MesherBitmaskShapes, Avx2AndSse2RowPassesGiveTheSameMesh) {
   // The row pass runs AVX2 where the CPU has it (dispatch when the mesher is made) and SSE2
   // with SYLVA_VOXEL_NO_AVX2 set: both must give the same quads, in the same order.
