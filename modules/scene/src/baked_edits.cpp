@@ -52,15 +52,19 @@ Status write_edit_layer_file(const MapGrid& painted, const std::filesystem::path
 #if SYLVA_HAS_TERRAIN
   auto file = terrain::ChunkFile::open(chunk_file);
   if (!file.ok()) return make_error(file.error().code, fmt::format("{}: {}", target.string(), file.error().message));
-  auto baked = (*file)->read_heights(1);
-  if (!baked.ok()) return make_error(baked.error().code, fmt::format("{}: {}", target.string(), baked.error().message));
-  if (baked->columns() != painted.width || baked->rows() != painted.height) {
+  // The ground is the field or every stride-th sample of it (baked_ground.hpp): the layer holds
+  // the ground's own samples, diffed against the baked heights at that stride (the overview), and
+  // the section derives the painted exact field from them (terrain/decimated_ground_edits.hpp).
+  const int columns = (*file)->tree().field_columns(), rows = (*file)->tree().field_rows();
+  const int stride = painted.width > 1 ? (columns - 1) / (painted.width - 1) : 0;
+  if (stride < 1 || (columns - 1) / stride + 1 != painted.width || (rows - 1) / stride + 1 != painted.height) {
     return make_error(ErrorCode::kUnsupported,
-                      fmt::format("{}: the ground is {}x{} samples of the {}x{} baked in {} (every n-th sample): such "
-                                  "a ground cannot be painted",
-                                  target.string(), painted.width, painted.height, baked->columns(), baked->rows(),
-                                  chunk_file.string()));
+                      fmt::format("{}: the ground is {}x{} samples, neither the {}x{} baked in {} nor every n-th of "
+                                  "them: it cannot be saved as its edit layer",
+                                  target.string(), painted.width, painted.height, columns, rows, chunk_file.string()));
   }
+  auto baked = (*file)->read_heights(stride);
+  if (!baked.ok()) return make_error(baked.error().code, fmt::format("{}: {}", target.string(), baked.error().message));
   const terrain::EditLayer layer = terrain::diff_edit_layer(baked->samples(), painted.values, painted.width, painted.height);
   return write_new_file(temp, terrain::encode_edit_layer(layer), target);
 #else

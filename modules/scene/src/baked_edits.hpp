@@ -31,8 +31,9 @@ std::optional<std::filesystem::path> baked_ground_file(const SceneDocument& docu
 bool apply_edit_layer_file(MapGrid& grid, const std::filesystem::path& file);
 
 // Writes to `temp` (a FileTransaction writer; errors name `target`) the tiles of `painted` that
-// differ from the heights baked into `chunk_file`. Errors: the chunk file's (named), a ground that
-// is every n-th baked sample (kUnsupported: such a ground cannot be painted).
+// differ from the heights baked into `chunk_file`; a ground of every n-th baked sample (a field
+// above the ground limit) is diffed against the baked heights at that stride, so its layer holds
+// ground samples. Errors: the chunk file's (named), a ground of another size (kUnsupported).
 Status write_edit_layer_file(const MapGrid& painted, const std::filesystem::path& chunk_file,
                              const std::filesystem::path& temp, const std::filesystem::path& target);
 

@@ -15,6 +15,18 @@
 
 namespace sylva::scene {
 
+namespace {
+std::uint64_t g_ground_limit = kMaxBakedGroundSamples;
+}  // namespace
+
+std::uint64_t baked_ground_limit() { return g_ground_limit; }
+
+ScopedBakedGroundLimit::ScopedBakedGroundLimit(std::uint64_t max_samples) : previous_(g_ground_limit) {
+  g_ground_limit = max_samples;
+}
+
+ScopedBakedGroundLimit::~ScopedBakedGroundLimit() { g_ground_limit = previous_; }
+
 bool is_chunk_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   char magic[8] = {};

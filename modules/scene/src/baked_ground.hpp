@@ -23,6 +23,23 @@ bool is_chunk_file(const std::filesystem::path& file);
 // an 8193^2 ground took 15 s to the first frame on llvmpipe (README).
 inline constexpr std::uint64_t kMaxBakedGroundSamples = std::uint64_t{4097} * 4097;
 
+// The limit the scene reads its ground with (kMaxBakedGroundSamples unless overridden). Tests
+// lower it to give a small field the decimated ground of a large one (a 513^2 bake read every 4th
+// sample) through the scene's own path; not a scene key: the limit is the first frame's budget.
+std::uint64_t baked_ground_limit();
+// Sets baked_ground_limit() for this process until the object goes away (tests; not thread-safe:
+// set it before opening a scene).
+class ScopedBakedGroundLimit {
+ public:
+  explicit ScopedBakedGroundLimit(std::uint64_t max_samples);
+  ~ScopedBakedGroundLimit();
+  ScopedBakedGroundLimit(const ScopedBakedGroundLimit&) = delete;
+  ScopedBakedGroundLimit& operator=(const ScopedBakedGroundLimit&) = delete;
+
+ private:
+  std::uint64_t previous_;
+};
+
 // What reading the ground cost (tests and logs).
 struct BakedGroundRead {
   std::uint64_t bytes = 0;    // height tile bytes read
@@ -34,7 +51,7 @@ struct BakedGroundRead {
 // program built without the terrain module), kInvalidArgument (a file without heights). A
 // version-2 file (no overview) above max_samples is read from every tile, with a log line saying
 // that re-baking makes it faster.
-Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64_t max_samples = kMaxBakedGroundSamples,
+Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64_t max_samples = baked_ground_limit(),
                                   BakedGroundRead* read = nullptr);
 
 }  // namespace sylva::scene

@@ -13,20 +13,26 @@
 #include <sylva/scene/module_registry.hpp>
 #include <sylva/scene/scene.hpp>
 #include <sylva/terrain/bake.hpp>
+#include <sylva/terrain/chunk_file.hpp>
+#include <sylva/terrain/decimated_ground_edits.hpp>
 #include <sylva/terrain/renderer.hpp>
 #include <sylva/terrain/streaming.hpp>
 
+#include "baked_ground.hpp"
 #include "scene_test_files.hpp"
 #include "support/gl_support.hpp"
 #ifdef SYLVA_PLAYER_EXE
 #include "run_command.hpp"
 #endif
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -250,6 +256,174 @@ TEST_F(BakedEditsGl, PaintSaveReopenUndoAreBitExactAndADamagedLayerOpensUnpainte
   EXPECT_TRUE(damaged->ground()->samples() == unpainted);
   expect_same_pictures(pictures(*damaged, target), before, "damaged layer");
   EXPECT_EQ(read_bytes(layer), bytes) << "a failed load never rewrites the layer";
+}
+
+// A field above the ground limit (issue 15): the ground is every 4th baked sample (the 513^2 bake
+// with a 129^2 overview, read with a ground limit of 129^2, as baked_terrain_gl does for an 8193^2
+// or 16385^2 field), painted through the scene (Scene::map + map_changed, the editor brush's path).
+// The exact samples are read at the first stroke, not at open; every chunk the streamer makes
+// resident equals ChunkTree::build of the painted exact field bit for bit, a field that keeps
+// the baked samples wherever the ground around them is unpainted and IS the painted ground at the
+// stride; the layer saved is the ground's one tile and reopens bit-exact with the same chunks;
+// undoing both strokes gives the file's chunks back.
+struct ChunkCompare {
+  std::size_t compared = 0, differing = 0;
+  std::string first;
+};
+
+// Makes every chunk of `s` resident and compares it with `built` (meshes and metadata, bit for bit).
+ChunkCompare compare_chunks(terrain::ChunkStreamer& s, const terrain::ChunkTree& built) {
+  ChunkCompare out;
+  for (int round = 0; round < 8; ++round) {
+    s.update();
+    terrain::Residency r = s.residency();
+    bool missing = false;
+    for (std::uint32_t i = 0; i < s.tree().chunk_count(); ++i) {
+      if (!s.tree().chunk(i).present || s.resident(i)) continue;
+      r.request(i, 1.0 + i);
+      missing = true;
+    }
+    if (!missing) break;
+    s.wait_idle();
+  }
+  for (std::uint32_t i = 0; i < built.chunk_count(); ++i) {
+    const terrain::Chunk &a = s.tree().chunk(i), &b = built.chunk(i);
+    if (!b.present) continue;
+    const terrain::ChunkMesh* m = s.mesh(i);
+    const bool same = m != nullptr && a.error == b.error && a.error_bound == b.error_bound && a.min_y == b.min_y &&
+                      a.max_y == b.max_y && m->vertices.size() == b.mesh.vertices.size() &&
+                      std::memcmp(m->vertices.data(), b.mesh.vertices.data(),
+                                  m->vertices.size() * sizeof(terrain::ChunkVertex)) == 0 &&
+                      m->indices == b.mesh.indices && m->edges == b.mesh.edges;
+    ++out.compared;
+    if (!same && out.differing++ == 0) out.first = fmt::format("chunk {} (level {})", i, b.key.level);
+  }
+  return out;
+}
+
+// Applies a pending stroke (the section's settings sync, as a frame does).
+void next_frame(Scene& scene) {
+  const glm::ivec2 size{96, 54};
+  scene.update(scene.make_camera(poses()[0], size), 0.0, 0.0f, size);
+}
+
+TexelRect paint_ground(Scene& scene, int cx, int cz, int r, float amount) {
+  SceneMap* map = scene.map("terrain.height");
+  const TexelRect rect{std::max(cx - r, 0), std::max(cz - r, 0), std::min(cx + r + 1, map->grid.width),
+                       std::min(cz + r + 1, map->grid.height)};
+  for (int z = rect.y0; z < rect.y1; ++z) {
+    for (int x = rect.x0; x < rect.x1; ++x) {
+      const double d = std::hypot(x - cx, z - cz) / (r + 1);
+      if (d < 1.0) map->grid.at(x, z) += amount * static_cast<float>(1.0 - d * d);
+    }
+  }
+  EXPECT_TRUE(scene.map_changed("terrain.height", rect).ok());
+  return rect;
+}
+
+TEST_F(BakedEditsGl, ADecimatedGroundPaintsTheFieldsExactSamplesSavesReopensAndUndoes) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  TestDir dir("sylva_baked_edits_decimated");
+  auto memory = write_and_load(dir.path / "memory.json", scene_text(""));
+  ASSERT_TRUE(memory);
+  terrain::BakeOptions options;
+  options.tree.leaf_dimension = 33;
+  options.overview_max_samples = 129 * 129;
+  const fs::path file = dir.path / "valley.sylvaterrain";
+  ASSERT_TRUE(terrain::bake_chunk_file(*memory->ground(), file, options).ok());
+  terrain::ChunkTreeSettings tree_settings;
+  tree_settings.leaf_dimension = 33;
+  const terrain::ChunkTree unpainted_tree = terrain::ChunkTree::build(*memory->ground(), tree_settings).value();
+
+  ScopedBakedGroundLimit limit(129 * 129);
+  std::vector<std::string> infos;
+  const LogLevel level = log_level();
+  set_log_level(LogLevel::kInfo);
+  set_log_sink([&](LogLevel, std::string_view m) { infos.emplace_back(m); });
+  const auto exact_reads = [&] {
+    return std::count_if(infos.begin(), infos.end(),
+                         [](const std::string& m) { return m.find("painting the baked field's exact") != std::string::npos; });
+  };
+  auto baked = write_and_load(dir.path / "baked.json", scene_text("valley.sylvaterrain"));
+  ASSERT_TRUE(baked);
+  ASSERT_EQ(baked->ground()->columns(), 129);
+  ASSERT_EQ(baked->ground()->spacing(), 8.0);
+  terrain::ChunkStreamer* streamer = terrain_of(*baked)->streamer();
+  ASSERT_NE(streamer, nullptr);
+  EXPECT_EQ(baked->module_stats()["terrain"]["baked_ground_matches"], 0);
+  const std::vector<float> unpainted = baked->ground()->samples();
+  next_frame(*baked);
+  EXPECT_EQ(exact_reads(), 0) << "no exact sample is read before the first stroke";
+
+  // Two strokes, the second over the field's east edge (the padding beyond it).
+  const TexelRect first{59, 45, 70, 56}, second{123, 72, 129, 79};
+  const std::vector<float> undo_first = baked->map("terrain.height")->grid.copy_rect(first);
+  const std::vector<float> undo_second = baked->map("terrain.height")->grid.copy_rect(second);
+  EXPECT_EQ(paint_ground(*baked, 64, 50, 5, 40.0f).x0, first.x0);
+  next_frame(*baked);
+  EXPECT_EQ(exact_reads(), 1) << "read once, at the first stroke";
+  EXPECT_EQ(paint_ground(*baked, 127, 75, 3, -25.0f).x1, second.x1);
+  next_frame(*baked);
+  set_log_sink(nullptr);
+  set_log_level(level);
+  EXPECT_EQ(exact_reads(), 1);
+  const std::vector<float> painted_ground = baked->ground()->samples();
+  const nlohmann::json stats = baked->module_stats()["terrain"];
+  EXPECT_GT(stats["stream_edited_chunks"].get<std::size_t>(), 4u);
+  EXPECT_LT(stats["stream_edited_chunks"].get<std::size_t>(), 150u) << "only the chunks the strokes reach";
+
+  // The painted exact field: the baked samples with the ground's change spread between its samples.
+  auto chunks = terrain::ChunkFile::open(file);
+  ASSERT_TRUE(chunks.ok());
+  auto expected = terrain::DecimatedGroundEdits::open(**chunks, 4);
+  ASSERT_TRUE(expected.ok());
+  ASSERT_TRUE((*expected)->apply(painted_ground, {0, 0, 129, 129}).ok());
+  const HeightField& exact = (*expected)->field();
+  const std::vector<float>& source = memory->ground()->samples();
+  std::size_t kept = 0, changed = 0;
+  for (int z = 0; z < 513; ++z) {
+    for (int x = 0; x < 513; ++x) {
+      const std::size_t k = static_cast<std::size_t>(z) * 513 + x;
+      if (x % 4 == 0 && z % 4 == 0) {
+        ASSERT_EQ(std::bit_cast<std::uint32_t>(exact.samples()[k]),
+                  std::bit_cast<std::uint32_t>(painted_ground[static_cast<std::size_t>(z / 4) * 129 + x / 4]))
+            << "the ground is the exact field at its stride: " << x << ", " << z;
+      }
+      (std::bit_cast<std::uint32_t>(exact.samples()[k]) == std::bit_cast<std::uint32_t>(source[k]) ? kept : changed)++;
+    }
+  }
+  EXPECT_GT(changed, 1000u) << "under the strokes";
+  EXPECT_LT(changed, 3000u) << "only under the strokes";
+  const terrain::ChunkTree painted_tree = terrain::ChunkTree::build(exact, tree_settings).value();
+  ChunkCompare c = compare_chunks(*streamer, painted_tree);
+  EXPECT_EQ(c.compared, 341u);
+  EXPECT_EQ(c.differing, 0u) << "first: " << c.first;
+
+  // Saved: the ground's one 129^2 tile; reopened: the same ground and chunks, bit for bit.
+  ASSERT_TRUE(baked->save(dir.path / "painted.json").ok());
+  const fs::path layer = dir.path / "painted_maps" / "terrain_height.sylvaedits";
+  ASSERT_TRUE(fs::exists(layer));
+  EXPECT_EQ(fs::file_size(layer), 40u + 24u + 129u * 129u * 4u);
+  {
+    auto reopened = open_scene_file(dir.path / "painted.json");
+    ASSERT_TRUE(reopened);
+    EXPECT_TRUE(reopened->ground()->samples() == painted_ground) << "edit layer: bit-exact ground";
+    EXPECT_GT(reopened->module_stats()["terrain"]["stream_edited_chunks"].get<std::size_t>(), 4u);
+    c = compare_chunks(*terrain_of(*reopened)->streamer(), painted_tree);
+    EXPECT_EQ(c.differing, 0u) << "reopened, first: " << c.first;
+  }
+
+  // Undo both strokes (the editor pastes the old texels back): the file's chunks again.
+  baked->map("terrain.height")->grid.paste_rect(second, undo_second);
+  ASSERT_TRUE(baked->map_changed("terrain.height", second).ok());
+  next_frame(*baked);
+  baked->map("terrain.height")->grid.paste_rect(first, undo_first);
+  ASSERT_TRUE(baked->map_changed("terrain.height", first).ok());
+  next_frame(*baked);
+  EXPECT_TRUE(baked->ground()->samples() == unpainted);
+  c = compare_chunks(*streamer, unpainted_tree);
+  EXPECT_EQ(c.compared, 341u);
+  EXPECT_EQ(c.differing, 0u) << "undone, first: " << c.first;
 }
 
 }  // namespace

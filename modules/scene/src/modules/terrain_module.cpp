@@ -33,7 +33,10 @@
 // (normals, materials); a coarser ground shades from the triangles. Painting a baked terrain
 // rebuilds the chunks a stroke reaches from the painted ground (ChunkStreamer::apply_height_edit,
 // terrain/stream_edits.hpp); the scene saves the painted tiles as its edit layer
-// (../baked_edits.hpp), and opening applies them before the first frame. Streaming numbers are in
+// (../baked_edits.hpp), and opening applies them before the first frame. A ground of every n-th
+// sample (a field above the ground limit) is painted too: the chunks are rebuilt from the field's
+// exact samples painted the same way (terrain/decimated_ground_edits.hpp), read from the file at the
+// first stroke, not before. Streaming numbers are in
 // stats() ("stream_*"; "stream_edited_chunks").
 
 #include "modules/module_factories.hpp"
@@ -43,6 +46,7 @@
 #include <sylva/scene/module_instance.hpp>
 #include <sylva/terrain/chunk_file.hpp>
 #include <sylva/terrain/chunk_tree.hpp>
+#include <sylva/terrain/decimated_ground_edits.hpp>
 #include <sylva/terrain/edit_layer.hpp>
 #include <sylva/terrain/renderer.hpp>
 #include <sylva/terrain/settings.hpp>
@@ -265,12 +269,14 @@ class TerrainInstance final : public ModuleInstance {
     baked_bytes_ = static_cast<std::uint64_t>(std::filesystem::file_size(path, ec));
     auto streamer = terrain::ChunkStreamer::create(*file, s.stream);
     if (!streamer.ok()) return fail(Error{streamer.error().code, fmt::format("{}: {}", path.string(), streamer.error().message)});
+    baked_file_ = *file;
+    decimated_.reset();  // read again at the next stroke (or now, for a painted ground)
     apply_painted_ground(**file, **streamer);
     const std::string mismatch = ground_mismatch(**streamer);
     const HeightField* field = mismatch.empty() ? ctx_.ground : nullptr;
     if (field != nullptr) {
       ground_matches_ = true;
-    } else if (coarse_baked_ground(**streamer)) {
+    } else if (coarse_baked_ground((*streamer)->tree())) {
       ground_matches_ = false;  // the baked heights every n-th sample: shaded from the triangles
     } else {
       ground_matches_ = false;
@@ -299,6 +305,21 @@ class TerrainInstance final : public ModuleInstance {
     }
     const HeightField& f = *ctx_.ground;
     const terrain::ChunkTree& t = file.tree();
+    if (painted && coarse_baked_ground(t)) {
+      // Every n-th sample: the painted ground against the baked one at its stride (the overview);
+      // the exact field is read only when they differ.
+      auto baked = file.read_heights(ground_stride(t));
+      if (!baked.ok()) return;
+      const auto rects = terrain::changed_rects(baked->samples(), f.samples(), f.columns(), f.rows());
+      if (rects.empty()) return;
+      auto changed = apply_decimated_edit(streamer, rects);
+      if (!changed.ok()) {
+        log_warn("terrain: the painted ground is not drawn: {}", changed.error().message);
+        return;
+      }
+      chunks_rebuilt_ = changed->rebuilt.size();
+      return;
+    }
     if (!painted || f.columns() != t.field_columns() || f.rows() != t.field_rows() || f.spacing() != t.spacing() ||
         f.origin() != t.origin()) {
       return;
@@ -344,17 +365,63 @@ class TerrainInstance final : public ModuleInstance {
   }
 
   // Whether the ground is the file's heights every n-th sample (a field too big to read whole).
-  bool coarse_baked_ground(const terrain::ChunkStreamer& streamer) const {
+  bool coarse_baked_ground(const terrain::ChunkTree& t) const {
     const HeightField& f = *ctx_.ground;
-    const terrain::ChunkTree& t = streamer.tree();
-    const double n = f.spacing() / t.spacing();
-    return n > 1.0 && n == std::round(n) && f.origin() == t.origin() &&
-           f.columns() == (t.field_columns() - 1) / static_cast<int>(n) + 1;
+    const int n = ground_stride(t);
+    return n > 1 && f.spacing() == n * t.spacing() && f.origin() == t.origin() &&
+           f.columns() == (t.field_columns() - 1) / n + 1 && f.rows() == (t.field_rows() - 1) / n + 1;
+  }
+  int ground_stride(const terrain::ChunkTree& t) const {
+    return static_cast<int>(std::lround(ctx_.ground->spacing() / t.spacing()));
+  }
+
+  // A stroke on a ground of every n-th sample (`rects`: ground samples): the painted exact field
+  // brought up to the ground there (read from the file at the first stroke: 8 bytes per field
+  // sample, decimated_ground_edits.hpp), then the chunks it reaches rebuilt from it.
+  Result<terrain::RegionRebuild> apply_decimated_edit(terrain::ChunkStreamer& streamer,
+                                                      const std::vector<terrain::SampleRect>& rects) {
+    if (!decimated_) {
+      Stopwatch watch;
+      auto opened = terrain::DecimatedGroundEdits::open(*baked_file_, ground_stride(baked_file_->tree()));
+      if (!opened.ok()) return opened.error();
+      decimated_ = std::move(*opened);
+      log_info("terrain: painting the baked field's exact {}x{} samples (every {}th is the ground): read them in "
+               "{:.0f} ms, {} MiB held while the scene is open",
+               decimated_->field().columns(), decimated_->field().rows(), decimated_->stride(), watch.elapsed_ms(),
+               decimated_->field().samples().size() * 2 * sizeof(float) >> 20);
+    }
+    std::vector<terrain::SampleRect> exact;
+    for (const terrain::SampleRect& r : rects) {
+      auto e = decimated_->apply(ctx_.ground->samples(), r);
+      if (!e.ok()) return e.error();
+      if (e->x0 < e->x1 && e->z0 < e->z1) exact.push_back(*e);
+    }
+    // At open the section's renderer is not made yet (or is the one being replaced): the streamer.
+    if (renderer_ == nullptr || renderer_->streamer() != &streamer) return streamer.apply_height_edit(decimated_->field(), exact);
+    terrain::RegionRebuild all;
+    for (const terrain::SampleRect& e : exact) {
+      auto changed = renderer_->apply_height_edit(decimated_->field(), e.x0, e.z0, e.x1, e.z1);
+      if (!changed.ok()) return changed.error();
+      all.rebuilt.insert(all.rebuilt.end(), changed->rebuilt.begin(), changed->rebuilt.end());
+    }
+    return all;
   }
 
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
   void apply_edit() {
     Stopwatch watch;
+    if (renderer_->streamer() != nullptr && coarse_baked_ground(renderer_->streamer()->tree())) {
+      auto changed = apply_decimated_edit(*renderer_->streamer(), {{dirty_[0], dirty_[1], dirty_[2], dirty_[3]}});
+      if (!changed.ok()) {
+        log_warn("terrain: the stroke is not drawn on the baked terrain: {}", changed.error().message);
+        return;
+      }
+      ++partial_rebuilds_;
+      chunks_rebuilt_ = changed->rebuilt.size();
+      chunks_updated_ = 0;
+      last_build_ms_ = watch.elapsed_ms();
+      return;
+    }
     if (renderer_->streamer() != nullptr) {
       // A baked terrain: the chunks the edit reaches are rebuilt from the painted ground
       // (terrain/streaming.hpp). No full-rebuild fallback: that would reopen the file unpainted.
@@ -405,6 +472,9 @@ class TerrainInstance final : public ModuleInstance {
   double cache_load_ms_ = 0.0, cache_save_ms_ = 0.0;  // hashing + reading / writing, last full build
   std::uint64_t baked_bytes_ = 0;                      // size of the baked chunk file streamed
   bool ground_matches_ = false;                        // the scene's ground is the baked field
+  std::shared_ptr<const terrain::ChunkFile> baked_file_;  // the file streamed (baked_file)
+  // The painted exact field of a ground of every n-th sample: null until the first stroke.
+  std::unique_ptr<terrain::DecimatedGroundEdits> decimated_;
 };
 
 }  // namespace

@@ -1,0 +1,89 @@
+// The exact field of a baked terrain painted through its every-n-th-sample ground
+// (decimated_ground_edits.hpp).
+#include <sylva/terrain/chunk_file.hpp>
+#include <sylva/terrain/decimated_ground_edits.hpp>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+
+namespace sylva::terrain {
+
+Result<std::unique_ptr<DecimatedGroundEdits>> DecimatedGroundEdits::open(const ChunkFile& file, int stride) {
+  if (stride < 2) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("{}: a ground of every {}th sample is the field itself", file.path().string(), stride));
+  }
+  auto field = file.read_heights(1);
+  if (!field.ok()) return field.error();
+  return std::unique_ptr<DecimatedGroundEdits>(new DecimatedGroundEdits(std::move(*field), stride));
+}
+
+DecimatedGroundEdits::DecimatedGroundEdits(HeightField baked, int stride)
+    : baked_(baked.samples()), painted_(std::move(baked)), stride_(stride) {}
+
+std::vector<float> DecimatedGroundEdits::baked_ground() const {
+  const int gc = ground_columns(), gr = ground_rows();
+  std::vector<float> out(static_cast<std::size_t>(gc) * static_cast<std::size_t>(gr));
+  for (int j = 0; j < gr; ++j)
+    for (int i = 0; i < gc; ++i)
+      out[static_cast<std::size_t>(j) * gc + i] =
+          baked_[static_cast<std::size_t>(j) * stride_ * painted_.columns() + static_cast<std::size_t>(i) * stride_];
+  return out;
+}
+
+Result<SampleRect> DecimatedGroundEdits::apply(const std::vector<float>& ground, SampleRect rect) {
+  const int gc = ground_columns(), gr = ground_rows(), fc = painted_.columns(), fr = painted_.rows();
+  if (ground.size() != static_cast<std::size_t>(gc) * static_cast<std::size_t>(gr)) {
+    return make_error(ErrorCode::kInvalidArgument,
+                      fmt::format("terrain: the painted ground has {} samples, every {}th sample of the baked {}x{} "
+                                  "field is {}x{}: it cannot be painted",
+                                  ground.size(), stride_, fc, fr, gc, gr));
+  }
+  rect = {std::max(rect.x0, 0), std::max(rect.z0, 0), std::min(rect.x1, gc), std::min(rect.z1, gr)};
+  if (rect.x0 >= rect.x1 || rect.z0 >= rect.z1) return SampleRect{};
+  for (int j = rect.z0; j < rect.z1; ++j) {
+    for (int i = rect.x0; i < rect.x1; ++i) {
+      if (!std::isfinite(ground[static_cast<std::size_t>(j) * gc + i])) {
+        return make_error(ErrorCode::kInvalidArgument,
+                          fmt::format("terrain: the painted ground has a NaN/Inf sample at column {} row {}", i, j));
+      }
+    }
+  }
+  const int s = stride_;
+  const auto baked = [&](int x, int z) { return baked_[static_cast<std::size_t>(z) * fc + static_cast<std::size_t>(x)]; };
+  const auto node = [&](int i, int j) { return ground[static_cast<std::size_t>(j) * gc + static_cast<std::size_t>(i)]; };
+  const auto unpainted = [&](int i, int j) {
+    return std::bit_cast<std::uint32_t>(node(i, j)) == std::bit_cast<std::uint32_t>(baked(i * s, j * s));
+  };
+  const auto delta = [&](int i, int j) { return static_cast<double>(node(i, j)) - baked(i * s, j * s); };
+  // A ground sample reaches the exact samples of the cells around it; the last ground row and
+  // column also reach the samples beyond them (a field whose size is not a multiple of the stride).
+  const SampleRect out{std::max((rect.x0 - 1) * s + 1, 0), std::max((rect.z0 - 1) * s + 1, 0),
+                       rect.x1 >= gc ? fc : std::min(rect.x1 * s, fc), rect.z1 >= gr ? fr : std::min(rect.z1 * s, fr)};
+  for (int z = out.z0; z < out.z1; ++z) {
+    const int j0 = std::min(z / s, gr - 1), j1 = std::min(j0 + 1, gr - 1);
+    const double fz = static_cast<double>(z - j0 * s) / s;
+    for (int x = out.x0; x < out.x1; ++x) {
+      const int i0 = std::min(x / s, gc - 1), i1 = std::min(i0 + 1, gc - 1);
+      float& h = painted_.sample(x, z);
+      if (unpainted(i0, j0) && unpainted(i1, j0) && unpainted(i0, j1) && unpainted(i1, j1)) {
+        h = baked(x, z);
+      } else if (x == i0 * s && z == j0 * s) {
+        h = node(i0, j0);
+      } else {
+        const double fx = static_cast<double>(x - i0 * s) / s;
+        const double d = (1.0 - fz) * ((1.0 - fx) * delta(i0, j0) + fx * delta(i1, j0)) +
+                         fz * ((1.0 - fx) * delta(i0, j1) + fx * delta(i1, j1));
+        h = static_cast<float>(baked(x, z) + d);
+      }
+    }
+  }
+  // No update_range: a whole-field pass per stroke; the edit path reads samples, not the range.
+  return out;
+}
+
+}  // namespace sylva::terrain
