@@ -243,5 +243,31 @@ TEST(StreamEdits, AnotherGridOrNanIsRefusedAndChangesNothing) {
   expect_streamer_equals_build(*s, b.field);
 }
 
+// Every edit after the first updates the previous edit's grids (updated_grids) instead of
+// preparing them from the whole field: a NaN in a later stroke is refused there too, on the
+// second edit and on one after further good edits, and leaves the overlay as it was.
+TEST(StreamEdits, ANanStrokeIsRefusedOnLaterEditsToo) {
+  Baked b;
+  auto s = b.open();
+  HeightField edited = b.field;
+  SampleRect rect = bump(edited, 60, 70, 9, 30.0f);
+  ASSERT_TRUE(s->apply_height_edit(edited, rect.x0, rect.z0, rect.x1, rect.z1).ok());
+  std::size_t edited_before = s->edited_chunks();
+  for (const int round : {2, 4}) {
+    HeightField nan = edited;
+    nan.sample(130, 100) = std::nanf("");
+    auto e = s->apply_height_edit(nan, 125, 95, 135, 105);
+    ASSERT_FALSE(e.ok()) << "edit " << round;
+    EXPECT_NE(e.error().message.find("NaN/Inf sample at column 130 row 100"), std::string::npos) << e.error().message;
+    EXPECT_EQ(s->edited_chunks(), edited_before) << "edit " << round << " changed nothing";
+    if (round == 2) {
+      rect = bump(edited, 60, 75, 5, -10.0f);  // edit 3: the same chunks again
+      ASSERT_TRUE(s->apply_height_edit(edited, rect.x0, rect.z0, rect.x1, rect.z1).ok());
+      edited_before = s->edited_chunks();
+    }
+  }
+  expect_streamer_equals_build(*s, edited);
+}
+
 }  // namespace
 }  // namespace sylva::terrain
