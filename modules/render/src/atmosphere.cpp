@@ -198,14 +198,19 @@ glm::vec3 sky_table_radiance(const SkyTable& table, float mie_g, const glm::vec3
   // Same steps as sky.glsl: row sqrt(sin elevation), column (1 - cos azimuth) / 2, bilinear.
   glm::vec3 d = glm::normalize(direction);
   const glm::vec3 s = glm::normalize(sun_direction);
-  if (d.y < 0.0f) {  // below the horizon: the horizon in the same azimuth (phase included)
+  float azimuth_weight = 1.0f;
+  if (d.y < 0.0f) {  // below the horizon: the horizon in the same azimuth (phase included)...
     const float h = std::sqrt(d.x * d.x + d.z * d.z);
-    d = h > 1.0e-6f ? glm::vec3(d.x / h, 0.0f, d.z / h) : glm::vec3(0.0f, 0.0f, -1.0f);
+    const glm::vec3 horizon = h > 1.0e-6f ? glm::vec3(d.x / h, 0.0f, d.z / h) : glm::vec3(0.0f, 0.0f, -1.0f);
+    // ...fading out near the nadir, where it is undefined (sky.glsl's atmosphere_radiance).
+    const float t = std::clamp(h / SkyTable::kNadirFade, 0.0f, 1.0f);
+    azimuth_weight = t * t * (3.0f - 2.0f * t);  // GLSL smoothstep(0, kNadirFade, h)
+    d = azimuth_weight < 1.0f ? glm::normalize(glm::mix(d, horizon, azimuth_weight)) : horizon;
   }
-  const float row = std::sqrt(std::clamp(d.y, 0.0f, 1.0f)) * (SkyTable::kRows - 1);
+  const float row = d.y > 0.0f ? std::sqrt(std::min(d.y, 1.0f)) * (SkyTable::kRows - 1) : 0.0f;
   const glm::vec2 dh(d.x, d.z), sh(s.x, s.z);
   const float lens = glm::length(dh) * glm::length(sh);
-  const float cos_phi = lens > 1.0e-6f ? std::clamp(glm::dot(dh, sh) / lens, -1.0f, 1.0f) : 1.0f;
+  const float cos_phi = (lens > 1.0e-6f ? std::clamp(glm::dot(dh, sh) / lens, -1.0f, 1.0f) : 1.0f) * azimuth_weight;
   const float col = (1.0f - cos_phi) * 0.5f * (SkyTable::kCols - 1);
   const int r0 = std::min(static_cast<int>(row), SkyTable::kRows - 2);
   const int c0 = std::min(static_cast<int>(col), SkyTable::kCols - 2);

@@ -75,6 +75,32 @@ TEST(Atmosphere, SkyBluerAtZenithThanHorizonAndHazeBelow) {
   EXPECT_NEAR(sky_table_radiance(twice, a.mie_g, sun, away).g, 2.0f * horizon.g, 1.0e-4f);
 }
 
+// Below the horizon the sky is the horizon of the view's azimuth, which is undefined straight
+// down: the lake seen from above reflected a wedge of the sun-side horizon's glow pointing at the
+// nadir. Near the nadir the azimuth dependence fades out, so directions a degree from it agree
+// whatever their azimuth (seen red before: red channel 0.40 .. 3.13 on the ring); near the
+// zenith the table's top row is one value for every azimuth already. Away from both (more than
+// 30 degrees from the nadir) the value is still exactly the horizon's.
+TEST(Atmosphere, NearTheNadirAndTheZenithTheSkyDoesNotDependOnTheAzimuth) {
+  const AtmosphereSettings a;
+  const glm::vec3 sun = sun_direction(0.3f, 12.0f * kDeg);
+  const SkyTable table = compute_sky_table(a, sun, glm::vec3(3.0f));
+  for (const float y : {-1.0f, 1.0f}) {
+    glm::vec3 lo(1.0e30f), hi(0.0f);
+    for (int k = 0; k < 32; ++k) {
+      const float az = static_cast<float>(k) / 32.0f * 6.2831853f;
+      const glm::vec3 d = glm::normalize(glm::vec3(0.0175f * std::sin(az), y, -0.0175f * std::cos(az)));
+      const glm::vec3 v = sky_table_radiance(table, a.mie_g, sun, d);
+      lo = glm::min(lo, v);
+      hi = glm::max(hi, v);
+    }
+    for (int c = 0; c < 3; ++c) EXPECT_LT(hi[c], 1.02f * lo[c]) << "y " << y << " channel " << c << ": " << lo[c] << " .. " << hi[c];
+  }
+  const glm::vec3 steep = glm::normalize(glm::vec3(0.6f, -0.8f, 0.0f));  // 53 degrees down, 37 from the nadir
+  const glm::vec3 horizon = sky_table_radiance(table, a.mie_g, sun, {1.0f, 0.0f, 0.0f});
+  EXPECT_EQ(sky_table_radiance(table, a.mie_g, sun, steep), horizon);
+}
+
 TEST(Atmosphere, DerivedLightingFollowsTheSun) {
   Lighting high;
   high.sun_direction = sun_direction(0.5f, 60.0f * kDeg);

@@ -18,19 +18,31 @@ float mie_phase(float mu, float g) {
   return 3.0 / (8.0 * PI) * ((1.0 - g2) * (1.0 + mu * mu)) / ((2.0 + g2) * denom * sqrt(denom));
 }
 
+// Horizontal length of a downward direction below which its azimuth fades out (30 degrees
+// from the nadir; see atmosphere_radiance). SkyTable::kNadirFade on the CPU.
+const float SYLVA_SKY_NADIR_FADE = 0.5;
+
 // Sky radiance without the sun disk for a unit world direction: the table cell by view
 // elevation (row = sqrt(sin elevation), denser near the horizon) and azimuth from the sun
 // (column = (1 - cos azimuth) / 2: no inverse trigonometry per pixel), bilinear, times the
-// phase functions. Below the horizon: the horizon in the same azimuth, the haze.
+// phase functions. Below the horizon: the horizon in the same azimuth, the haze. That azimuth
+// is undefined straight down (a wedge of the sun-side horizon's glow pointed at the nadir of a
+// lake seen from above), so within 30 degrees of the nadir (horizontal length h of dir below
+// 0.5) the azimuth fades out: the column goes to the 90-degree one and the phase direction from
+// the horizon's to dir itself, by smoothstep(0, 0.5, h). Straight up needs nothing: the top row
+// is one direction, the same value in every column.
 vec3 atmosphere_radiance(vec3 dir) {
   vec3 sun = sun_direction();
+  float azimuth_weight = 1.0;
   if (dir.y < 0.0) {
     float h = length(dir.xz);
-    dir = h > 1.0e-6 ? vec3(dir.x / h, 0.0, dir.z / h) : vec3(0.0, 0.0, -1.0);
+    vec3 horizon = h > 1.0e-6 ? vec3(dir.x / h, 0.0, dir.z / h) : vec3(0.0, 0.0, -1.0);
+    azimuth_weight = smoothstep(0.0, SYLVA_SKY_NADIR_FADE, h);
+    dir = azimuth_weight < 1.0 ? normalize(mix(dir, horizon, azimuth_weight)) : horizon;
   }
-  float row = sqrt(clamp(dir.y, 0.0, 1.0)) * float(SYLVA_SKY_ROWS - 1);
+  float row = dir.y > 0.0 ? sqrt(min(dir.y, 1.0)) * float(SYLVA_SKY_ROWS - 1) : 0.0;
   float lens = length(dir.xz) * length(sun.xz);
-  float cos_phi = lens > 1.0e-6 ? clamp(dot(dir.xz, sun.xz) / lens, -1.0, 1.0) : 1.0;
+  float cos_phi = (lens > 1.0e-6 ? clamp(dot(dir.xz, sun.xz) / lens, -1.0, 1.0) : 1.0) * azimuth_weight;
   float col = (1.0 - cos_phi) * 0.5 * float(SYLVA_SKY_COLS - 1);
   int r0 = min(int(row), SYLVA_SKY_ROWS - 2);
   int c0 = min(int(col), SYLVA_SKY_COLS - 2);

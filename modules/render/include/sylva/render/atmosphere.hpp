@@ -65,6 +65,10 @@ float mie_phase(float cos_theta, float g);  // Cornette-Shanks
 struct SkyTable {
   static constexpr int kRows = 16;
   static constexpr int kCols = 5;
+  // Below the horizon the look-up is the horizon's in the view's azimuth, undefined straight
+  // down: for horizontal lengths of the view direction under this (30 degrees from the nadir)
+  // the azimuth fades out (sky.glsl's SYLVA_SKY_NADIR_FADE).
+  static constexpr float kNadirFade = 0.5f;
   std::array<glm::vec4, kRows * kCols * 2> cells{};
 };
 
@@ -77,7 +81,8 @@ struct SkyTable {
 SkyTable compute_sky_table(const AtmosphereSettings& a, const glm::vec3& sun_direction, const glm::vec3& sun_top);
 
 // CPU twin of sky.glsl's atmosphere_radiance(): bilinear table look-up plus the phase
-// functions, for a unit view direction (below the horizon: the horizon's value).
+// functions, for a unit view direction (below the horizon: the horizon's value; within 30
+// degrees of the nadir blended toward an azimuth-free value, continuous at the nadir).
 glm::vec3 sky_table_radiance(const SkyTable& table, float mie_g, const glm::vec3& sun_direction, const glm::vec3& direction);
 
 // Ambient light of an upward-facing surface: (1/pi) * integral of the sky radiance * cos over
