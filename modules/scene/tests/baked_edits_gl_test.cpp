@@ -95,16 +95,16 @@ std::size_t differing_pixels(const Image& a, const Image& b) {
   return n;
 }
 
-// The samples a stroke of radius r on (cx, cz) writes, clipped to the 513^2 ground.
-TexelRect stroke_rect(int cx, int cz, int r) {
-  return {std::max(cx - r, 0), std::max(cz - r, 0), std::min(cx + r + 1, 513), std::min(cz + r + 1, 513)};
+// The samples a stroke of radius r on (cx, cz) writes, clipped to a size^2 ground.
+TexelRect stroke_rect(int cx, int cz, int r, int size = 513) {
+  return {std::max(cx - r, 0), std::max(cz - r, 0), std::min(cx + r + 1, size), std::min(cz + r + 1, size)};
 }
 
 // A bump of `amount` metres of radius r samples on sample (cx, cz) of the scene's ground map, as
 // a brush stroke: texels written, then map_changed. Returns the rectangle.
 TexelRect paint(Scene& scene, int cx, int cz, int r, float amount) {
   SceneMap* map = scene.map("terrain.height");
-  const TexelRect rect = stroke_rect(cx, cz, r);
+  const TexelRect rect = stroke_rect(cx, cz, r, map->grid.width);
   for (int z = rect.y0; z < rect.y1; ++z) {
     for (int x = rect.x0; x < rect.x1; ++x) {
       const double d = std::hypot(x - cx, z - cz) / (r + 1);
@@ -307,20 +307,6 @@ void next_frame(Scene& scene) {
   scene.update(scene.make_camera(poses()[0], size), 0.0, 0.0f, size);
 }
 
-TexelRect paint_ground(Scene& scene, int cx, int cz, int r, float amount) {
-  SceneMap* map = scene.map("terrain.height");
-  const TexelRect rect{std::max(cx - r, 0), std::max(cz - r, 0), std::min(cx + r + 1, map->grid.width),
-                       std::min(cz + r + 1, map->grid.height)};
-  for (int z = rect.y0; z < rect.y1; ++z) {
-    for (int x = rect.x0; x < rect.x1; ++x) {
-      const double d = std::hypot(x - cx, z - cz) / (r + 1);
-      if (d < 1.0) map->grid.at(x, z) += amount * static_cast<float>(1.0 - d * d);
-    }
-  }
-  EXPECT_TRUE(scene.map_changed("terrain.height", rect).ok());
-  return rect;
-}
-
 TEST_F(BakedEditsGl, ADecimatedGroundPaintsTheFieldsExactSamplesSavesReopensAndUndoes) {
   if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
   TestDir dir("sylva_baked_edits_decimated");
@@ -359,10 +345,10 @@ TEST_F(BakedEditsGl, ADecimatedGroundPaintsTheFieldsExactSamplesSavesReopensAndU
   const TexelRect first{59, 45, 70, 56}, second{123, 72, 129, 79};
   const std::vector<float> undo_first = baked->map("terrain.height")->grid.copy_rect(first);
   const std::vector<float> undo_second = baked->map("terrain.height")->grid.copy_rect(second);
-  EXPECT_EQ(paint_ground(*baked, 64, 50, 5, 40.0f).x0, first.x0);
+  EXPECT_EQ(paint(*baked, 64, 50, 5, 40.0f).x0, first.x0);
   next_frame(*baked);
   EXPECT_EQ(exact_reads(), 1) << "read once, at the first stroke";
-  EXPECT_EQ(paint_ground(*baked, 127, 75, 3, -25.0f).x1, second.x1);
+  EXPECT_EQ(paint(*baked, 127, 75, 3, -25.0f).x1, second.x1);
   next_frame(*baked);
   set_log_sink(nullptr);
   set_log_level(level);

@@ -410,22 +410,13 @@ class TerrainInstance final : public ModuleInstance {
   // Applies the collected edit rectangle to the live tree; falls back to a full rebuild.
   void apply_edit() {
     Stopwatch watch;
-    if (renderer_->streamer() != nullptr && coarse_baked_ground(renderer_->streamer()->tree())) {
-      auto changed = apply_decimated_edit(*renderer_->streamer(), {{dirty_[0], dirty_[1], dirty_[2], dirty_[3]}});
-      if (!changed.ok()) {
-        log_warn("terrain: the stroke is not drawn on the baked terrain: {}", changed.error().message);
-        return;
-      }
-      ++partial_rebuilds_;
-      chunks_rebuilt_ = changed->rebuilt.size();
-      chunks_updated_ = 0;
-      last_build_ms_ = watch.elapsed_ms();
-      return;
-    }
-    if (renderer_->streamer() != nullptr) {
+    if (terrain::ChunkStreamer* streamer = renderer_->streamer()) {
       // A baked terrain: the chunks the edit reaches are rebuilt from the painted ground
-      // (terrain/streaming.hpp). No full-rebuild fallback: that would reopen the file unpainted.
-      auto changed = renderer_->apply_height_edit(*ctx_.ground, dirty_[0], dirty_[1], dirty_[2], dirty_[3]);
+      // (terrain/streaming.hpp), or from the exact field painted like a ground of every n-th
+      // sample. No full-rebuild fallback: that would reopen the file unpainted.
+      auto changed = coarse_baked_ground(streamer->tree())
+                         ? apply_decimated_edit(*streamer, {{dirty_[0], dirty_[1], dirty_[2], dirty_[3]}})
+                         : renderer_->apply_height_edit(*ctx_.ground, dirty_[0], dirty_[1], dirty_[2], dirty_[3]);
       if (!changed.ok()) {
         log_warn("terrain: the stroke is not drawn on the baked terrain: {}", changed.error().message);
         return;
