@@ -19,6 +19,17 @@ uniform int u_morph;          // 0 = no morphing
 uniform mat4 u_view_projection;  // camera-relative position -> clip
 uniform ivec2 u_field_size;      // field samples (columns, rows): beyond them is padding
 
+// Aerial perspective (TerrainRenderSettings::aerial_perspective): 1 = per vertex, evaluated here
+// and interpolated; 0 (per pixel, terrain.frag) and 2 (off) compute nothing here.
+#ifndef SYLVA_TERRAIN_AIR
+#define SYLVA_TERRAIN_AIR 0
+#endif
+#if SYLVA_TERRAIN_AIR == 1
+#include "render/lib/fog.glsl"
+out vec3 v_air_transmittance;  // share of the surface colour that reaches the camera, per channel
+out vec3 v_air_inscatter;      // radiance scattered in along the view ray
+#endif
+
 out vec3 v_rel;      // camera-relative position [m]
 out vec2 v_grid;     // grid coordinates (for the height texture)
 out float v_morph;   // morph weight (debug view)
@@ -59,4 +70,7 @@ void main() {
   gl_ClipDistance[0] = float(u_field_size.x - 1) + 1e-3 - v_grid.x;
   gl_ClipDistance[1] = float(u_field_size.y - 1) + 1e-3 - v_grid.y;
   gl_Position = u_view_projection * vec4(v_rel, 1.0);
+#if SYLVA_TERRAIN_AIR == 1
+  aerial_perspective(v_rel, v_air_transmittance, v_air_inscatter);
+#endif
 }

@@ -28,6 +28,16 @@ uniform float u_spacing;
 uniform int u_level;           // LOD level of the chunk (debug)
 uniform vec4 u_flat_color;     // debug view 3, wireframe and bounds
 
+// Aerial perspective: 0 per pixel (apply_fog), 1 per vertex (chunk.vert), 2 off
+// (TerrainRenderSettings::aerial_perspective).
+#ifndef SYLVA_TERRAIN_AIR
+#define SYLVA_TERRAIN_AIR 0
+#endif
+#if SYLVA_TERRAIN_AIR == 1
+in vec3 v_air_transmittance;
+in vec3 v_air_inscatter;
+#endif
+
 in vec3 v_rel;
 in vec2 v_grid;
 in float v_morph;
@@ -85,7 +95,13 @@ void main() {
   // shadow map lights it): the sun term follows the detail only as far as the field allows.
   float sun = lambert(nd, sun_direction()) * smoothstep(0.0, 0.15, dot(n, sun_direction()));
   vec3 color = surface.albedo * (sun_radiance() * sun * shadow + hemisphere_ambient(nd) * surface.occlusion);
+#if SYLVA_TERRAIN_AIR == 0
   o_color = vec4(apply_fog(color, v_rel), 1.0);
+#elif SYLVA_TERRAIN_AIR == 1
+  o_color = vec4(color * v_air_transmittance + v_air_inscatter, 1.0);
+#else
+  o_color = vec4(color, 1.0);
+#endif
 #endif
 #endif
 #endif

@@ -21,12 +21,14 @@ namespace sylva::terrain {
 namespace {
 constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2, kAttrCentre = 3;
 
-// The colour-pass program of one debug view, with or without received shadows, fetching the
-// detail scales from first_scale on (terrain.frag, material.glsl).
-Result<render::Program> make_shaded_program(bool shadows, DebugView view, int first_scale = 0) {
+// The colour-pass program of one debug view, with or without received shadows, with the air
+// per pixel, per vertex or off, fetching the detail scales from first_scale on (terrain.frag,
+// chunk.vert, material.glsl).
+Result<render::Program> make_shaded_program(bool shadows, DebugView view, AerialPerspective air, int first_scale = 0) {
   return render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
                                  {{"SYLVA_TERRAIN_SHADOWS", shadows ? "1" : "0"},
                                   {"SYLVA_TERRAIN_VIEW", std::to_string(static_cast<int>(view))},
+                                  {"SYLVA_TERRAIN_AIR", std::to_string(static_cast<int>(air))},
                                   {"SYLVA_TERRAIN_FIRST_SCALE", std::to_string(first_scale)}});
 }
 
@@ -34,11 +36,11 @@ bool uses_material(DebugView view) { return view == DebugView::kShaded || view =
 
 // shaded_coarse_ for a view: the variants without the finer detail scales (empty where the view
 // has no material). Errors: the first variant that does not compile.
-Status make_coarse_programs(bool shadows, DebugView view, render::Program (&coarse)[3]) {
+Status make_coarse_programs(bool shadows, DebugView view, AerialPerspective air, render::Program (&coarse)[3]) {
   for (int k = 0; k < 3; ++k) {
     coarse[k] = {};
     if (!uses_material(view)) continue;
-    auto p = make_shaded_program(shadows, view, k + 1);
+    auto p = make_shaded_program(shadows, view, air, k + 1);
     if (!p.ok()) return p.error();
     coarse[k] = std::move(p).value();
   }
@@ -154,10 +156,11 @@ Status TerrainRenderer::init(const HeightField* field) {
   render::embedded::register_render_shaders();
   shaded_with_shadows_ = settings_.receive_shadows;
   shaded_view_ = settings_.debug_view;
-  auto shaded = make_shaded_program(shaded_with_shadows_, shaded_view_);
+  shaded_air_ = settings_.aerial_perspective;
+  auto shaded = make_shaded_program(shaded_with_shadows_, shaded_view_, shaded_air_);
   if (!shaded.ok()) return shaded.error();
   shaded_ = std::move(shaded).value();
-  SYLVA_TRY(make_coarse_programs(shaded_with_shadows_, shaded_view_, shaded_coarse_));
+  SYLVA_TRY(make_coarse_programs(shaded_with_shadows_, shaded_view_, shaded_air_, shaded_coarse_));
   auto depth = render::Program::create({"terrain/chunk.vert", "terrain/depth.frag"});
   if (!depth.ok()) return depth.error();
   depth_ = std::move(depth).value();
@@ -419,15 +422,18 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       draw_geometry(depth_, cascade->relative_view_projection, false, stats, true, &cascade->light_frustum);
     }
   } else {
-    if (settings_.receive_shadows != shaded_with_shadows_ || settings_.debug_view != shaded_view_) {
-      auto p = make_shaded_program(settings_.receive_shadows, settings_.debug_view);
-      Status coarse = p.ok() ? make_coarse_programs(settings_.receive_shadows, settings_.debug_view, shaded_coarse_)
+    if (settings_.receive_shadows != shaded_with_shadows_ || settings_.debug_view != shaded_view_ ||
+        settings_.aerial_perspective != shaded_air_) {
+      const AerialPerspective air = settings_.aerial_perspective;
+      auto p = make_shaded_program(settings_.receive_shadows, settings_.debug_view, air);
+      Status coarse = p.ok() ? make_coarse_programs(settings_.receive_shadows, settings_.debug_view, air, shaded_coarse_)
                              : Status{};
       if (p.ok() && !coarse.ok()) p = coarse.error();
       if (p.ok()) {
         shaded_ = std::move(p).value();
         shaded_with_shadows_ = settings_.receive_shadows;
         shaded_view_ = settings_.debug_view;
+        shaded_air_ = air;
       } else {
         log_warn("terrain: {}", p.error().message);
       }
@@ -472,7 +478,7 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     }
     draw_geometry(shaded_, vp, levels, stats, false, nullptr, coarse ? &chunk_programs : nullptr);
     if (settings_.wireframe && !flat_) {
-      auto p = make_shaded_program(false, DebugView::kFlat);
+      auto p = make_shaded_program(false, DebugView::kFlat, AerialPerspective::kOff);
       if (p.ok()) {
         flat_ = std::move(p).value();
       } else {

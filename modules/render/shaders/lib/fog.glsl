@@ -46,4 +46,15 @@ vec3 apply_fog(vec3 color, vec3 rel_pos) {
   return color * t + atmosphere_radiance(dir) * (1.0 - t);
 }
 
+// apply_fog split for evaluation at a vertex (the terrain's per-vertex aerial perspective):
+// a surface colour c becomes c * transmittance + inscatter, the same terms as apply_fog's.
+void aerial_perspective(vec3 rel_pos, out vec3 transmittance, out vec3 inscatter) {
+  float len = length(rel_pos);
+  vec3 dir = len > 0.0 ? rel_pos / len : vec3(0.0, 0.0, -1.0);
+  transmittance = air_transmittance(rel_pos) * fog_transmittance(rel_pos);
+  inscatter = min(transmittance.r, min(transmittance.g, transmittance.b)) > 0.998
+                  ? vec3(0.0)
+                  : atmosphere_radiance(dir) * (1.0 - transmittance);
+}
+
 #endif

@@ -43,10 +43,24 @@ constexpr std::array<EnumName<DebugView>, 5> enum_names(DebugView) {
            {DebugView::kFlat, "flat"}, {DebugView::kMaterials, "materials"}}};
 }
 
+// The air between the camera and the ground (render/lib/fog.glsl: Rayleigh and aerosol
+// transmittance, haze, in-scattering toward the sky's colour). kPerPixel evaluates it for every
+// pixel (the reference picture); kPerVertex at the chunk vertices, interpolated across each
+// triangle (far fewer vertices than pixels at tau = 1 px; README "vs CDLOD" has the picture
+// difference); kOff draws the ground without air, as BaronVerde/cdlod does (the race scene's "fog
+// off"; far ground then no longer meets the horizon in the sky's colour).
+enum class AerialPerspective : std::uint8_t { kPerPixel, kPerVertex, kOff };
+constexpr std::array<EnumName<AerialPerspective>, 3> enum_names(AerialPerspective) {
+  return {{{AerialPerspective::kPerPixel, "per_pixel"},
+           {AerialPerspective::kPerVertex, "per_vertex"},
+           {AerialPerspective::kOff, "off"}}};
+}
+
 struct TerrainRenderSettings {
   LodSettings lod;
   MaterialSettings material;
   DebugView debug_view = DebugView::kShaded;
+  AerialPerspective aerial_perspective = AerialPerspective::kPerPixel;
   bool wireframe = false;       // chunk triangles as lines over the shaded terrain
   bool chunk_bounds = false;    // bounding boxes of the drawn chunks
   bool receive_shadows = true;  // sample the host's cascaded shadows (needs ShadowMaps::bind())
@@ -58,6 +72,8 @@ struct TerrainRenderSettings {
     v(lod, "lod");
     v(material, "material");
     v(debug_view, "debug_view", {.help = "shaded, lod_colors, morph, flat or materials"});
+    v(aerial_perspective, "aerial_perspective",
+      {.help = "The air over the ground: per_pixel, per_vertex (cheaper, interpolated) or off"});
     v(wireframe, "wireframe", {.help = "Draw triangle edges"});
     v(chunk_bounds, "chunk_bounds", {.help = "Draw the drawn chunks' bounding boxes"});
     v(receive_shadows, "receive_shadows", {.help = "Receive cascaded shadows", .rebuild = Rebuild::kGpu});
@@ -168,6 +184,7 @@ class TerrainRenderer final : public render::Drawable {
   std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
+  AerialPerspective shaded_air_ = AerialPerspective::kPerPixel;
   render::Texture heights_;
   bool has_heights_ = false;
   std::int64_t height_texels_uploaded_ = 0;
