@@ -141,23 +141,34 @@ TEST_F(TerrainGl, HeightTextureEditUploadsOnlyTheStrokesTexels) {
   EXPECT_TRUE(back == field.samples());
 }
 
-TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
+// A ridged 900 m field of `size` samples, and a target lit for pictures in [0, 1] (no tone
+// mapping here) with a little haze.
+Scene ridged_scene(int size, double spacing) {
   GeneratedFieldSettings g;
-  g.size = 513;
-  g.spacing = 8.0;
+  g.size = size;
+  g.spacing = spacing;
   g.height_scale = 900.0f;
   g.feature_size = 2500.0f;
   g.noise = FieldNoise::kRidged;
-  Scene s = make_scene(generate_height_field(g).value(), 33);
+  return make_scene(generate_height_field(g).value(), 33);
+}
+
+GlTarget hazy_target(int w, int h) {
+  GlTarget target = GlTarget::create(w, h);
+  target.lighting.sun_intensity = 1.1f;
+  target.lighting.ambient *= 0.6f;
+  target.lighting.fog_density = 8e-5f;
+  return target;
+}
+
+TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
+  Scene s = ridged_scene(513, 8.0);
   TerrainRenderSettings rs;
   rs.receive_shadows = false;
   auto r = TerrainRenderer::create(s.tree, &s.field, rs);
   ASSERT_TRUE(r.ok()) << r.error().describe();
   TerrainRenderer& t = **r;
-  GlTarget target = GlTarget::create(512, 288);
-  target.lighting.sun_intensity = 1.1f;  // no tone mapping here: keep the picture in [0, 1]
-  target.lighting.ambient *= 0.6f;
-  target.lighting.fog_density = 8e-5f;
+  GlTarget target = hazy_target(512, 288);
   const double ground = s.field.height(600.0, 700.0);
   const render::Camera cam = camera_at({600.0, ground + 260.0, 700.0}, glm::radians(-135.0f), glm::radians(-14.0f), 60.0f, 512, 288);
   const glm::vec4 sky(0.55f, 0.7f, 0.9f, 1.0f);
@@ -202,22 +213,13 @@ TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
 // not the same program; off draws the ground without air: far ground keeps its own colour
 // instead of fading toward the sky's.
 TEST_F(TerrainGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
-  GeneratedFieldSettings g;
-  g.size = 257;
-  g.spacing = 40.0;
-  g.height_scale = 900.0f;
-  g.feature_size = 2500.0f;
-  g.noise = FieldNoise::kRidged;
-  Scene s = make_scene(generate_height_field(g).value(), 33);
+  Scene s = ridged_scene(257, 40.0);
   TerrainRenderSettings rs;
   rs.receive_shadows = false;
   auto r = TerrainRenderer::create(s.tree, &s.field, rs);
   ASSERT_TRUE(r.ok()) << r.error().describe();
   TerrainRenderer& t = **r;
-  GlTarget target = GlTarget::create(256, 144);
-  target.lighting.sun_intensity = 1.1f;
-  target.lighting.ambient *= 0.6f;
-  target.lighting.fog_density = 8e-5f;
+  GlTarget target = hazy_target(256, 144);
   const double ground = s.field.height(600.0, 700.0);
   const render::Camera cam = camera_at({600.0, ground + 400.0, 700.0}, glm::radians(-135.0f), glm::radians(-8.0f));
   const glm::vec4 sky(0.55f, 0.7f, 0.9f, 1.0f);
@@ -278,7 +280,8 @@ TEST_F(TerrainGl, NothingBeyondTheFieldIsDrawnAndTheFlatViewIsOneColour) {
   const Image im = target.render(**r, cam, kMagenta);
   save_png(im, "padding_clipped");
   std::printf("H6 blocked %d\n", h6_blocked);  // H6EXPERIMENT
-  for (const auto& c : (*r)->selection().chunks) { const auto& ch = s.tree->chunk(c.index); std::printf("H6 chunk L%d (%d,%d) tris %zu\n", (int)ch.key.level, (int)ch.key.x, (int)ch.key.z, s.tree->mesh(c.index).indices.size()/3); }  // H6EXPERIMENT
+  for (float yaw : {2.356f, -2.356f}) { const Image o = target.render(**r, camera_at({250.0, 60.0, 250.0}, yaw, glm::radians(-20.0f), 60.0f, 200, 200), kMagenta); save_png(o, yaw > 0 ? "h6_a" : "h6_b"); }  // H6EXPERIMENT
+  for (const auto& c : (*r)->selection().chunks) { const auto& ch = s.tree->chunk(c.index); std::printf("H6 chunk L%d (%d,%d) tris %zu\n", (int)ch.key.level, (int)ch.key.x, (int)ch.key.z, ch.mesh.indices.size()/3); int o=0; unsigned mx=0; for (const auto& v : ch.mesh.vertices) { o += v.outside; mx = std::max(mx, v.gx); } std::printf("H6   outside %d max gx %u origin %f %f ext %f\n", o, mx, s.field.origin().x, s.field.origin().y, s.field.extent().x); }  // H6EXPERIMENT
   std::printf("H6 field_px %zu\n", [&]{ std::size_t n=0; for (int y=0;y<200;++y) for(int x=0;x<200;++x) n += is_color(im,x,y,glm::vec4(0.6f,0.6f,0.6f,1.0f)); return n; }());  // H6EXPERIMENT
   const glm::vec4 flat(0.6f, 0.6f, 0.6f, 1.0f);
   std::size_t field_px = 0, other = 0;
