@@ -89,6 +89,16 @@ void set_if_active(const render::Program& p, const char* name, const T& value) {
 
 }  // namespace
 
+// A baked plant mesh on the GPU (plant_mesh.hpp): vertices pulled from an SSBO by index, the
+// index buffer in its own VAO; groups and per-plant clusters without their vertices.
+struct VoxelRenderer::BakedMesh {
+  render::Buffer vertices, indices;
+  render::VertexArray vao;
+  std::array<PlantMesh::Group, kPlantMeshGroups> groups{};
+  std::vector<PlantMesh::Cluster> clusters;
+  bool ready = false;
+};
+
 struct VoxelRenderer::ChunkGpu {
   ChunkCoord coord;
   render::Buffer quads;
@@ -101,12 +111,8 @@ struct VoxelRenderer::ChunkGpu {
   render::Buffer plants;       // plant_batch.hpp's layout
   PlantBatch plant;          // its ranges and counts (the parts themselves are in `plants`)
   std::uint32_t plant_parts() const { return plant.count[0][0] + plant.count[0][1]; }
-  // The far shells baked (settings plant_far_mesh, plant_mesh.hpp): vertices pulled from an
-  // SSBO by index, the index buffer in its own VAO; groups without their vertices.
-  render::Buffer mesh_vertices, mesh_indices;
-  render::VertexArray mesh_vao;
-  std::array<PlantMesh::Group, kPlantMeshGroups> mesh_groups{};
-  bool has_mesh = false;
+  BakedMesh far_mesh;      // the far shells baked (settings plant_far_mesh)
+  BakedMesh near_mesh[2];  // the near parts baked (plant_near_mesh): [opaque 0 / cut-out 1], one cluster per plant
   render::Buffer tufts;
   std::uint32_t tuft_count = 0;
   render::Aabb box;          // chunk box grown by its plants (world)
@@ -251,6 +257,7 @@ Status VoxelRenderer::build_programs() {
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, alpha, plant_alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, tuft, tuft_program_));
   SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/shade.frag"}, {}, plant_mesh_program_));
+  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/shade.frag"}, alpha, plant_mesh_alpha_program_));
   SYLVA_TRY(make({"voxel/horizon.vert", "voxel/horizon.frag"}, {}, horizon_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
@@ -326,13 +333,13 @@ void VoxelRenderer::upload_tufts(const ChunkCoord& c, ChunkGpu& gpu) {
   gpu.tufts = render::Buffer::immutable(std::span<const PlantPartGpu>(parts));
 }
 
-void VoxelRenderer::bake_far_mesh(ChunkGpu& gpu) {
-  // The far range (opaque then cut-out shells, plant_batch.hpp) as baked parts.
-  const PlantBatch& b = gpu.plant;
+void VoxelRenderer::bake_range(const ChunkGpu& gpu, std::uint32_t first, std::uint32_t count,
+                               std::span<const std::uint32_t> plant_starts, BakedMesh& out) {
+  out = {};
   std::vector<PlantMeshPart> parts;
-  parts.reserve(b.count[1][0] + b.count[1][1]);
-  for (std::uint32_t i = b.first[1][0]; i < b.first[1][1] + b.count[1][1]; ++i) {
-    const PlantPartGpu& g = b.parts[i];
+  parts.reserve(count);
+  for (std::uint32_t i = first; i < first + count; ++i) {
+    const PlantPartGpu& g = gpu.plant.parts[i];
     const glm::vec2 xy = glm::unpackSnorm2x16(g.data[0]), zw = glm::unpackSnorm2x16(g.data[1]);
     PlantMeshPart p;
     p.center = glm::vec3(g.center_size[0], g.center_size[1], g.center_size[2]);
@@ -342,14 +349,15 @@ void VoxelRenderer::bake_far_mesh(ChunkGpu& gpu) {
     p.hidden = static_cast<std::uint8_t>(g.data[3]);
     parts.push_back(p);
   }
-  const PlantMesh mesh = bake_plant_mesh(parts);
+  PlantMesh mesh = bake_plant_mesh(parts, plant_starts);
   if (mesh.indices.empty()) return;
-  gpu.mesh_vertices = render::Buffer::immutable(std::span<const PlantMeshVertex>(mesh.vertices));
-  gpu.mesh_indices = render::Buffer::immutable(std::span<const std::uint32_t>(mesh.indices));
-  gpu.mesh_vao = render::VertexArray::create();
-  gpu.mesh_vao.index_buffer(gpu.mesh_indices);
-  gpu.mesh_groups = mesh.groups;
-  gpu.has_mesh = true;
+  out.vertices = render::Buffer::immutable(std::span<const PlantMeshVertex>(mesh.vertices));
+  out.indices = render::Buffer::immutable(std::span<const std::uint32_t>(mesh.indices));
+  out.vao = render::VertexArray::create();
+  out.vao.index_buffer(out.indices);
+  out.groups = mesh.groups;
+  out.clusters = std::move(mesh.clusters);
+  out.ready = true;
 }
 
 void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
@@ -359,8 +367,19 @@ void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
   if (!generator_) return;
   gpu.plant = build_plant_batch(*world_, *generator_, c, settings_.plant_hidden_faces, *face_cache_);
   gpu.plant_box = gpu.plant.box;
-  gpu.has_mesh = false;
-  if (settings_.plant_far_mesh) bake_far_mesh(gpu);
+  gpu.far_mesh = {};
+  gpu.near_mesh[0] = {};
+  gpu.near_mesh[1] = {};
+  const PlantBatch& b = gpu.plant;
+  // The far range: opaque then cut-out shells (plant_batch.hpp), one mesh, one cluster.
+  if (settings_.plant_far_mesh) bake_range(gpu, b.first[1][0], b.count[1][0] + b.count[1][1], {}, gpu.far_mesh);
+  if (settings_.plant_near_mesh) {
+    std::vector<std::uint32_t> starts(b.plants.size());
+    for (int cut = 0; cut < 2; ++cut) {
+      for (std::size_t i = 0; i < b.plants.size(); ++i) starts[i] = b.plants[i].first[0][cut] - b.first[0][cut];
+      bake_range(gpu, b.first[0][cut], b.count[0][cut], starts, gpu.near_mesh[cut]);
+    }
+  }
   if (!gpu.plant.parts.empty()) gpu.plants = render::Buffer::immutable(std::span<const PlantPartGpu>(gpu.plant.parts));
   gpu.plant.parts = {};
 }
@@ -481,7 +500,7 @@ void VoxelRenderer::bind_common(const render::Program& program, const render::Fr
 void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads,
                                 const render::Program& plants, bool alpha_cut, const glm::mat4& view_projection,
                                 const glm::dvec3& origin, double full_cubes_within, double far_beyond,
-                                const render::Frustum* culling, render::PassStats& stats) {
+                                const render::Frustum* culling, render::PassStats& stats, bool baked_plants) {
   quads.use();
   quads.set("u_view_projection", view_projection);
   for (ChunkGpu* gpu : chunks) {
@@ -518,7 +537,8 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
     // the cut-out test (the crown's holes are below a pixel there).
     const bool far = d >= far_beyond;
     if (far && alpha_cut) continue;
-    if (far && settings_.plant_far_mesh) continue;  // draw_far_meshes
+    if (baked_plants && far && settings_.plant_far_mesh) continue;  // draw_far_meshes
+    if (baked_plants && !far && settings_.plant_near_mesh) continue;  // draw_near_meshes
     const render::Containment seen = culling ? culling->classify(gpu->plant_box) : render::Containment::kInside;
     if (seen == render::Containment::kOutside) continue;
     plants.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
@@ -560,36 +580,108 @@ void VoxelRenderer::draw_chunks(std::span<ChunkGpu* const> chunks, const render:
   }
 }
 
+std::size_t VoxelRenderer::draw_baked(const BakedMesh& mesh, std::uint32_t groups, std::span<const std::uint8_t> plant_seen,
+                                      render::PassStats& stats) {
+  auto draw = [&](std::uint32_t first, std::uint32_t count) {
+    if (count == 0) return;
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(count), GL_UNSIGNED_INT,
+                   reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first) * sizeof(std::uint32_t)));
+    ++stats.draw_calls;
+    stats.triangles += count / 3;
+    stats_.plant_triangles += count / 3;
+    stats_.plant_mesh_triangles += count / 3;
+  };
+  for (int g = 0; g < kPlantMeshGroups; ++g) {
+    const auto gi = static_cast<std::size_t>(g);
+    const PlantMesh::Group& group = mesh.groups[gi];
+    if (group.count == 0) continue;
+    if (((groups >> g) & 1u) == 0) {
+      ++stats_.plant_mesh_groups_skipped;
+      continue;
+    }
+    if (plant_seen.empty()) {
+      draw(group.first, group.count);
+      continue;
+    }
+    // Runs of neighbouring plants in view: one range of the group each.
+    std::size_t i = 0;
+    while (i < plant_seen.size()) {
+      if (plant_seen[i] == 0) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i + 1;
+      while (j < plant_seen.size() && plant_seen[j] != 0) ++j;
+      const PlantMesh::Cluster& last = mesh.clusters[j - 1];
+      draw(mesh.clusters[i].first[gi], last.first[gi] + last.count[gi] - mesh.clusters[i].first[gi]);
+      i = j;
+    }
+  }
+  return static_cast<std::size_t>(std::count(plant_seen.begin(), plant_seen.end(), std::uint8_t{0}));
+}
+
 void VoxelRenderer::draw_far_meshes(const glm::mat4& view_projection, const glm::dvec3& origin,
                                     const render::Frustum* culling, render::PassStats& stats) {
   plant_mesh_program_.use();
   plant_mesh_program_.set("u_view_projection", view_projection);
   for (ChunkGpu* gpu : visible_) {
-    if (!gpu->has_mesh || distance(gpu->box, origin) < settings_.plant_far_beyond) continue;
+    const BakedMesh& mesh = gpu->far_mesh;
+    if (!mesh.ready || distance(gpu->box, origin) < settings_.plant_far_beyond) continue;
     if (culling && culling->classify(gpu->plant_box) == render::Containment::kOutside) continue;
     const glm::vec3 offset(gpu->origin - origin);
     plant_mesh_program_.set("u_chunk_offset", offset);
-    gpu->mesh_vertices.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
-    gpu->mesh_vao.bind();
+    mesh.vertices.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
+    mesh.vao.bind();
     ++stats_.plant_far_chunks;
     // Eye in the chunk's frame: -offset (the mesh is chunk-relative).
     PlantMesh probe;  // visible_groups reads the groups only
-    probe.groups = gpu->mesh_groups;
-    const std::uint32_t seen = probe.visible_groups(-offset);
-    for (int g = 0; g < kPlantMeshGroups; ++g) {
-      const PlantMesh::Group& group = gpu->mesh_groups[static_cast<std::size_t>(g)];
-      if (group.count == 0) continue;
-      if (((seen >> g) & 1u) == 0) {
-        ++stats_.plant_mesh_groups_skipped;
-        continue;
-      }
-      glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(group.count), GL_UNSIGNED_INT,
-                     reinterpret_cast<const void*>(static_cast<std::uintptr_t>(group.first) * sizeof(std::uint32_t)));
-      ++stats.draw_calls;
-      stats.triangles += group.count / 3;
-      stats_.plant_triangles += group.count / 3;
-      stats_.plant_mesh_triangles += group.count / 3;
+    probe.groups = mesh.groups;
+    draw_baked(mesh, probe.visible_groups(-offset), {}, stats);
+  }
+  vao_.bind();
+}
+
+void VoxelRenderer::draw_near_meshes(bool alpha_cut, const render::Program& program, const glm::dvec3& origin,
+                                     double full_within, const render::Frustum* culling, render::PassStats& stats) {
+  const int cut = alpha_cut ? 1 : 0;
+  bool culled_faces = !alpha_cut;  // the opaque pass culls back faces already
+  for (ChunkGpu* gpu : visible_) {
+    const BakedMesh& mesh = gpu->near_mesh[cut];
+    if (!mesh.ready) continue;
+    const double d = distance(gpu->box, origin);
+    if (d >= settings_.plant_far_beyond) continue;  // far shells
+    const render::Containment seen = culling ? culling->classify(gpu->plant_box) : render::Containment::kInside;
+    if (seen == render::Containment::kOutside) continue;
+    const glm::vec3 offset(gpu->origin - origin);
+    program.set("u_chunk_offset", offset);
+    mesh.vertices.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
+    mesh.vao.bind();
+    // Within full_within cut-out parts show every face (seen through their holes), unculled;
+    // beyond, only the faces turned to the eye: back-face culling and whole groups skipped.
+    const bool full = d < full_within;
+    std::uint32_t groups = (1u << kPlantMeshGroups) - 1u;
+    if (!full) {
+      PlantMesh probe;  // visible_groups reads the groups only
+      probe.groups = mesh.groups;
+      groups = probe.visible_groups(-offset);
     }
+    if (alpha_cut && culled_faces == full) {
+      if (full) {
+        glDisable(GL_CULL_FACE);
+      } else {
+        glEnable(GL_CULL_FACE);
+      }
+      culled_faces = !full;
+    }
+    if (seen == render::Containment::kInside) {
+      draw_baked(mesh, groups, {}, stats);
+      continue;
+    }
+    const std::vector<PlantBatch::Plant>& plants = gpu->plant.plants;
+    plant_seen_.resize(plants.size());
+    for (std::size_t i = 0; i < plants.size(); ++i) plant_seen_[i] = culling->intersects(plants[i].box) ? 1 : 0;
+    const std::size_t culled = draw_baked(mesh, groups, plant_seen_, stats);
+    if (!alpha_cut) stats_.plants_culled += culled;  // once per chunk and pass pair
   }
   vao_.bind();
 }
@@ -699,18 +791,30 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   const glm::dvec3 eye = frame.camera.position();
   bind_common(opaque_program_, &frame);
   bind_common(plant_opaque_program_, &frame);
-  bind_common(plant_mesh_program_, &frame);
   // Opaque plant cubes are convex and back-face culled: the three faces turned to the eye are
   // all that can show. Leaf cubes show their far faces through their holes, near the camera.
   const render::Frustum frustum = frame.camera.frustum();
   const render::Frustum* culling = settings_.frustum_culling ? &frustum : nullptr;
-  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats);
-  if (settings_.plant_far_mesh && settings_.draw_plants) draw_far_meshes(vp, eye, culling, stats);
+  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, settings_.plant_far_beyond, culling,
+              stats, true);
+  const bool plants = settings_.draw_plants;
+  if (plants && (settings_.plant_far_mesh || settings_.plant_near_mesh)) {
+    bind_common(plant_mesh_program_, &frame);
+    plant_mesh_program_.set("u_view_projection", vp);
+    if (settings_.plant_near_mesh) draw_near_meshes(false, plant_mesh_program_, eye, 0.0, culling, stats);
+    if (settings_.plant_far_mesh) draw_far_meshes(vp, eye, culling, stats);
+  }
   glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
   bind_common(alpha_program_, &frame);
   bind_common(plant_alpha_program_, &frame);
   draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, settings_.leaf_back_faces_within,
-              settings_.plant_far_beyond, culling, stats);
+              settings_.plant_far_beyond, culling, stats, true);
+  if (plants && settings_.plant_near_mesh) {
+    bind_common(plant_mesh_alpha_program_, &frame);
+    plant_mesh_alpha_program_.set("u_view_projection", vp);
+    draw_near_meshes(true, plant_mesh_alpha_program_, eye, settings_.leaf_back_faces_within, culling, stats);
+    glDisable(GL_CULL_FACE);
+  }
   bind_common(tuft_program_, &frame);
   draw_tufts(visible_, vp, eye, stats);
   bind_common(horizon_program_, &frame);

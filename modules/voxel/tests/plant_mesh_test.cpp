@@ -1,6 +1,6 @@
 // The baked plant mesh (plant_mesh.hpp, issue #18): vertex, index and triangle counts with
 // hidden faces, winding, face groups under quarter and free turns, and that skipping the groups
-// visible_groups leaves out never drops a face turned to the eye.
+// visible_groups leaves out never drops a face turned to the eye; per-plant index ranges.
 
 #include <sylva/voxel/plant_faces.hpp>
 #include <sylva/voxel/plant_mesh.hpp>
@@ -86,6 +86,38 @@ TEST(PlantMesh, GroupsBehindTheEyeAreSkipped) {
   // Between two cubes along x both x groups face the eye.
   const std::vector<PlantMeshPart> two = {cube({0, 0, 0}), cube({10, 0, 0})};
   EXPECT_EQ(bake_plant_mesh(two).visible_groups({5.0f, 0.0f, 0.0f}), (1u << 0) | (1u << 1));
+}
+
+TEST(PlantMesh, PlantsAreConsecutiveRangesInEveryGroup) {
+  // Three plants: two cubes, none (an empty plant), one cube with its +x face hidden.
+  const std::vector<PlantMeshPart> parts = {cube({0, 0, 0}), cube({0, 1, 0}), cube({5, 0, 0}, 1.0f, face_bit(0, false))};
+  const std::vector<std::uint32_t> starts = {0, 2, 2};
+  const PlantMesh m = bake_plant_mesh(parts, starts);
+  ASSERT_EQ(m.clusters.size(), 3u);
+  for (int g = 0; g < 6; ++g) {
+    const auto gi = static_cast<std::size_t>(g);
+    const PlantMesh::Group& group = m.groups[gi];
+    EXPECT_EQ(m.clusters[0].first[gi], group.first) << g;
+    EXPECT_EQ(m.clusters[0].count[gi], 12u) << g;
+    EXPECT_EQ(m.clusters[1].count[gi], 0u) << g;
+    EXPECT_EQ(m.clusters[1].first[gi], m.clusters[2].first[gi]) << g;
+    EXPECT_EQ(m.clusters[2].count[gi], g == 0 ? 0u : 6u) << g;
+    // Back to back, covering the group.
+    EXPECT_EQ(m.clusters[0].first[gi] + m.clusters[0].count[gi], m.clusters[2].first[gi]) << g;
+    EXPECT_EQ(m.clusters[2].first[gi] + m.clusters[2].count[gi], group.first + group.count) << g;
+    // Each plant's indices point at its own cubes: plant 2 lies at x > 4.
+    for (std::uint32_t i = m.clusters[2].first[gi]; i < m.clusters[2].first[gi] + m.clusters[2].count[gi]; ++i)
+      EXPECT_GT(position(m, i).x, 4.0f) << g;
+    for (std::uint32_t i = m.clusters[0].first[gi]; i < m.clusters[0].first[gi] + m.clusters[0].count[gi]; ++i)
+      EXPECT_LT(position(m, i).x, 1.0f) << g;
+  }
+  // Without starts: one cluster, the whole of every group.
+  const PlantMesh whole = bake_plant_mesh(parts);
+  ASSERT_EQ(whole.clusters.size(), 1u);
+  for (int g = 0; g < kPlantMeshGroups; ++g) {
+    EXPECT_EQ(whole.clusters[0].first[static_cast<std::size_t>(g)], whole.groups[static_cast<std::size_t>(g)].first);
+    EXPECT_EQ(whole.clusters[0].count[static_cast<std::size_t>(g)], whole.groups[static_cast<std::size_t>(g)].count);
+  }
 }
 
 TEST(PlantMesh, SkippedGroupsHoldNoFaceTurnedToTheEye) {

@@ -180,8 +180,10 @@ TEST_F(VoxelLookGl, PlantCubesDrawnByTheirFacesTowardTheEyeLookTheSame) {
   VoxelRenderSettings all;
   all.leaf_back_faces_within = 1.0e6f;  // every leaf cube with all six faces
   all.plant_far_beyond = 1.0e6f;        // exact plants everywhere (no far shells: voxel_plants_gl)
+  all.plant_near_mesh = false;          // instanced cubes (the baked meshes: voxel_plants_gl)
   VoxelRenderSettings near;
   near.plant_far_beyond = 1.0e6f;
+  near.plant_near_mesh = false;
   auto full = VoxelRenderer::create(w->world, w->generator, all);
   auto fast = VoxelRenderer::create(w->world, w->generator, near);  // default: within 48 blocks
   ASSERT_TRUE(full.ok() && fast.ok());

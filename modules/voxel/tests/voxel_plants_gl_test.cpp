@@ -1,6 +1,7 @@
 // Plants at world scale (issue #18, "Voxel world"): hidden plant faces and parts are skipped
 // without changing the picture, far chunks draw plant shells within a bounded image change,
-// and plants are culled one by one inside chunks the view or a shadow cascade cuts.
+// plants are culled one by one inside chunks the view or a shadow cascade cuts, and near and far
+// plants baked into meshes draw the instanced picture.
 
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/testing.hpp>
@@ -73,9 +74,11 @@ std::size_t differing_pixels(const Image& a, const Image& b, float tolerance) {
 // of edge pixels allowed for other rasterisers.
 constexpr std::size_t kBakedMeshPixelBudget = 20;
 
+// Exact plants everywhere, instanced (plant.vert): the reference the baked meshes are held to.
 VoxelRenderSettings near_only() {
   VoxelRenderSettings s;
   s.plant_far_beyond = 1.0e6f;
+  s.plant_near_mesh = false;
   return s;
 }
 
@@ -150,6 +153,51 @@ TEST_F(VoxelPlantsGl, FarShellsBakedIntoMeshesDrawTheInstancedPicture) {
   RecordProperty("triangles_baked", static_cast<int>(baked.stats.plant_triangles));
   RecordProperty("groups_skipped", static_cast<int>(baked.stats.plant_mesh_groups_skipped));
   EXPECT_LE(changed, kBakedMeshPixelBudget);
+}
+
+TEST_F(VoxelPlantsGl, NearPlantsBakedIntoMeshesDrawTheInstancedPicture) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  // Close to the world's -x -z corner: leaf chunks within 48 blocks (both sides of every leaf
+  // cube) and beyond (faces turned to the eye), all exact plants (no far shells).
+  const glm::dvec3 eye(-12.0, 42.0, -12.0), target(16.0, 22.0, 16.0);
+  const Shot instanced = render_view(*w, near_only(), eye, target);
+  VoxelRenderSettings baked_settings = near_only();
+  baked_settings.plant_near_mesh = true;
+  const Shot baked = render_view(*w, baked_settings, eye, target);
+  testing::save_png(baked.image, "voxel_plants_near_mesh");
+  ASSERT_GT(instanced.stats.plant_parts_drawn, 1000u);
+  EXPECT_EQ(instanced.stats.plant_mesh_triangles, 0u);
+  // No plant instances in the colour pass any more: every plant triangle comes from the meshes.
+  EXPECT_EQ(baked.stats.plant_parts_drawn, 0u);
+  EXPECT_GT(baked.stats.plant_mesh_triangles, 0u);
+  EXPECT_EQ(baked.stats.plant_mesh_triangles, baked.stats.plant_triangles);
+  EXPECT_EQ(baked.stats.plant_far_chunks, 0u);
+  const std::size_t changed = differing_pixels(instanced.image, baked.image, 0.02f);
+  RecordProperty("pixels_changed", static_cast<int>(changed));
+  RecordProperty("triangles_instanced", static_cast<int>(instanced.stats.plant_triangles));
+  RecordProperty("triangles_baked", static_cast<int>(baked.stats.plant_triangles));
+  EXPECT_LE(changed, kBakedMeshPixelBudget);
+}
+
+TEST_F(VoxelPlantsGl, BakedNearPlantsAreCulledOneByOne) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  // As PlantsAreCulledOneByOne...: the frustum cuts the chunks along the world's edge.
+  const glm::dvec3 eye(16.0, 40.0, -20.0), target(20.0, 24.0, 40.0);
+  VoxelRenderSettings baked = near_only();
+  baked.plant_near_mesh = true;
+  const Shot culled = render_view(*w, baked, eye, target);
+  baked.frustum_culling = false;
+  const Shot all = render_view(*w, baked, eye, target);
+  EXPECT_GT(culled.stats.plants_culled, 0u);
+  EXPECT_EQ(all.stats.plants_culled, 0u);
+  EXPECT_GT(culled.stats.plant_mesh_triangles, 0u);
+  EXPECT_LT(culled.stats.plant_mesh_triangles, all.stats.plant_mesh_triangles);
+  EXPECT_EQ(differing_pixels(culled.image, all.image, 0.0f), 0u);
+  // And the same picture as the instanced culled plants.
+  const Shot instanced = render_view(*w, near_only(), eye, target);
+  EXPECT_LE(differing_pixels(instanced.image, culled.image, 0.02f), kBakedMeshPixelBudget);
 }
 
 TEST_F(VoxelPlantsGl, PlantsAreCulledOneByOneInTheViewAndInShadowCascades) {

@@ -7,8 +7,9 @@
 // by the direction they point so a whole group that no eye position can see is skipped by one
 // comparison per group (PlantMesh::visible_groups) instead of per vertex.
 //
-// Used by the renderer for far plant shells with VoxelRenderSettings::plant_far_mesh (default
-// on); near plants stay instanced (plant.vert).
+// Used by the renderer for far plant shells (VoxelRenderSettings::plant_far_mesh) and for the
+// near plants' exact parts (plant_near_mesh), both on by default; shadow passes keep the
+// instanced cubes (plant.vert).
 
 #include <sylva/voxel/block.hpp>
 
@@ -59,6 +60,14 @@ struct PlantMesh {
     float plane = 0.0f;
   };
   std::array<Group, kPlantMeshGroups> groups{};
+  // Per plant (bake_plant_mesh's `plant_starts`; one cluster for all parts without them): its
+  // indices in each group. Inside a group the plants follow each other in order, so plants
+  // i..j-1 are the one range [clusters[i].first[g], clusters[j - 1].first[g] + count[g]).
+  struct Cluster {
+    std::array<std::uint32_t, kPlantMeshGroups> first{};
+    std::array<std::uint32_t, kPlantMeshGroups> count{};
+  };
+  std::vector<Cluster> clusters;
   std::uint64_t triangles() const { return indices.size() / 3; }
 
   // Bit g set: group g may face an eye at `eye` (chunk-relative, blocks). Empty groups are clear.
@@ -68,7 +77,9 @@ struct PlantMesh {
 };
 
 // Bakes `parts` (faces in `hidden` left out, parts with all six hidden add nothing). Not fallible:
-// parts with a non-finite or non-positive size are skipped.
-PlantMesh bake_plant_mesh(std::span<const PlantMeshPart> parts);
+// parts with a non-finite or non-positive size are skipped. `plant_starts` (optional, ascending,
+// each <= parts.size()): the index of each plant's first part, one cluster per entry (the first
+// entry should be 0; parts before it belong to no cluster but are baked).
+PlantMesh bake_plant_mesh(std::span<const PlantMeshPart> parts, std::span<const std::uint32_t> plant_starts = {});
 
 }  // namespace sylva::voxel

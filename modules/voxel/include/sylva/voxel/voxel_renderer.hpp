@@ -100,6 +100,11 @@ struct VoxelRenderSettings {
   // Far shells baked per chunk into one static indexed mesh (plant_mesh.hpp), face groups turned
   // away from the eye skipped; off: instanced cubes (plant.vert). The same picture (issue #18).
   bool plant_far_mesh = true;
+  // Near plants' exact parts baked per chunk the same way (opaque parts and leaves in two meshes,
+  // plants in order inside each face group for per-plant culling; leaves within
+  // leaf_back_faces_within drawn two-sided, beyond it back-face culled); off: instanced cubes.
+  // The colour pass only: shadows keep the instanced cubes. The same picture (issue #18).
+  bool plant_near_mesh = true;
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -133,6 +138,7 @@ struct VoxelRenderSettings {
     v(plant_far_beyond, "plant_far_beyond", {.min = 0.0, .max = 1.0e6, .unit = "blocks", .help = "Chunks at least this far draw plants as their outer shell on a block grid, leaves opaque, one draw per chunk (shadows keep the exact plants); 1e6 = never"});
     v(plant_far_cell, "plant_far_cell", {.min = 1.0, .max = 8.0, .help = "Edge of the far plants' grid in start block sizes (1 = the plant's own block size; 2 = coarser shells, fewer cubes)", .rebuild = Rebuild::kGpu});
     v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
+    v(plant_near_mesh, "plant_near_mesh", {.help = "Near plants' exact parts as baked meshes per chunk (faces pre-transformed, indexed, per-plant culling kept) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
@@ -164,8 +170,8 @@ struct VoxelFrameStats {
   std::size_t plant_triangles = 0;      // of plant faces not hidden, colour pass (front-face draws: at most)
   std::size_t plant_parts_hidden = 0;   // loaded plant parts left out, every face inside other parts
   std::size_t plant_far_chunks = 0;     // chunks whose plants were drawn as far shells
-  std::size_t plant_mesh_triangles = 0; // far shell triangles drawn from baked meshes (plant_far_mesh)
-  std::size_t plant_mesh_groups_skipped = 0;  // their face groups left out, turned away from the eye
+  std::size_t plant_mesh_triangles = 0; // plant triangles drawn from baked meshes (plant_far_mesh, plant_near_mesh)
+  std::size_t plant_mesh_groups_skipped = 0;  // their chunks' face groups left out, turned away from the eye
   std::size_t plants_culled = 0;        // plants outside the frustum inside chunks it cuts (colour and shadow passes)
   std::size_t tufts_drawn = 0;
   float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame (0: no fade)
@@ -216,10 +222,14 @@ class VoxelRenderer final : public render::Drawable {
  private:
   VoxelRenderer() = default;
   struct ChunkGpu;
+  struct BakedMesh;
   Status build_programs();
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
   void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
-  void bake_far_mesh(ChunkGpu& gpu);  // settings_.plant_far_mesh: gpu.plant's far range -> gpu's baked mesh
+  // gpu.plant's parts [first, first + count) -> `out` (plant_mesh.hpp), one cluster per entry of
+  // `plant_starts` (relative to `first`; empty: one cluster); `out` stays empty without faces.
+  static void bake_range(const ChunkGpu& gpu, std::uint32_t first, std::uint32_t count,
+                         std::span<const std::uint32_t> plant_starts, BakedMesh& out);
   void upload_tufts(const ChunkCoord& c, ChunkGpu& gpu);
   void update_view_distance(const glm::dvec3& eye);
   void draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection, const glm::dvec3& origin,
@@ -231,10 +241,19 @@ class VoxelRenderer final : public render::Drawable {
   void draw_chunks(std::span<ChunkGpu* const> chunks, const render::Program& quads, const render::Program& plants,
                    bool alpha_cut, const glm::mat4& view_projection, const glm::dvec3& origin,
                    double full_cubes_within, double far_beyond, const render::Frustum* culling,
-                   render::PassStats& stats);
+                   render::PassStats& stats, bool baked_plants = false);
   // The far chunks' baked shells (plant_far_mesh), in the opaque colour pass after draw_chunks.
   void draw_far_meshes(const glm::mat4& view_projection, const glm::dvec3& origin, const render::Frustum* culling,
                        render::PassStats& stats);
+  // The near chunks' baked plants (plant_near_mesh) of one class (opaque / cut-out), colour pass;
+  // `program` is bound by the caller. Cut-out chunks at least `full_within` away are drawn
+  // back-face culled (only the faces turned to the eye, as the instanced front-face draws).
+  void draw_near_meshes(bool alpha_cut, const render::Program& program, const glm::dvec3& origin,
+                        double full_within, const render::Frustum* culling, render::PassStats& stats);
+  // Draws `mesh`'s groups in `groups` (bits), whole or per plant (`plant_seen`, one flag per
+  // cluster; empty: all plants). Counts triangles and draws; returns the plants left out.
+  std::size_t draw_baked(const BakedMesh& mesh, std::uint32_t groups, std::span<const std::uint8_t> plant_seen,
+                         render::PassStats& stats);
   // `culling` (may be null): per-plant culling inside chunks the frustum cuts.
   void draw_depth_list(std::span<ChunkGpu* const> chunks, const glm::mat4& relative_view_projection,
                        const glm::dvec3& origin, const render::Frustum* culling, render::PassStats& stats);
@@ -252,7 +271,8 @@ class VoxelRenderer final : public render::Drawable {
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
-  render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_, plant_mesh_program_;
+  render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_, plant_mesh_program_,
+      plant_mesh_alpha_program_;
   render::Program tuft_program_, horizon_program_, translucent_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Buffer no_shadows_ubo_;
@@ -271,6 +291,7 @@ class VoxelRenderer final : public render::Drawable {
   std::uint64_t mesh_epoch_ = ~std::uint64_t{0};
   std::uint64_t plant_epoch_ = ~std::uint64_t{0};
   std::vector<ChunkGpu*> visible_;
+  std::vector<std::uint8_t> plant_seen_;  // draw_near_meshes' per-plant flags, kept between chunks
   std::unique_ptr<PlantFaceCache> face_cache_;  // hidden-face masks per plant model
   std::vector<std::pair<float, PackedQuad>> sort_keys_;  // sort_translucent's scratch, kept between frames
   glm::vec2 fade_{0.0f};      // fade start / end [blocks] this frame
