@@ -18,6 +18,9 @@ vec3 voxel_horizon_color(vec3 rel_pos) {
 
 vec3 voxel_distance_fade(vec3 color, vec3 rel_pos) {
   float f = smoothstep(u_fade.x, u_fade.y, length(rel_pos.xz));
+  // Nearer than the fade's start nothing changes (mix(c, h, 0) == c exactly): skip the sky
+  // look-up there, which llvmpipe otherwise runs for every pixel of the world (issue #18).
+  if (f <= 0.0) return color;
   return mix(color, voxel_horizon_color(rel_pos), f);
 }
 
