@@ -59,10 +59,10 @@ struct SpreadAcc {
   __m128i any = _mm_setzero_si128();
   __m128i all_m1 = _mm_set1_epi32(-1);
   IdSpread scalar;  // ids classified one by one
-  // Sixteen ids.
-  void add(__m128i v0, __m128i v1) {
+  // Sixteen ids, of which the caller ORs into `any` itself (a row's OR at once, see
+  // classify_row()).
+  void add_all(__m128i v0, __m128i v1) {
     const __m128i ones = _mm_set1_epi32(-1);
-    any = _mm_or_si128(any, _mm_or_si128(v0, v1));
     all_m1 = _mm_and_si128(all_m1, _mm_and_si128(_mm_add_epi16(v0, ones), _mm_add_epi16(v1, ones)));
   }
   IdSpread reduce() const {
@@ -116,9 +116,11 @@ inline bool use_avx2() {
 // run-time loop and a scalar tail, 62^3 chunks cost 1.4x a 64^3 one per voxel (issue #18).
 // With track, the ids also go into acc.
 // Per 16 ids the vector part is two loads, a signed saturating pack (zero exactly for air: a
-// non-zero id packs to a non-zero byte), one byte compare and one movemask; ids >= first_special
-// are only OR-ed into a saturating difference and classified (special_bits()) when the row has
-// any (issue #18: the SSE2 baseline's row pass was 13 us of a 62^3 terrain chunk behind AVX2's).
+// non-zero id packs to a non-zero byte), one byte compare and one movemask, and the OR of the
+// ids. Ids >= first_special are only looked for (special_bits()) in rows whose OR reaches
+// first_special: no id of the row can otherwise (the OR is at least each id), and the
+// common terrain ids OR below the first alpha-cut id (issue #18: the SSE2 baseline's row pass
+// was 13 us of a 62^3 terrain chunk behind AVX2's).
 template <int kN, int kChunks>
 inline void classify_row(const BlockId* row, int n_run, BlockId first_special, std::uint64_t& nonair,
                          std::uint64_t& special, SpreadAcc& acc, bool track) {
@@ -129,13 +131,13 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
     const __m128i zero = _mm_setzero_si128();
     // v - (first_special - 1), saturated at 0, is zero exactly for the ids below first_special.
     const __m128i limit = _mm_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
-    __m128i above = zero;  // OR of those differences: non-zero when some id >= first_special
+    __m128i row_or = zero;  // OR of the ids read
     // 16 ids at row + i: bit j of the result is set when row[i + j] is air.
     auto air16 = [&](int i) -> std::uint32_t {
       const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i));
       const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + i + 8));
-      if (track) acc.add(v0, v1);
-      above = _mm_or_si128(above, _mm_or_si128(_mm_subs_epu16(v0, limit), _mm_subs_epu16(v1, limit)));
+      if (track) acc.add_all(v0, v1);
+      row_or = _mm_or_si128(row_or, _mm_or_si128(v0, v1));
       return static_cast<std::uint32_t>(_mm_movemask_epi8(_mm_cmpeq_epi8(_mm_packs_epi16(v0, v1), zero)));
     };
     if constexpr (kN == 0 && kChunks > 0) {
@@ -150,7 +152,10 @@ inline void classify_row(const BlockId* row, int n_run, BlockId first_special, s
       for (; x + 32 <= n; x += 32) nonair |= static_cast<std::uint64_t>(~(air16(x) | air16(x + 16) << 16)) << x;
       for (; x + 16 <= n; x += 16) nonair |= static_cast<std::uint64_t>(~air16(x) & 0xffff) << x;
     }
-    if (x > 0 && _mm_movemask_epi8(_mm_cmpeq_epi8(above, zero)) != 0xffff) special |= special_bits(row, x, limit);
+    if (track) acc.any = _mm_or_si128(acc.any, row_or);
+    if (x > 0 && _mm_movemask_epi8(_mm_cmpeq_epi8(_mm_subs_epu16(row_or, limit), zero)) != 0xffff) {
+      special |= special_bits(row, x, limit);
+    }
   }
 #endif
   for (; x < n; ++x) {
@@ -217,18 +222,17 @@ inline IdSpread row_pass(const BlockId* ids, const std::uint8_t* opaque, BlockId
 #if defined(SYLVA_VOXEL_AVX2)
 // 32 ids at row: bit j of the result is set when row[j] is air (the pack as in classify_row();
 // packs works within 128-bit lanes, so the bytes come out as ids 0-7, 16-23, 8-15, 24-31: one
-// 64-bit lane permute puts them in order before the movemask). The saturating differences from
-// limit are OR-ed into above; with track, the ids go into any / all_m1 (IdSpread lanes).
-__attribute__((target("avx2"))) inline std::uint32_t air32_avx2(const BlockId* row, __m256i limit, bool track,
-                                                                __m256i& any, __m256i& all_m1, __m256i& above) {
+// 64-bit lane permute puts them in order before the movemask).
+// The ids are OR-ed into row_or; with track, they go into all_m1 (IdSpread lanes).
+__attribute__((target("avx2"))) inline std::uint32_t air32_avx2(const BlockId* row, bool track, __m256i& all_m1,
+                                                                __m256i& row_or) {
   const __m256i v0 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row));
   const __m256i v1 = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(row + 16));
   if (track) {
     const __m256i ones = _mm256_set1_epi32(-1);
-    any = _mm256_or_si256(any, _mm256_or_si256(v0, v1));
     all_m1 = _mm256_and_si256(all_m1, _mm256_and_si256(_mm256_add_epi16(v0, ones), _mm256_add_epi16(v1, ones)));
   }
-  above = _mm256_or_si256(above, _mm256_or_si256(_mm256_subs_epu16(v0, limit), _mm256_subs_epu16(v1, limit)));
+  row_or = _mm256_or_si256(row_or, _mm256_or_si256(v0, v1));
   const __m256i air = _mm256_cmpeq_epi8(_mm256_packs_epi16(v0, v1), _mm256_setzero_si256());
   return static_cast<std::uint32_t>(_mm256_movemask_epi8(_mm256_permute4x64_epi64(air, 0xd8)));
 }
@@ -245,11 +249,14 @@ struct ClassifyAvx2 {
   __attribute__((target("avx2"))) void operator()(const BlockId* row, int n, BlockId first_special,
                                                   std::uint64_t& nonair, std::uint64_t& special, bool interior) {
     const __m256i limit = _mm256_set1_epi16(static_cast<short>(static_cast<std::uint16_t>(first_special - 1)));
-    __m256i above = _mm256_setzero_si256();
-    const std::uint32_t air0 = air32_avx2(row, limit, interior, any, all_m1, above);
-    const std::uint32_t air1 = air32_avx2(row + n - 32, limit, interior, any, all_m1, above);
+    __m256i row_or = _mm256_setzero_si256();
+    const std::uint32_t air0 = air32_avx2(row, interior, all_m1, row_or);
+    const std::uint32_t air1 = air32_avx2(row + n - 32, interior, all_m1, row_or);
+    if (interior) any = _mm256_or_si256(any, row_or);
     nonair = static_cast<std::uint64_t>(~air0) | static_cast<std::uint64_t>(~air1) << (n - 32);
     special = 0;
+    // As in classify_row(): only rows whose OR reaches first_special can hold such an id.
+    const __m256i above = _mm256_subs_epu16(row_or, limit);
     if (!_mm256_testz_si256(above, above)) special = special_bits(row, n, _mm256_castsi256_si128(limit));
   }
   __attribute__((target("avx2"))) IdSpread spread() const {
