@@ -257,11 +257,7 @@ TEST_F(TerrainGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
 // it). Straight down over the field's far corner, one quadrant of the picture is field; the
 // padded chunks there reach 20 samples further. The flat view (its own program now) paints
 // exactly its colour.
-static void (*h6_real_enable)(GLenum) = nullptr;  // H6EXPERIMENT
-static int h6_blocked = 0;  // H6EXPERIMENT
-static void h6_no_clip_enable(GLenum cap) { if (cap != GL_CLIP_DISTANCE0 && cap != GL_CLIP_DISTANCE1) h6_real_enable(cap); else ++h6_blocked; }  // H6EXPERIMENT
 TEST_F(TerrainGl, NothingBeyondTheFieldIsDrawnAndTheFlatViewIsOneColour) {
-  glEnable(GL_DITHER); if (std::getenv("H6_NOCLIP")) { h6_real_enable = epoxy_glEnable; epoxy_glEnable = h6_no_clip_enable; }  // H6EXPERIMENT
   GeneratedFieldSettings g;
   g.size = 300;
   g.spacing = 1.0;
@@ -279,10 +275,6 @@ TEST_F(TerrainGl, NothingBeyondTheFieldIsDrawnAndTheFlatViewIsOneColour) {
   const render::Camera cam = camera_at({corner.x, 80.0, corner.y}, 0.0f, glm::radians(-89.9f), 40.0f, 200, 200);
   const Image im = target.render(**r, cam, kMagenta);
   save_png(im, "padding_clipped");
-  std::printf("H6 blocked %d\n", h6_blocked);  // H6EXPERIMENT
-  for (float yaw : {2.356f, -2.356f}) { const Image o = target.render(**r, camera_at({250.0, 60.0, 250.0}, yaw, glm::radians(-20.0f), 60.0f, 200, 200), kMagenta); save_png(o, yaw > 0 ? "h6_a" : "h6_b"); }  // H6EXPERIMENT
-  for (const auto& c : (*r)->selection().chunks) { const auto& ch = s.tree->chunk(c.index); std::printf("H6 chunk L%d (%d,%d) tris %zu\n", (int)ch.key.level, (int)ch.key.x, (int)ch.key.z, ch.mesh.indices.size()/3); int o=0; unsigned mx=0; for (const auto& v : ch.mesh.vertices) { o += v.outside; mx = std::max(mx, v.gx); } std::printf("H6   outside %d max gx %u origin %f %f ext %f\n", o, mx, s.field.origin().x, s.field.origin().y, s.field.extent().x); }  // H6EXPERIMENT
-  std::printf("H6 field_px %zu\n", [&]{ std::size_t n=0; for (int y=0;y<200;++y) for(int x=0;x<200;++x) n += is_color(im,x,y,glm::vec4(0.6f,0.6f,0.6f,1.0f)); return n; }());  // H6EXPERIMENT
   const glm::vec4 flat(0.6f, 0.6f, 0.6f, 1.0f);
   std::size_t field_px = 0, other = 0;
   for (int y = 0; y < 200; ++y)
