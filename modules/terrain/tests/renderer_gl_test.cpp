@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -252,11 +253,42 @@ TEST_F(TerrainGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
 }
 
 
+// Records the capabilities glEnable is called with, through libepoxy's public function pointer
+// (swapped for the spy's lifetime, then restored). Mesa 22.3.6 llvmpipe clips by the written
+// gl_ClipDistance even with GL_CLIP_DISTANCEi disabled (seen: with the renderer's two enables
+// dropped the picture is the same), so only this sees a missing enable, which a conformant
+// driver needs to clip at all.
+class EnableSpy {
+ public:
+  EnableSpy() {
+    glEnable(GL_DITHER);  // resolved first: epoxy's resolver stub would overwrite the spy
+    real_ = epoxy_glEnable;
+    epoxy_glEnable = &record;
+    seen_.clear();
+  }
+  ~EnableSpy() { epoxy_glEnable = real_; }
+  EnableSpy(const EnableSpy&) = delete;
+  EnableSpy& operator=(const EnableSpy&) = delete;
+  static bool saw(GLenum cap) { return std::find(seen_.begin(), seen_.end(), cap) != seen_.end(); }
+
+ private:
+  static void record(GLenum cap) {
+    seen_.push_back(cap);
+    real_(cap);
+  }
+  static inline decltype(epoxy_glEnable) real_ = nullptr;
+  static inline std::vector<GLenum> seen_;
+};
+
 // Issue 18: the padding a 300^2 field leaves in its 512-interval root grid is not drawn now that
 // terrain.frag no longer discards it (that cost llvmpipe its early depth test; chunk.vert clips
 // it). Straight down over the field's far corner, one quadrant of the picture is field; the
-// padded chunks there reach 20 samples further. The flat view (its own program now) paints
-// exactly its colour.
+// padded chunks there reach 21 samples further, inside the view (checked: their vertices
+// project into it). The flat view (its own program now) paints exactly its colour. The test
+// once stayed green with the renderer's glEnable(GL_CLIP_DISTANCEi) removed: not the pose (it
+// sees the padding), llvmpipe clips without the enables (EnableSpy). Seen red with the clip
+// distances made positive everywhere (u_field_size forced to 100000: 33410 field pixels, the
+// padding drawn) and, for the spy's assertion, with the spy installed only after the frame.
 TEST_F(TerrainGl, NothingBeyondTheFieldIsDrawnAndTheFlatViewIsOneColour) {
   GeneratedFieldSettings g;
   g.size = 300;
@@ -273,8 +305,24 @@ TEST_F(TerrainGl, NothingBeyondTheFieldIsDrawnAndTheFlatViewIsOneColour) {
   GlTarget target = GlTarget::create(200, 200);
   const glm::dvec2 corner = s.field.origin() + s.field.extent();
   const render::Camera cam = camera_at({corner.x, 80.0, corner.y}, 0.0f, glm::radians(-89.9f), 40.0f, 200, 200);
-  const Image im = target.render(**r, cam, kMagenta);
+  Image im;
+  {
+    EnableSpy spy;
+    im = target.render(**r, cam, kMagenta);
+    EXPECT_TRUE(EnableSpy::saw(GL_CLIP_DISTANCE0) && EnableSpy::saw(GL_CLIP_DISTANCE1))
+        << "the renderer must enable the clip distances of a padded tree";
+  }
   save_png(im, "padding_clipped");
+  // The pose sees the padding: vertices of drawn chunks beyond the field project into the view.
+  std::size_t padding_in_view = 0;
+  for (const SelectedChunk& c : (*r)->selection().chunks)
+    for (const ChunkVertex& v : s.tree->chunk(c.index).mesh.vertices) {
+      if (v.outside == 0) continue;
+      const glm::dvec3 p(s.field.origin().x + v.gx * g.spacing, v.height, s.field.origin().y + v.gz * g.spacing);
+      const glm::vec4 q = cam.view_projection() * glm::vec4(glm::vec3(p - cam.position()), 1.0f);
+      padding_in_view += q.w > 0.0f && std::fabs(q.x) < q.w && std::fabs(q.y) < q.w;
+    }
+  EXPECT_GT(padding_in_view, 100u) << "the pose must see past the field's edge";
   const glm::vec4 flat(0.6f, 0.6f, 0.6f, 1.0f);
   std::size_t field_px = 0, other = 0;
   for (int y = 0; y < 200; ++y)
