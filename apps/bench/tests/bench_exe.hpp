@@ -38,6 +38,15 @@ inline int run_bench(const std::string& args, const std::filesystem::path& log, 
   return r.exit_code;
 }
 
+// Runs `sylva-bench --suite SUITE` at CI size (64x36, `frames` frames, no warm-up, no shadows)
+// plus `extra` (already quoted), with its results in DIR/out and its output in DIR/log.txt.
+inline int run_small_suite(const std::string& suite, int frames, const std::string& extra,
+                           const std::filesystem::path& dir, std::string& output) {
+  return run_bench("--suite " + suite + " --size 64x36 --frames " + std::to_string(frames) +
+                       " --warmup 0 --set render.shadows.enabled=false " + extra + " --out '" + (dir / "out").string() + "'",
+                   dir / "log.txt", output);
+}
+
 // An empty folder <temp>/<prefix>-<pid>/<name>, for one test's outputs.
 inline std::filesystem::path fresh_test_dir(const std::string& prefix, const std::string& name) {
   const std::filesystem::path dir =

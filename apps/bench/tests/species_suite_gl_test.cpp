@@ -22,12 +22,10 @@ namespace {
 
 #ifdef SYLVA_BENCH_WITH_SCENE
 
-using sylva::bench::testing::field;
-using sylva::bench::testing::lines_of;
-using sylva::bench::testing::run_bench;
+using namespace sylva::bench::testing;
 
 TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
-  const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-species-test", "rows");
+  const fs::path dir = fresh_test_dir("sylva-bench-species-test", "rows");
   // A user's grammar table: a pillar doubled per derivation, 3 derivations = 8 blocks a plant.
   ASSERT_TRUE(sylva::write_file_atomic(dir / "pillar.lsys", "0 0 1\nU\nU > UU\n").ok());
   ASSERT_TRUE(sylva::write_file_atomic(dir / "plants.json",
@@ -35,10 +33,10 @@ TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
                                        "size": [1, 1], "blocks": {"0": "glowstone"}, "biomes": {"plains": {"spacing": 5, "chance": 1}}}]})")
                   .ok());
   std::string output;
-  const int code = run_bench("--suite species --size 64x36 --frames 1 --warmup 0 --set render.shadows.enabled=false "
-                             "--set vegetation.forest.lod.slice_resolution=64 --set voxel.flora.species_file='" +
-                                 (dir / "plants.json").string() + "' --out '" + (dir / "out").string() + "'",
-                             dir / "log.txt", output);
+  const int code = run_small_suite("species", 1,
+                                   "--set vegetation.forest.lod.slice_resolution=64 --set voxel.flora.species_file='" +
+                                       (dir / "plants.json").string() + "'",
+                                   dir, output);
   ASSERT_EQ(code, 0) << output;
 
   const auto loads = lines_of(output, "species load: ");
@@ -88,7 +86,7 @@ TEST(BenchSpeciesSuite, PrintsLoadGrammarAndForestRows) {
 }
 
 TEST(BenchSpeciesSuite, RefusesASetPathItsScenesLack) {
-  const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-species-test", "set");
+  const fs::path dir = fresh_test_dir("sylva-bench-species-test", "set");
   std::string output;
   const int code = run_bench("--suite species --set grass.field.density=3 --out '" + dir.string() + "'", dir / "log.txt", output);
   EXPECT_EQ(code, 2) << output;

@@ -18,17 +18,12 @@ namespace {
 
 #ifdef SYLVA_BENCH_WITH_SCENE
 
-using sylva::bench::testing::field;
-using sylva::bench::testing::lines_of;
-using sylva::bench::testing::run_bench;
+using namespace sylva::bench::testing;
 
 TEST(BenchStreamSuite, PrintsInMemoryAndStreamedFlightRows) {
-  const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-stream-test", "rows");
+  const fs::path dir = fresh_test_dir("sylva-bench-stream-test", "rows");
   std::string output;
-  const int code = run_bench("--suite stream --size 64x36 --frames 12 --warmup 0 --set render.shadows.enabled=false "
-                             "--set terrain.resolution=1025 --set terrain.stream.budget_mb=4 --out '" +
-                                 (dir / "out").string() + "'",
-                             dir / "log.txt", output);
+  const int code = run_small_suite("stream", 12, "--set terrain.resolution=1025 --set terrain.stream.budget_mb=4", dir, output);
   ASSERT_EQ(code, 0) << output;
 
   const auto bakes = lines_of(output, "stream: bake ");
@@ -81,7 +76,7 @@ TEST(BenchStreamSuite, PrintsInMemoryAndStreamedFlightRows) {
 }
 
 TEST(BenchStreamSuite, RefusesASetPathItsSceneLacks) {
-  const fs::path dir = sylva::bench::testing::fresh_test_dir("sylva-bench-stream-test", "set");
+  const fs::path dir = fresh_test_dir("sylva-bench-stream-test", "set");
   std::string output;
   const int code = run_bench("--suite stream --set terrain.stream.budget_gb=1 --out '" + (dir / "out").string() + "'",
                              dir / "log.txt", output);
