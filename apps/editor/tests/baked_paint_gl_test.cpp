@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -170,5 +171,52 @@ quit
   EXPECT_EQ(stats["stream_pending"].get<std::size_t>(), 0u) << stats.dump();
   EXPECT_LE(stats["stream_resident_bytes"].get<std::size_t>(), stats["stream_budget_bytes"].get<std::size_t>())
       << stats.dump();
+  fs::remove_all(dir);
+}
+
+// Issue 15, a field above the ground limit, in the shipped editor: with the limit lowered to 129^2
+// (SYLVA_BAKED_GROUND_MAX_SAMPLES, as an 8193^2 bake meets the real 4097^2 one) the 257^2 bake's
+// ground is every 2nd sample. The stroke reads the exact field then (not at open), rebuilds the
+// chunks it reaches from it and shows; undo gives the unpainted picture pixel for pixel; the
+// saved layer is the ground's one 129^2 tile; the reopened scene draws the painted picture.
+TEST(EditorBakedPaint, ADecimatedGroundIsPaintedOnTheFieldsExactSamples) {
+  const fs::path dir = make_hills_scene("sylva_editor_baked_decimated");
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "paint.sylva", R"(load scene.json
+import_terrain hills.png bake hills.sylvaterrain
+wait_import
+wait_stream
+screenshot before.png
+brush op=raise radius=40 strength=25 falloff=constant
+stroke terrain.height 256,256
+wait_stream
+screenshot painted.png
+print_stats terrain
+save painted.json
+undo
+wait_stream
+screenshot undone.png
+quit
+)").ok());
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "reopen.sylva", "load painted.json\nwait_stream\nscreenshot reopened.png\nquit\n").ok());
+  ::setenv("SYLVA_BAKED_GROUND_MAX_SAMPLES", "16641", 1);
+  const auto painting = run_editor(dir / "paint.sylva");
+  const auto reopening = run_editor(dir / "reopen.sylva");
+  ::unsetenv("SYLVA_BAKED_GROUND_MAX_SAMPLES");
+  ASSERT_EQ(painting.exit_code, 0) << painting.output;
+  ASSERT_EQ(reopening.exit_code, 0) << reopening.output;
+  const std::size_t ground = painting.output.find("the ground is the baked field's heights, 129x129 samples");
+  const std::size_t exact = painting.output.find("painting the baked field's exact 257x257 samples");
+  ASSERT_NE(ground, std::string::npos) << painting.output;
+  ASSERT_NE(exact, std::string::npos) << painting.output;
+  EXPECT_EQ(painting.output.find("painting the baked field's exact", exact + 1), std::string::npos) << "read once";
+  const nlohmann::json stats = last_terrain_stats(painting.output);
+  EXPECT_EQ(stats["baked_ground_matches"], 0) << stats.dump();
+  EXPECT_GT(stats["stream_edited_chunks"].get<std::size_t>(), 4u) << stats.dump();
+  EXPECT_GT(differing_pixels(dir / "before.png", dir / "painted.png"), 100u) << "the stroke shows on the baked terrain";
+  EXPECT_EQ(differing_pixels(dir / "before.png", dir / "undone.png"), 0u) << "undo: the unpainted picture";
+  EXPECT_EQ(differing_pixels(dir / "painted.png", dir / "reopened.png"), 0u) << "reopened: the painted picture";
+  const fs::path layer = dir / "painted_maps" / "terrain_height.sylvaedits";
+  ASSERT_TRUE(fs::exists(layer)) << painting.output;
+  EXPECT_EQ(fs::file_size(layer), 40u + 24u + 129u * 129u * 4u) << "the ground's one tile";
   fs::remove_all(dir);
 }

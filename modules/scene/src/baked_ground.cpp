@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <string>
@@ -16,10 +17,23 @@
 namespace sylva::scene {
 
 namespace {
-std::uint64_t g_ground_limit = kMaxBakedGroundSamples;
+std::uint64_t g_ground_limit = 0;  // 0: none set by ScopedBakedGroundLimit
+constexpr const char* kGroundLimitVariable = "SYLVA_BAKED_GROUND_MAX_SAMPLES";
 }  // namespace
 
-std::uint64_t baked_ground_limit() { return g_ground_limit; }
+std::uint64_t baked_ground_limit() {
+  if (g_ground_limit != 0) return g_ground_limit;
+  const char* text = std::getenv(kGroundLimitVariable);
+  if (text == nullptr || *text == '\0') return kMaxBakedGroundSamples;
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(text, &end, 10);
+  if (*end != '\0' || n < 4) {
+    log_warn("{}={}: not a sample count of at least 4; the ground limit stays {}", kGroundLimitVariable, text,
+             kMaxBakedGroundSamples);
+    return kMaxBakedGroundSamples;
+  }
+  return n;
+}
 
 ScopedBakedGroundLimit::ScopedBakedGroundLimit(std::uint64_t max_samples) : previous_(g_ground_limit) {
   g_ground_limit = max_samples;

@@ -23,9 +23,11 @@ bool is_chunk_file(const std::filesystem::path& file);
 // an 8193^2 ground took 15 s to the first frame on llvmpipe (README).
 inline constexpr std::uint64_t kMaxBakedGroundSamples = std::uint64_t{4097} * 4097;
 
-// The limit the scene reads its ground with (kMaxBakedGroundSamples unless overridden). Tests
-// lower it to give a small field the decimated ground of a large one (a 513^2 bake read every 4th
-// sample) through the scene's own path; not a scene key: the limit is the first frame's budget.
+// The limit the scene reads its ground with: ScopedBakedGroundLimit's, else the environment
+// variable SYLVA_BAKED_GROUND_MAX_SAMPLES (a sample count >= 4; anything else is a warning and the
+// default), else kMaxBakedGroundSamples. Tests lower it to give a small field the decimated ground
+// of a large one (a 513^2 bake read every 4th sample) through the scene's own path, in process or
+// in the shipped editor and player; not a scene key: the limit is the first frame's budget.
 std::uint64_t baked_ground_limit();
 // Sets baked_ground_limit() for this process until the object goes away (tests; not thread-safe:
 // set it before opening a scene).
