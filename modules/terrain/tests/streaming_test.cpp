@@ -8,10 +8,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <thread>
 
 namespace sylva::terrain {
 namespace {
@@ -187,6 +189,53 @@ TEST(Streaming, BudgetIsRespectedAndMissingChunksDrawTheirParent) {
   EXPECT_GT(st.loads, 10u);
   EXPECT_GT(st.evictions, 0u) << "a sixth of the tree must force evictions";
   EXPECT_EQ(st.failures, 0u);
+}
+
+// A still view that needs more than the budget settles: after the loads that fit, the chunks
+// dropped for lack of room are not read again frame after frame (stats dropped and loads stop
+// growing, nothing pending, budget_limited), their parents are drawn; once room is made
+// (evict_all) they are asked for and loaded again.
+TEST(Streaming, AViewNeedingMoreThanTheBudgetSettles) {
+  Built& b = built();
+  auto file = ChunkFile::open(b.path).value();
+  std::size_t total = 0;
+  for (std::uint32_t i = 0; i < file->tree().chunk_count(); ++i)
+    if (file->tree().chunk(i).present) total += file->mesh_bytes(i);
+  StreamingSettings ss;
+  ss.memory_budget_mb = static_cast<double>(total) / 1048576.0 / 20.0;
+  auto streamer = ChunkStreamer::create(file, ss).value();
+  LodSelector selector(file->tree());
+  LodSettings ls;
+  ls.max_pixel_error = 0.5f;
+  const LodView view = look_at_view({30, 80, 40}, {300, 20, 250}, 60.0);
+  // One update per selection, as the renderer does (wait_idle would integrate a second time, and
+  // a chunk used one update ago counts as unused).
+  auto frame = [&] {
+    streamer->update();
+    Residency r = streamer->residency();
+    selector.select(view, ls, &r);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));  // the loader reads meanwhile
+  };
+  int settled_after = 0;
+  while (settled_after < 3000 && !streamer->stats().budget_limited) {
+    frame();
+    ++settled_after;
+  }
+  const StreamingStats settled = streamer->stats();
+  ASSERT_TRUE(settled.budget_limited) << "not settled after " << settled_after << " frames";
+  EXPECT_GT(settled.dropped, 0u) << "the view must need more than the budget";
+  EXPECT_GT(settled.budget_refused, 0u);
+  for (int k = 0; k < 20; ++k) frame();
+  const StreamingStats later = streamer->stats();
+  EXPECT_EQ(later.dropped, settled.dropped) << "dropped chunks were read again";
+  EXPECT_EQ(later.loads, settled.loads);
+  EXPECT_EQ(later.requests, settled.requests);
+  EXPECT_TRUE(later.budget_limited);
+  EXPECT_LE(later.resident_bytes, later.budget_bytes);
+  streamer->evict_all();
+  for (int k = 0; k < 2; ++k) frame();
+  streamer->wait_idle();
+  EXPECT_GT(streamer->stats().loads, later.loads) << "room made: the refused chunks are asked for again";
 }
 
 TEST(Streaming, WithEnoughMemoryTheStreamedSelectionMatchesTheInMemoryOne) {
