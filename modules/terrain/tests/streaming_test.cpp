@@ -149,17 +149,21 @@ TEST(ChunkFile, RandomDamageNeverCrashes) {
   fs::remove(bad);
 }
 
-// Streams along a flight: the budget holds every frame, everything drawn is resident, and a
-// chunk whose children are missing is drawn in their place.
-TEST(Streaming, BudgetIsRespectedAndMissingChunksDrawTheirParent) {
-  Built& b = built();
-  auto file = ChunkFile::open(b.path).value();
+// A streamer whose budget is `share` of the decoded meshes of the file's whole tree.
+std::unique_ptr<ChunkStreamer> streamer_with_share(const std::shared_ptr<const ChunkFile>& file, double share) {
   std::size_t total = 0;
   for (std::uint32_t i = 0; i < file->tree().chunk_count(); ++i)
     if (file->tree().chunk(i).present) total += file->mesh_bytes(i);
   StreamingSettings ss;
-  ss.memory_budget_mb = static_cast<double>(total) / 1048576.0 / 6.0;  // a sixth of the whole tree
-  auto streamer = ChunkStreamer::create(file, ss).value();
+  ss.memory_budget_mb = static_cast<double>(total) / 1048576.0 * share;
+  return ChunkStreamer::create(file, ss).value();
+}
+
+// Streams along a flight: the budget holds every frame, everything drawn is resident, and a
+// chunk whose children are missing is drawn in their place.
+TEST(Streaming, BudgetIsRespectedAndMissingChunksDrawTheirParent) {
+  auto file = ChunkFile::open(built().path).value();
+  auto streamer = streamer_with_share(file, 1.0 / 6.0);  // a sixth of the whole tree
   LodSelector selector(file->tree());
   SeamCache seams;
   LodSettings ls;
@@ -196,14 +200,8 @@ TEST(Streaming, BudgetIsRespectedAndMissingChunksDrawTheirParent) {
 // growing, nothing pending, budget_limited), their parents are drawn; once room is made
 // (evict_all) they are asked for and loaded again.
 TEST(Streaming, AViewNeedingMoreThanTheBudgetSettles) {
-  Built& b = built();
-  auto file = ChunkFile::open(b.path).value();
-  std::size_t total = 0;
-  for (std::uint32_t i = 0; i < file->tree().chunk_count(); ++i)
-    if (file->tree().chunk(i).present) total += file->mesh_bytes(i);
-  StreamingSettings ss;
-  ss.memory_budget_mb = static_cast<double>(total) / 1048576.0 / 20.0;
-  auto streamer = ChunkStreamer::create(file, ss).value();
+  auto file = ChunkFile::open(built().path).value();
+  auto streamer = streamer_with_share(file, 1.0 / 20.0);
   LodSelector selector(file->tree());
   LodSettings ls;
   ls.max_pixel_error = 0.5f;
