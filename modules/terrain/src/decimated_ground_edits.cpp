@@ -22,16 +22,41 @@ Result<std::unique_ptr<DecimatedGroundEdits>> DecimatedGroundEdits::open(const C
   return std::unique_ptr<DecimatedGroundEdits>(new DecimatedGroundEdits(std::move(*field), stride));
 }
 
-DecimatedGroundEdits::DecimatedGroundEdits(HeightField baked, int stride)
-    : baked_(baked.samples()), painted_(std::move(baked)), stride_(stride) {}
+DecimatedGroundEdits::DecimatedGroundEdits(HeightField baked, int stride) : painted_(std::move(baked)), stride_(stride) {}
+
+std::uint32_t DecimatedGroundEdits::tile_of(int x, int z) const {
+  const int per_row = (painted_.columns() + kEditLayerTile - 1) / kEditLayerTile;
+  return static_cast<std::uint32_t>((z / kEditLayerTile) * per_row + x / kEditLayerTile);
+}
+
+float DecimatedGroundEdits::baked(int x, int z) const {
+  const auto tile = baked_tiles_.find(tile_of(x, z));
+  if (tile == baked_tiles_.end()) return painted_.sample(x, z);  // never written: still the file's
+  const int tx = x / kEditLayerTile * kEditLayerTile, tz = z / kEditLayerTile * kEditLayerTile;
+  const int width = std::min(kEditLayerTile, painted_.columns() - tx);
+  return tile->second[static_cast<std::size_t>(z - tz) * width + static_cast<std::size_t>(x - tx)];
+}
+
+void DecimatedGroundEdits::keep_baked_tiles(const SampleRect& r) {
+  for (int tz = r.z0 / kEditLayerTile * kEditLayerTile; tz < r.z1; tz += kEditLayerTile) {
+    for (int tx = r.x0 / kEditLayerTile * kEditLayerTile; tx < r.x1; tx += kEditLayerTile) {
+      auto [tile, added] = baked_tiles_.try_emplace(tile_of(tx, tz));
+      if (!added) continue;
+      const int width = std::min(kEditLayerTile, painted_.columns() - tx);
+      const int height = std::min(kEditLayerTile, painted_.rows() - tz);
+      tile->second.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+      for (int z = 0; z < height; ++z)
+        for (int x = 0; x < width; ++x)
+          tile->second[static_cast<std::size_t>(z) * width + static_cast<std::size_t>(x)] = painted_.sample(tx + x, tz + z);
+    }
+  }
+}
 
 std::vector<float> DecimatedGroundEdits::baked_ground() const {
   const int gc = ground_columns(), gr = ground_rows();
   std::vector<float> out(static_cast<std::size_t>(gc) * static_cast<std::size_t>(gr));
   for (int j = 0; j < gr; ++j)
-    for (int i = 0; i < gc; ++i)
-      out[static_cast<std::size_t>(j) * gc + i] =
-          baked_[static_cast<std::size_t>(j) * stride_ * painted_.columns() + static_cast<std::size_t>(i) * stride_];
+    for (int i = 0; i < gc; ++i) out[static_cast<std::size_t>(j) * gc + i] = baked(i * stride_, j * stride_);
   return out;
 }
 
@@ -54,7 +79,6 @@ Result<SampleRect> DecimatedGroundEdits::apply(const std::vector<float>& ground,
     }
   }
   const int s = stride_;
-  const auto baked = [&](int x, int z) { return baked_[static_cast<std::size_t>(z) * fc + static_cast<std::size_t>(x)]; };
   const auto node = [&](int i, int j) { return ground[static_cast<std::size_t>(j) * gc + static_cast<std::size_t>(i)]; };
   const auto unpainted = [&](int i, int j) {
     return std::bit_cast<std::uint32_t>(node(i, j)) == std::bit_cast<std::uint32_t>(baked(i * s, j * s));
@@ -64,6 +88,7 @@ Result<SampleRect> DecimatedGroundEdits::apply(const std::vector<float>& ground,
   // column also reach the samples beyond them (a field whose size is not a multiple of the stride).
   const SampleRect out{std::max((rect.x0 - 1) * s + 1, 0), std::max((rect.z0 - 1) * s + 1, 0),
                        rect.x1 >= gc ? fc : std::min(rect.x1 * s, fc), rect.z1 >= gr ? fr : std::min(rect.z1 * s, fr)};
+  keep_baked_tiles(out);  // before the first write: the file's samples of the tiles it touches
   for (int z = out.z0; z < out.z1; ++z) {
     const int j0 = std::min(z / s, gr - 1), j1 = std::min(j0 + 1, gr - 1);
     const double fz = static_cast<double>(z - j0 * s) / s;

@@ -376,7 +376,7 @@ class TerrainInstance final : public ModuleInstance {
   }
 
   // A stroke on a ground of every n-th sample (`rects`: ground samples): the painted exact field
-  // brought up to the ground there (read from the file at the first stroke: 8 bytes per field
+  // brought up to the ground there (read from the file at the first stroke: 4 bytes per field
   // sample, decimated_ground_edits.hpp), then the chunks it reaches rebuilt from it.
   Result<terrain::RegionRebuild> apply_decimated_edit(terrain::ChunkStreamer& streamer,
                                                       const std::vector<terrain::SampleRect>& rects) {
@@ -388,7 +388,7 @@ class TerrainInstance final : public ModuleInstance {
       log_info("terrain: painting the baked field's exact {}x{} samples (every {}th is the ground): read them in "
                "{:.0f} ms, {} MiB held while the scene is open",
                decimated_->field().columns(), decimated_->field().rows(), decimated_->stride(), watch.elapsed_ms(),
-               decimated_->field().samples().size() * 2 * sizeof(float) >> 20);
+               decimated_->field().samples().size() * sizeof(float) >> 20);
     }
     std::vector<terrain::SampleRect> exact;
     for (const terrain::SampleRect& r : rects) {

@@ -18,16 +18,18 @@
 // gives the same exact field bit for bit.
 //
 // Cost: the exact heights are read from the chunk file's height tiles once, at the first stroke (or
-// when a scene opens with painted tiles), never before: two copies of the field (the baked samples
-// and the painted ones), 8 bytes per sample: 512 MiB at 8193^2, 2 GiB at 16385^2; the streamer's
-// edit grids add 8 bytes per root-grid point (stream_edits.hpp). Per stroke: the stroke's exact
-// samples only.
+// when a scene opens with painted tiles), never before: the painted field, 4 bytes per sample
+// (256 MiB at 8193^2, 1 GiB at 16385^2), plus the baked samples of the 256^2 tiles strokes have
+// written (256 KiB each); the streamer's edit grids add 8 bytes per root-grid point
+// (stream_edits.hpp). Per stroke: the stroke's exact samples only.
 
 #include <sylva/core/height_field.hpp>
 #include <sylva/core/result.hpp>
 #include <sylva/terrain/edit_layer.hpp>
 
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 namespace sylva::terrain {
@@ -62,7 +64,13 @@ class DecimatedGroundEdits {
  private:
   DecimatedGroundEdits(HeightField baked, int stride);
 
-  std::vector<float> baked_;  // the file's exact heights, row by row
+  // Chunk file sample (x, z) as baked: kept per 256^2 tile the strokes have written, the painted
+  // field elsewhere (never written there).
+  float baked(int x, int z) const;
+  std::uint32_t tile_of(int x, int z) const;
+  void keep_baked_tiles(const SampleRect& samples);
+
+  std::unordered_map<std::uint32_t, std::vector<float>> baked_tiles_;  // tile index -> its baked samples
   HeightField painted_;
   int stride_ = 2;
 };
