@@ -677,18 +677,10 @@ class BitmaskMesher final : public Mesher {
     std::uint64_t same = 0;
     int x = 0;
 #if defined(__SSE2__)
-    for (; x + 16 <= n; x += 16) {
-      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
-      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
-      const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
-      const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
-      const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
-      same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
-    }
-    if (x < n && n >= 16) {
-      // The rest by one step overlapping the last (equal bits OR-ed twice): a scalar tail made
-      // the open rows of 62^3 chunks cost 14 compares each.
-      x = n - 16;
+    // 16 ids per step, the last step ending at row[n - 1] and overlapping the one before (equal
+    // bits OR-ed twice): a scalar tail made the open rows of 62^3 chunks cost 14 compares each.
+    for (int c = 0; n >= 16 && c < n; c += 16) {
+      x = std::min(c, n - 16);
       const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
       const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
       const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
