@@ -340,6 +340,7 @@ TEST_F(BakedEditsGl, ADecimatedGroundPaintsTheFieldsExactSamplesSavesReopensAndU
   const std::vector<float> unpainted = baked->ground()->samples();
   next_frame(*baked);
   EXPECT_EQ(exact_reads(), 0) << "no exact sample is read before the first stroke";
+  EXPECT_EQ(baked->module_stats()["terrain"]["baked_exact_bytes"], 0);
 
   // Two strokes, the second over the field's east edge (the padding beyond it).
   const TexelRect first{59, 45, 70, 56}, second{123, 72, 129, 79};
@@ -348,6 +349,8 @@ TEST_F(BakedEditsGl, ADecimatedGroundPaintsTheFieldsExactSamplesSavesReopensAndU
   EXPECT_EQ(paint(*baked, 64, 50, 5, 40.0f).x0, first.x0);
   next_frame(*baked);
   EXPECT_EQ(exact_reads(), 1) << "read once, at the first stroke";
+  // The 513^2 field and the baked samples of the 256^2 tiles the stroke wrote: (0, 0) and (1, 0).
+  EXPECT_EQ(baked->module_stats()["terrain"]["baked_exact_bytes"], (513u * 513u + 2u * 256u * 256u) * 4u);
   EXPECT_EQ(paint(*baked, 127, 75, 3, -25.0f).x1, second.x1);
   next_frame(*baked);
   set_log_sink(nullptr);

@@ -52,6 +52,12 @@ void DecimatedGroundEdits::keep_baked_tiles(const SampleRect& r) {
   }
 }
 
+std::size_t DecimatedGroundEdits::bytes() const {
+  std::size_t n = painted_.samples().size();
+  for (const auto& [index, tile] : baked_tiles_) n += tile.size();
+  return n * sizeof(float);
+}
+
 std::vector<float> DecimatedGroundEdits::baked_ground() const {
   const int gc = ground_columns(), gr = ground_rows();
   std::vector<float> out(static_cast<std::size_t>(gc) * static_cast<std::size_t>(gr));

@@ -220,6 +220,8 @@ class TerrainInstance final : public ModuleInstance {
       out["stream_edited_chunks"] = streamer->edited_chunks();
       out["baked_file_bytes"] = baked_bytes_;
       out["baked_ground_matches"] = ground_matches_ ? 1 : 0;
+      // The painted exact field of a ground of every n-th sample (0 until the first stroke).
+      out["baked_exact_bytes"] = decimated_ ? decimated_->bytes() : 0;
     }
     return out;
   }

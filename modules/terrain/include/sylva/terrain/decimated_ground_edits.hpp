@@ -58,6 +58,8 @@ class DecimatedGroundEdits {
   // The painted exact field (the file's size, spacing and origin; its min/max_height stay the
   // baked field's: recomputing them is a whole-field pass, and the edit path does not read them).
   const HeightField& field() const { return painted_; }
+  // Bytes held: the painted field plus the baked tiles kept.
+  std::size_t bytes() const;
   // The baked ground: the file's heights every stride-th sample (what the ground is unpainted).
   std::vector<float> baked_ground() const;
 
