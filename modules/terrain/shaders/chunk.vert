@@ -26,8 +26,7 @@ uniform ivec2 u_field_size;      // field samples (columns, rows): beyond them i
 #endif
 #if SYLVA_TERRAIN_AIR == 1
 #include "render/lib/fog.glsl"
-out vec3 v_air_transmittance;  // share of the surface colour that reaches the camera, per channel
-out vec3 v_air_inscatter;      // radiance scattered in along the view ray
+out vec3 v_air_extinction;  // air and haze extinction along the vertex's view ray [1/m], per channel
 #endif
 
 out vec3 v_rel;      // camera-relative position [m]
@@ -71,6 +70,6 @@ void main() {
   gl_ClipDistance[1] = float(u_field_size.y - 1) + 1e-3 - v_grid.y;
   gl_Position = u_view_projection * vec4(v_rel, 1.0);
 #if SYLVA_TERRAIN_AIR == 1
-  aerial_perspective(v_rel, v_air_transmittance, v_air_inscatter);
+  v_air_extinction = air_extinction(v_rel);
 #endif
 }

@@ -34,8 +34,7 @@ uniform vec4 u_flat_color;     // debug view 3, wireframe and bounds
 #define SYLVA_TERRAIN_AIR 0
 #endif
 #if SYLVA_TERRAIN_AIR == 1
-in vec3 v_air_transmittance;
-in vec3 v_air_inscatter;
+in vec3 v_air_extinction;
 #endif
 
 in vec3 v_rel;
@@ -98,7 +97,7 @@ void main() {
 #if SYLVA_TERRAIN_AIR == 0
   o_color = vec4(apply_fog(color, v_rel), 1.0);
 #elif SYLVA_TERRAIN_AIR == 1
-  o_color = vec4(color * v_air_transmittance + v_air_inscatter, 1.0);
+  o_color = vec4(air_from_vertex(color, v_rel, v_air_extinction), 1.0);
 #else
   o_color = vec4(color, 1.0);
 #endif

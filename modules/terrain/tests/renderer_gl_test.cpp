@@ -209,10 +209,10 @@ TEST_F(TerrainGl, DrawsShadedTerrainAndEveryDebugView) {
   EXPECT_GT(t.frame_stats().skirt_triangles, 0u);
 }
 
-// Issue 18: the air over the ground (terrain.render.aerial_perspective). Per vertex (evaluated in
-// chunk.vert, interpolated) stays within 2/255 of the per-pixel picture on every pixel but is
-// not the same program; off draws the ground without air: far ground keeps its own colour
-// instead of fading toward the sky's.
+// Issue 18: the air over the ground (terrain.render.aerial_perspective). Per vertex (the default:
+// extinction per metre evaluated in chunk.vert and interpolated) stays within 2/255 of the
+// per-pixel picture on every pixel but is not the same program; off draws the ground without
+// air: far ground keeps its own colour instead of fading toward the sky's.
 TEST_F(TerrainGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
   Scene s = ridged_scene(257, 40.0);
   TerrainRenderSettings rs;
@@ -220,6 +220,8 @@ TEST_F(TerrainGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
   auto r = TerrainRenderer::create(s.tree, &s.field, rs);
   ASSERT_TRUE(r.ok()) << r.error().describe();
   TerrainRenderer& t = **r;
+  EXPECT_EQ(t.settings().aerial_perspective, AerialPerspective::kPerVertex) << "the default";
+  t.settings().aerial_perspective = AerialPerspective::kPerPixel;
   GlTarget target = hazy_target(256, 144);
   const double ground = s.field.height(600.0, 700.0);
   const render::Camera cam = camera_at({600.0, ground + 400.0, 700.0}, glm::radians(-135.0f), glm::radians(-8.0f));

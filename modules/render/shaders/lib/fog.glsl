@@ -22,15 +22,18 @@ float fog_transmittance(vec3 rel_pos) {
   return clamp(exp(-sylva_fog.a * length(rel_pos) * layer_along(sylva_params.x, rel_pos.y)), 0.0, 1.0);
 }
 
-// Transmittance of the air itself (per channel): Rayleigh and aerosol extinction with their
+// Optical depth of the air itself (per channel): Rayleigh and aerosol extinction with their
 // scale heights, world y taken as the altitude above sea level (clamped at 0).
-vec3 air_transmittance(vec3 rel_pos) {
+vec3 air_optical_depth(vec3 rel_pos) {
   float d = length(rel_pos);
   float cam_y = max(sylva_params.y, 0.0);
   float rayleigh = exp(-sylva_rayleigh.w * cam_y) * d * layer_along(sylva_rayleigh.w, rel_pos.y);
   float mie = exp(-sylva_mie.y * cam_y) * d * layer_along(sylva_mie.y, rel_pos.y);
-  return exp(-(sylva_rayleigh.rgb * rayleigh + sylva_mie.x * mie));
+  return sylva_rayleigh.rgb * rayleigh + sylva_mie.x * mie;
 }
+
+// Transmittance of the air itself (per channel).
+vec3 air_transmittance(vec3 rel_pos) { return exp(-air_optical_depth(rel_pos)); }
 
 // The surface colour seen through the air and haze: what passes, plus the light scattered in,
 // which tends to the sky radiance of the same direction far away (Hillaire 2020 sec. 5.4
@@ -46,15 +49,27 @@ vec3 apply_fog(vec3 color, vec3 rel_pos) {
   return color * t + atmosphere_radiance(dir) * (1.0 - t);
 }
 
-// apply_fog split for evaluation at a vertex (the terrain's per-vertex aerial perspective):
-// a surface colour c becomes c * transmittance + inscatter, the same terms as apply_fog's.
-void aerial_perspective(vec3 rel_pos, out vec3 transmittance, out vec3 inscatter) {
+// apply_fog split for evaluation at a vertex (the terrain's per-vertex aerial perspective): the
+// extinction of air and haze per metre along the view ray (optical depth / distance, per
+// channel), which depends on the ray's direction and varies smoothly across a triangle, so a
+// vertex shader evaluates and interpolates it. air_from_vertex multiplies it by the pixel's own
+// distance and applies the exponential, the near-surface cut-off and the sky look-up per pixel:
+// interpolating the transmittance itself missed by up to 4/255 on the far shore of the shipped
+// lake, the optical depth by 23/255 where a big near triangle's vertices are far from the camera
+// and its inside is not, and the sky radiance by 3/255 along the horizon, where the sky table's
+// rows go with sqrt(dir.y).
+vec3 air_extinction(vec3 rel_pos) {
   float len = length(rel_pos);
+  vec3 depth = air_optical_depth(rel_pos) + sylva_fog.a * len * layer_along(sylva_params.x, rel_pos.y);
+  return len > 0.0 ? depth / len : vec3(0.0);
+}
+
+vec3 air_from_vertex(vec3 color, vec3 rel_pos, vec3 extinction) {
+  float len = length(rel_pos);
+  vec3 t = exp(-extinction * len);
+  if (min(t.r, min(t.g, t.b)) > 0.998) return color * t;
   vec3 dir = len > 0.0 ? rel_pos / len : vec3(0.0, 0.0, -1.0);
-  transmittance = air_transmittance(rel_pos) * fog_transmittance(rel_pos);
-  inscatter = min(transmittance.r, min(transmittance.g, transmittance.b)) > 0.998
-                  ? vec3(0.0)
-                  : atmosphere_radiance(dir) * (1.0 - transmittance);
+  return color * t + atmosphere_radiance(dir) * (1.0 - t);
 }
 
 #endif

@@ -44,11 +44,13 @@ constexpr std::array<EnumName<DebugView>, 5> enum_names(DebugView) {
 }
 
 // The air between the camera and the ground (render/lib/fog.glsl: Rayleigh and aerosol
-// transmittance, haze, in-scattering toward the sky's colour). kPerPixel evaluates it for every
-// pixel (the reference picture); kPerVertex at the chunk vertices, interpolated across each
-// triangle (far fewer vertices than pixels at tau = 1 px; README "vs CDLOD" has the picture
-// difference); kOff draws the ground without air, as BaronVerde/cdlod does (the race scene's "fog
-// off"; far ground then no longer meets the horizon in the sky's colour).
+// extinction, haze, in-scattering toward the sky's colour). kPerPixel evaluates it all for every
+// pixel (apply_fog); kPerVertex (default) evaluates the extinction per metre at the chunk
+// vertices (air_extinction) and interpolates it, the pixel keeping its own distance, exponential
+// and sky look-up (air_from_vertex): within 1/255 of kPerPixel on the race view and the shipped
+// terrain and lake scenes (README "vs CDLOD"), a few per cent cheaper; kOff draws the ground
+// without air, as BaronVerde/cdlod does (the race scene's "fog off"; far ground then no longer
+// meets the horizon in the sky's colour).
 enum class AerialPerspective : std::uint8_t { kPerPixel, kPerVertex, kOff };
 constexpr std::array<EnumName<AerialPerspective>, 3> enum_names(AerialPerspective) {
   return {{{AerialPerspective::kPerPixel, "per_pixel"},
@@ -60,7 +62,7 @@ struct TerrainRenderSettings {
   LodSettings lod;
   MaterialSettings material;
   DebugView debug_view = DebugView::kShaded;
-  AerialPerspective aerial_perspective = AerialPerspective::kPerPixel;
+  AerialPerspective aerial_perspective = AerialPerspective::kPerVertex;
   bool wireframe = false;       // chunk triangles as lines over the shaded terrain
   bool chunk_bounds = false;    // bounding boxes of the drawn chunks
   bool receive_shadows = true;  // sample the host's cascaded shadows (needs ShadowMaps::bind())
@@ -73,7 +75,7 @@ struct TerrainRenderSettings {
     v(material, "material");
     v(debug_view, "debug_view", {.help = "shaded, lod_colors, morph, flat or materials"});
     v(aerial_perspective, "aerial_perspective",
-      {.help = "The air over the ground: per_pixel, per_vertex (cheaper, interpolated) or off"});
+      {.help = "The air over the ground: per_vertex (extinction interpolated), per_pixel or off"});
     v(wireframe, "wireframe", {.help = "Draw triangle edges"});
     v(chunk_bounds, "chunk_bounds", {.help = "Draw the drawn chunks' bounding boxes"});
     v(receive_shadows, "receive_shadows", {.help = "Receive cascaded shadows", .rebuild = Rebuild::kGpu});
@@ -184,7 +186,7 @@ class TerrainRenderer final : public render::Drawable {
   std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
-  AerialPerspective shaded_air_ = AerialPerspective::kPerPixel;
+  AerialPerspective shaded_air_ = AerialPerspective::kPerVertex;
   render::Texture heights_;
   bool has_heights_ = false;
   std::int64_t height_texels_uploaded_ = 0;
