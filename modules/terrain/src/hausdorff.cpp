@@ -1,5 +1,7 @@
 #include <sylva/terrain/simplify.hpp>
 
+#include "simplify_mesh_ops.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
@@ -8,36 +10,7 @@ namespace sylva::terrain {
 
 namespace {
 
-// Closest point on triangle (Ericson, Real-Time Collision Detection §5.1.5), squared distance.
-double point_triangle_dist2(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return glm::dot(ap, ap);
-  const glm::dvec3 bp = p - b;
-  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return glm::dot(bp, bp);
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const glm::dvec3 q = a + ab * (d1 / (d1 - d3));
-    return glm::dot(p - q, p - q);
-  }
-  const glm::dvec3 cp = p - c;
-  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return glm::dot(cp, cp);
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const glm::dvec3 q = a + ac * (d2 / (d2 - d6));
-    return glm::dot(p - q, p - q);
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const glm::dvec3 q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    return glm::dot(p - q, p - q);
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  const glm::dvec3 q = a + ab * (vb * denom) + ac * (vc * denom);
-  return glm::dot(p - q, p - q);
-}
+using detail::point_triangle_dist2;
 
 // Uniform grid over a triangle set for nearest-surface queries.
 class TriangleGrid {

@@ -1,6 +1,7 @@
 #include <sylva/terrain/simplify.hpp>
 
 #include "quadric.hpp"
+#include "simplify_flip.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,10 +13,12 @@ namespace sylva::terrain {
 
 namespace {
 
+using detail::build_fans;
+using detail::Corner;
+using detail::kCosLimit;
 using detail::Quadric;
 
 constexpr std::uint32_t kNone = 0xFFFFFFFFu;
-constexpr double kCosLimit = 0.35;  // refuse normals turning by more than ~70 degrees (as simplify_qem)
 // A pass stops past kGoalFactor x the cost of the goal-th proposal (once a sixth of the goal is
 // done). Measured against meshoptimizer 1.2 on the bunny, armadillo, dragon and terrain segments at
 // 25 % and 5 % (README "vs meshoptimizer 1.2"): 1.3 / 1.5 / 2.0 cost passes or error; 1.4 kept
@@ -24,12 +27,6 @@ constexpr float kGoalFactor = 1.4f;
 // A vertex whose target is taken or whose collapse is invalid proposes its next best target at
 // most this often per pass: 1 left the dragon a pass behind the bunny, 4 gained nothing.
 constexpr std::uint8_t kRetries = 2;
-
-// One corner of a vertex's fan: triangle (v, next, prev) in the triangle's winding. Storing the
-// two other vertices directly (not the triangle index) saves an indirection in the hot loops.
-struct Corner {
-  std::uint32_t next, prev;
-};
 
 // Work arrays reused by every call on a thread (a model tree reduces thousands of segments; the
 // benchmark 16 per iteration), so a call allocates only its result once they have grown.
@@ -55,6 +52,12 @@ struct Scratch {
   std::vector<glm::vec3> normal;        // area-weighted original surface normal (rounded sum)
   std::vector<glm::dvec3> normal_sum;   // its exact accumulation
   std::vector<std::uint64_t> keys, keys_tmp;  // (cost bits << 32) | vertex
+  // For the edge-flip repair after the passes (simplify_flip.hpp): the original vertices each
+  // vertex absorbed (a chain through absorbed_next, its end in absorbed_last) and the input's fans.
+  std::vector<std::uint32_t> absorbed_next, absorbed_last;
+  std::vector<std::uint32_t> original_offset;
+  std::vector<Corner> original_fans;
+  detail::FlipScratch flip;
 };
 
 Scratch& scratch() {
@@ -93,25 +96,6 @@ float key_cost(std::uint64_t key) {
   float f;
   std::memcpy(&f, &bits, sizeof(f));
   return f;
-}
-
-// Vertex -> fan corners of the current triangles (counting sort into CSR).
-void build_fans(Scratch& s, std::size_t nv) {
-  s.offset.assign(nv + 1, 0u);
-  for (std::uint32_t v : s.tris) ++s.offset[v + 1];
-  for (std::size_t i = 0; i < nv; ++i) s.offset[i + 1] += s.offset[i];
-  s.fans.resize(s.tris.size());
-  // Fill from the back using the end offsets; offset[v + 1] is decremented once per corner of v,
-  // ending at v's start, and is shifted back below.
-  for (std::size_t t = s.tris.size(); t > 0;) {
-    t -= 3;
-    const std::uint32_t a = s.tris[t], b = s.tris[t + 1], c = s.tris[t + 2];
-    s.fans[--s.offset[c + 1]] = {a, b};
-    s.fans[--s.offset[b + 1]] = {c, a};
-    s.fans[--s.offset[a + 1]] = {b, c};
-  }
-  for (std::size_t i = 0; i < nv; ++i) s.offset[i] = s.offset[i + 1];
-  s.offset[nv] = static_cast<std::uint32_t>(s.tris.size());
 }
 
 // v's cheapest half-edge collapse on the pass-start fan: the cost of moving v onto u is
@@ -208,7 +192,9 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   s.normal.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) s.normal[i] = glm::vec3(s.normal_sum[i]);
 
-  build_fans(s, nv);
+  build_fans(s.tris, nv, s.offset, s.fans);
+  s.original_offset = s.offset;
+  s.original_fans = s.fans;
   // Open boundary: a vertex is interior when its fan is closed, i.e. the vertices following it in
   // its triangles are the vertices preceding it (an edge a->b without b->a leaves b unmatched in
   // a's fan). Locked vertices need no test: an open edge locks both its ends, and each end sees
@@ -240,9 +226,12 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   float max_cost = 0.0f;
   s.banned.assign(nv, kNone);
   s.tries.resize(nv);
+  s.absorbed_next.assign(nv, kNone);
+  s.absorbed_last.resize(nv);
+  for (std::uint32_t v = 0; v < nv; ++v) s.absorbed_last[v] = v;
   while (triangles > target_triangles) {
     ++st.passes;
-    if (!first) build_fans(s, nv);
+    if (!first) build_fans(s.tris, nv, s.offset, s.fans);
     first = false;
     const Corner* fans = s.fans.data();
     // Every free vertex proposes its cheapest collapse. Boundary vertices are locked, so a free
@@ -361,19 +350,13 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
         if (b == c || b == u || c == u) continue;
         const glm::dvec3 pb(s.pos[b]), pc(s.pos[c]);
         const glm::dvec3 n0 = glm::cross(pb - pv, pc - pv);
-        const glm::dvec3 e1 = pb - pu, e2 = pc - pu, e3 = pc - pb;
-        const glm::dvec3 n1 = glm::cross(e1, e2);
+        const glm::dvec3 n1 = glm::cross(pb - pu, pc - pu);
         const double l1 = glm::dot(n1, n1);
-        // Degenerate: the smallest angle (between the two longest edges) has sin^2 <= 1e-10, which
-        // is stricter than check_mesh's 1e-12 whichever corner it measures from.
-        const double d1 = glm::dot(e1, e1), d2 = glm::dot(e2, e2), d3 = glm::dot(e3, e3);
-        if (l1 <= 1e-10 * std::max({d1 * d2, d1 * d3, d2 * d3})) ok = false;
+        if (detail::degenerate_triangle(pu, pb, pc, n1)) ok = false;
         else if (glm::dot(n0, n1) <= kCosLimit * std::sqrt(glm::dot(n0, n0) * l1)) ok = false;
         else {
-          // Facing the original surface, with a margin covering the float rounding of the normals.
           const glm::dvec3 ref = glm::dvec3(s.normal[u]) + glm::dvec3(s.normal[b]) + glm::dvec3(s.normal[c]);
-          const double f = glm::dot(n1, ref);
-          if (f <= 0.0 || f * f <= 1e-12 * l1 * glm::dot(ref, ref)) ok = false;
+          if (!detail::faces_surface(n1, ref)) ok = false;
         }
       }
       if (!ok) {
@@ -398,6 +381,8 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
       if (u == v) continue;
       s.q[u] += s.q[v];
       s.weight[u] += s.weight[v];
+      s.absorbed_next[s.absorbed_last[u]] = v;
+      s.absorbed_last[u] = s.absorbed_last[v];
     }
     std::size_t out = 0;
     for (std::size_t t = 0; t < s.tris.size(); t += 3) {
@@ -410,6 +395,11 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
     }
     s.tris.resize(out);
     triangles = out / 3;
+  }
+  // The worst spots left between the vertices: bounded edge flips (simplify_flip.hpp).
+  if (st.passes > 0) {
+    const detail::FlipInputs in{s.pos, s.normal, s.q, s.weight, s.absorbed_next, s.original_offset, s.original_fans};
+    st.flips = detail::flip_worst_edges(in, s.tris, nv, s.flip);
   }
   if (stats) *stats = st;
   std::vector<std::uint32_t> result(s.tris.size());

@@ -2,9 +2,10 @@
 // Triangle reduction with locked vertices (seed 002 §4.2-4.3) and its measured error.
 //
 // All functions take the full position array and a triangle list indexing it; the result is a
-// triangle list over the same positions. Both reducers only ever merge a vertex into one of its
-// neighbours (half-edge collapse), so the result's vertices are a subset of the input's and a
-// locked vertex keeps its exact position: segment borders stay bit-identical.
+// triangle list over the same positions. The reducers only ever merge a vertex into one of its
+// neighbours (half-edge collapse; the pass-wise QEM also flips a few interior edges at the end),
+// so the result's vertices are a subset of the input's and a locked vertex keeps its exact
+// position: segment borders stay bit-identical.
 
 #include <glm/glm.hpp>
 
@@ -19,6 +20,7 @@ struct SimplifyStats {
   std::size_t collapses = 0;
   std::size_t rejected = 0;  // collapses refused by the validity tests (QEM)
   std::size_t passes = 0;    // seed and pass-wise QEM reducers: passes over the mesh
+  std::size_t flips = 0;     // pass-wise QEM: edges flipped by its final repair
 };
 
 // Garland-Heckbert quadric error metric (area-weighted plane quadrics), cheapest collapse first.
@@ -36,7 +38,10 @@ std::vector<std::uint32_t> simplify_qem(std::span<const glm::vec3> positions, st
 // the pass is applied; validity is tested on the current mesh, so the guarantees are the queue's.
 // Faster than meshoptimizer 0.18's meshopt_simplify on the benchmark segments, at a lower
 // error than the queue (bench/simplify_bench.cpp, README Results). Vertices on an open boundary
-// are treated as locked. Reuses per-thread work arrays (no allocation but the result once they
+// are treated as locked. After the passes, a bounded repair flips up to max(8, triangles / 500)
+// interior edges whose midpoint lies worst, each only when the original surface around it,
+// measured exactly, comes closer (src/simplify_flip.hpp; stats->flips counts them): the edge
+// between two large triangles can cross a valley that no vertex quadric sees. Reuses per-thread work arrays (no allocation but the result once they
 // have grown); deterministic.
 std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positions,
                                                std::span<const std::uint32_t> indices,
