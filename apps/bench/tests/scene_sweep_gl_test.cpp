@@ -63,15 +63,11 @@ TEST(BenchSceneSweep, GroundSceneResolutionSweep) {
 }
 
 #ifdef SYLVA_BENCH_WITH_TERRAIN
-// The scene's terrain (modules/scene terrain section drawn by the terrain module's renderer):
-// the bench reads the drawn chunks' largest projected geometric error and the chunks per LOD
-// level. tau bounds the error of every chunk that could have been refined (the "certified"
-// metric) and, since the leaves are exact (terrain README, "Meshes"), the drawn maximum too,
-// although the path comes within 3 m of a leaf box (reduced leaves drew 1.27 px at tau 1 here).
-TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
-  const fs::path out = test_dir("terrain");
-  const fs::path scene = out / "terrain_small.json";
-  ASSERT_TRUE(sylva::write_file_atomic(scene, R"({
+// A 1 km fBm terrain (257^2 samples, 17-vertex chunks) with its tree cached in dir/cache and a
+// two-key camera path "fly"; returns the scene file (empty if it could not be written).
+fs::path write_small_terrain_scene(const fs::path& dir) {
+  const fs::path scene = dir / "terrain_small.json";
+  const bool written = sylva::write_file_atomic(scene, R"({
   "sylva_scene": 1,
   "camera": {"position": [-400.0, 60.0, 400.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0},
   "sun": {"azimuth_deg": 200.0, "elevation_deg": 35.0},
@@ -82,7 +78,19 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
   "camera_paths": {"fly": {"keys": [
     {"time_s": 0.0, "position": [-400.0, 60.0, 400.0], "height_mode": "above_ground", "yaw_deg": -45.0, "pitch_deg": -10.0},
     {"time_s": 4.0, "position": [200.0, 40.0, -150.0], "height_mode": "above_ground", "yaw_deg": -40.0, "pitch_deg": -8.0}]}}
-})").ok());
+})").ok();
+  return written ? scene : fs::path();
+}
+
+// The scene's terrain (modules/scene terrain section drawn by the terrain module's renderer):
+// the bench reads the drawn chunks' largest projected geometric error and the chunks per LOD
+// level. tau bounds the error of every chunk that could have been refined (the "certified"
+// metric) and, since the leaves are exact (terrain README, "Meshes"), the drawn maximum too,
+// although the path comes within 3 m of a leaf box (reduced leaves drew 1.27 px at tau 1 here).
+TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
+  const fs::path out = test_dir("terrain");
+  const fs::path scene = write_small_terrain_scene(out);
+  ASSERT_FALSE(scene.empty());
   std::string output;
   const int code = run_bench("'" + scene.string() + "' --sweep terrain.render.lod.max_pixel_error=1,4 "
                        "--reference terrain.render.lod.max_pixel_error=0.05 --camera-path fly --frames 2 --warmup 1 "
@@ -150,6 +158,27 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
   auto html = sylva::read_file(out / "o" / "report.html");
   ASSERT_TRUE(html.ok());
   EXPECT_NE(html->find("max geometric error px"), std::string::npos);
+}
+
+// Issue 18: terrain.render.aerial_perspective reached from a scene file through sylva-bench.
+// Against per_pixel in dense haze, per_vertex (the default) moves no pixel by 0.05 while off,
+// the ground without air, moves many.
+TEST(BenchSceneSweep, SceneTerrainAerialPerspectiveSettings) {
+  const fs::path out = test_dir("terrain_air");
+  const fs::path scene = write_small_terrain_scene(out);
+  ASSERT_FALSE(scene.empty());
+  std::string output;
+  const int code = run_bench("'" + scene.string() + "' --sweep terrain.render.aerial_perspective=per_vertex,off "
+                       "--reference terrain.render.aerial_perspective=per_pixel --set sun.fog_density=0.003 "
+                       "--camera-path fly --frames 2 --warmup 1 --size 96x54 --out '" + (out / "o").string() + "'",
+                       out / "log.txt", output);
+  ASSERT_EQ(code, 0) << output;
+  auto text = sylva::read_file(out / "o" / "results.json");
+  ASSERT_TRUE(text.ok());
+  const nlohmann::json j = nlohmann::json::parse(*text);
+  ASSERT_EQ(j["settings"].size(), 2u);
+  EXPECT_EQ(j["settings"][0]["image_error"]["share_exceeding_max"].get<double>(), 0.0) << "per_vertex";
+  EXPECT_GT(j["settings"][1]["image_error"]["share_exceeding_max"].get<double>(), 0.2) << "off";
 }
 #endif
 
