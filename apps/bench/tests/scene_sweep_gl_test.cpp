@@ -82,25 +82,36 @@ fs::path write_small_terrain_scene(const fs::path& dir) {
   return written ? scene : fs::path();
 }
 
+// sylva-bench on the small terrain scene in a fresh test folder `name` with `args`, along "fly",
+// 2 frames at 96x54: `out` is the folder, `output` the console text, `j` its results.json (two
+// settings expected).
+void run_small_terrain_sweep(const std::string& name, const std::string& args, fs::path& out, std::string& output,
+                             nlohmann::json& j) {
+  out = test_dir(name);
+  const fs::path scene = write_small_terrain_scene(out);
+  ASSERT_FALSE(scene.empty());
+  const int code = run_bench("'" + scene.string() + "' " + args + " --camera-path fly --frames 2 --warmup 1 --size 96x54 "
+                             "--out '" + (out / "o").string() + "'",
+                             out / "log.txt", output);
+  ASSERT_EQ(code, 0) << output;
+  auto text = sylva::read_file(out / "o" / "results.json");
+  ASSERT_TRUE(text.ok());
+  j = nlohmann::json::parse(*text);
+  ASSERT_EQ(j["settings"].size(), 2u);
+}
+
 // The scene's terrain (modules/scene terrain section drawn by the terrain module's renderer):
 // the bench reads the drawn chunks' largest projected geometric error and the chunks per LOD
 // level. tau bounds the error of every chunk that could have been refined (the "certified"
 // metric) and, since the leaves are exact (terrain README, "Meshes"), the drawn maximum too,
 // although the path comes within 3 m of a leaf box (reduced leaves drew 1.27 px at tau 1 here).
 TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
-  const fs::path out = test_dir("terrain");
-  const fs::path scene = write_small_terrain_scene(out);
-  ASSERT_FALSE(scene.empty());
+  fs::path out;
   std::string output;
-  const int code = run_bench("'" + scene.string() + "' --sweep terrain.render.lod.max_pixel_error=1,4 "
-                       "--reference terrain.render.lod.max_pixel_error=0.05 --camera-path fly --frames 2 --warmup 1 "
-                       "--size 96x54 --out '" + (out / "o").string() + "'",
-                       out / "log.txt", output);
-  ASSERT_EQ(code, 0) << output;
-  auto text = sylva::read_file(out / "o" / "results.json");
-  ASSERT_TRUE(text.ok());
-  const nlohmann::json j = nlohmann::json::parse(*text);
-  ASSERT_EQ(j["settings"].size(), 2u);
+  nlohmann::json j;
+  ASSERT_NO_FATAL_FAILURE(run_small_terrain_sweep(
+      "terrain", "--sweep terrain.render.lod.max_pixel_error=1,4 --reference terrain.render.lod.max_pixel_error=0.05",
+      out, output, j));
   const double taus[2] = {1.0, 4.0};
   for (int i = 0; i < 2; ++i) {
     const nlohmann::json& s = j["settings"][i];
@@ -164,19 +175,14 @@ TEST(BenchSceneSweep, SceneTerrainProjectedErrorWithinTau) {
 // Against per_pixel in dense haze, per_vertex (the default) moves no pixel by 0.05 while off,
 // the ground without air, moves many.
 TEST(BenchSceneSweep, SceneTerrainAerialPerspectiveSettings) {
-  const fs::path out = test_dir("terrain_air");
-  const fs::path scene = write_small_terrain_scene(out);
-  ASSERT_FALSE(scene.empty());
+  fs::path out;
   std::string output;
-  const int code = run_bench("'" + scene.string() + "' --sweep terrain.render.aerial_perspective=per_vertex,off "
-                       "--reference terrain.render.aerial_perspective=per_pixel --set sun.fog_density=0.003 "
-                       "--camera-path fly --frames 2 --warmup 1 --size 96x54 --out '" + (out / "o").string() + "'",
-                       out / "log.txt", output);
-  ASSERT_EQ(code, 0) << output;
-  auto text = sylva::read_file(out / "o" / "results.json");
-  ASSERT_TRUE(text.ok());
-  const nlohmann::json j = nlohmann::json::parse(*text);
-  ASSERT_EQ(j["settings"].size(), 2u);
+  nlohmann::json j;
+  ASSERT_NO_FATAL_FAILURE(run_small_terrain_sweep("terrain_air",
+                                                  "--sweep terrain.render.aerial_perspective=per_vertex,off "
+                                                  "--reference terrain.render.aerial_perspective=per_pixel "
+                                                  "--set sun.fog_density=0.003",
+                                                  out, output, j));
   EXPECT_EQ(j["settings"][0]["image_error"]["share_exceeding_max"].get<double>(), 0.0) << "per_vertex";
   EXPECT_GT(j["settings"][1]["image_error"]["share_exceeding_max"].get<double>(), 0.2) << "off";
 }
