@@ -68,7 +68,10 @@ void main() {
   if (!gl_FrontFacing) n = -n;
 #endif
   vec3 view = normalize(-v_rel_pos);
-  float spec_map = texture(u_specular, vec3(v_uv, float(v_layer))).r * b.material.x * u_specular_scale;
+  // Most of the world (grass, dirt, logs) has no specular: skip the specular map and the Phong
+  // lobes there (their product would be exactly 0), which llvmpipe otherwise runs per pixel.
+  bool specular = b.material.x > 0.0 && u_specular_scale > 0.0;
+  float spec_map = specular ? texture(u_specular, vec3(v_uv, float(v_layer))).r * b.material.x * u_specular_scale : 0.0;
   float shininess = max(b.material.y, 1.0);
   float ao = mix(1.0, v_ao, u_ao_strength);
 
@@ -80,13 +83,17 @@ void main() {
   // Blocky worlds have no indirect light but this term: a brighter sky (u_sky_light) keeps the
   // shaded sides and the ground under crowns readable, as games light them.
   vec3 color = (u_sky_light * hemisphere_ambient(n) + bounce) * ao * albedo.rgb;
-  color += sun_radiance() * lit * (lambert(n, l) * albedo.rgb + phong(n, view, l, shininess) * spec_map);
+  vec3 sun_lit = lambert(n, l) * albedo.rgb;
+  if (specular) sun_lit += phong(n, view, l, shininess) * spec_map;
+  color += sun_radiance() * lit * sun_lit;
   for (int i = 0; i < u_light_count; ++i) {
     vec3 d = u_light_pos[i].xyz - v_rel_pos;
     float dist = length(d);
     vec3 ld = d / max(dist, 1e-4);
     float att = 1.0 / (u_attenuation.x + u_attenuation.y * dist + u_attenuation.z * dist * dist);
-    color += att * u_light_color[i].rgb * (lambert(n, ld) * albedo.rgb + phong(n, view, ld, shininess) * spec_map);
+    vec3 point_lit = lambert(n, ld) * albedo.rgb;
+    if (specular) point_lit += phong(n, view, ld, shininess) * spec_map;
+    color += att * u_light_color[i].rgb * point_lit;
   }
   // The host's point lights (e.g. the scene's), same attenuation family, diffuse only.
   color += albedo.rgb * sylva_point_lights_diffuse(v_rel_pos, n);
