@@ -263,6 +263,15 @@ Status VoxelRenderer::build_programs() {
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, alpha, plant_depth_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, {}, plant_depth_opaque_program_));
+  // The depth pre-pass (depth_prepass): the colour programs' vertex shaders with the same
+  // defines, so every vertex lands on the same depth in both passes.
+  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/depth.frag"}, {}, plant_mesh_depth_program_));
+  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/depth.frag"}, alpha, plant_mesh_depth_alpha_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, tuft, tuft_depth_program_));
+  colour_programs_ = {&opaque_program_, &plant_opaque_program_, &plant_mesh_program_, &alpha_program_,
+                      &plant_alpha_program_, &plant_mesh_alpha_program_, &tuft_program_};
+  depth_programs_ = {&depth_program_, &plant_depth_opaque_program_, &plant_mesh_depth_program_, &depth_alpha_program_,
+                     &plant_depth_program_, &plant_mesh_depth_alpha_program_, &tuft_depth_program_};
   return ok_status();
 }
 
@@ -620,16 +629,14 @@ std::size_t VoxelRenderer::draw_baked(const BakedMesh& mesh, std::uint32_t group
   return static_cast<std::size_t>(std::count(plant_seen.begin(), plant_seen.end(), std::uint8_t{0}));
 }
 
-void VoxelRenderer::draw_far_meshes(const glm::mat4& view_projection, const glm::dvec3& origin,
+void VoxelRenderer::draw_far_meshes(const render::Program& program, const glm::dvec3& origin,
                                     const render::Frustum* culling, render::PassStats& stats) {
-  plant_mesh_program_.use();
-  plant_mesh_program_.set("u_view_projection", view_projection);
   for (ChunkGpu* gpu : visible_) {
     const BakedMesh& mesh = gpu->far_mesh;
     if (!mesh.ready || distance(gpu->box, origin) < settings_.plant_far_beyond) continue;
     if (culling && culling->classify(gpu->plant_box) == render::Containment::kOutside) continue;
     const glm::vec3 offset(gpu->origin - origin);
-    plant_mesh_program_.set("u_chunk_offset", offset);
+    program.set("u_chunk_offset", offset);
     mesh.vertices.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
     mesh.vao.bind();
     ++stats_.plant_far_chunks;
@@ -686,13 +693,13 @@ void VoxelRenderer::draw_near_meshes(bool alpha_cut, const render::Program& prog
   vao_.bind();
 }
 
-void VoxelRenderer::draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection,
-                               const glm::dvec3& origin, render::PassStats& stats) {
-  tuft_program_.set("u_view_projection", view_projection);
-  tuft_program_.set("u_instance_base", 0u);
+void VoxelRenderer::draw_tufts(const render::Program& program, std::span<ChunkGpu* const> chunks,
+                               const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats) {
+  program.set("u_view_projection", view_projection);
+  program.set("u_instance_base", 0u);
   for (ChunkGpu* gpu : chunks) {
     if (gpu->tuft_count == 0) continue;
-    tuft_program_.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
+    program.set("u_chunk_offset", glm::vec3(gpu->origin - origin));
     gpu->tufts.bind_base(GL_SHADER_STORAGE_BUFFER, kPlantBinding);
     glDrawArraysInstanced(GL_TRIANGLES, 0, 12, static_cast<GLsizei>(gpu->tuft_count));
     ++stats.draw_calls;
@@ -759,6 +766,33 @@ void VoxelRenderer::restore_block(const UboBinding& b) {
   }
 }
 
+void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::FrameContext* frame, const glm::mat4& vp,
+                                         const glm::dvec3& eye, const render::Frustum* culling, render::PassStats& stats) {
+  bind_common(*p.chunks, frame);
+  bind_common(*p.plants, frame);
+  draw_chunks(visible_, *p.chunks, *p.plants, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats, true);
+  const bool plants = settings_.draw_plants;
+  if (plants && (settings_.plant_far_mesh || settings_.plant_near_mesh)) {
+    bind_common(*p.mesh, frame);
+    p.mesh->set("u_view_projection", vp);
+    if (settings_.plant_near_mesh) draw_near_meshes(false, *p.mesh, eye, 0.0, culling, stats);
+    if (settings_.plant_far_mesh) draw_far_meshes(*p.mesh, eye, culling, stats);
+  }
+  glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
+  bind_common(*p.chunks_alpha, frame);
+  bind_common(*p.plants_alpha, frame);
+  draw_chunks(visible_, *p.chunks_alpha, *p.plants_alpha, true, vp, eye, settings_.leaf_back_faces_within,
+              settings_.plant_far_beyond, culling, stats, true);
+  if (plants && settings_.plant_near_mesh) {
+    bind_common(*p.mesh_alpha, frame);
+    p.mesh_alpha->set("u_view_projection", vp);
+    draw_near_meshes(true, *p.mesh_alpha, eye, settings_.leaf_back_faces_within, culling, stats);
+    glDisable(GL_CULL_FACE);
+  }
+  bind_common(*p.tufts, frame);
+  draw_tufts(*p.tufts, visible_, vp, eye, stats);
+}
+
 void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
   if (pass == render::Pass::kShadow) {
     // Inside ShadowMaps::render (the scene's shadow pass): cast into the cascade being drawn.
@@ -789,34 +823,35 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   glFrontFace(GL_CCW);  // the seed's "clockwise is front" is wrong for GL's default (errata)
   const glm::mat4 vp = frame.camera.view_projection();
   const glm::dvec3 eye = frame.camera.position();
-  bind_common(opaque_program_, &frame);
-  bind_common(plant_opaque_program_, &frame);
   // Opaque plant cubes are convex and back-face culled: the three faces turned to the eye are
   // all that can show. Leaf cubes show their far faces through their holes, near the camera.
   const render::Frustum frustum = frame.camera.frustum();
   const render::Frustum* culling = settings_.frustum_culling ? &frustum : nullptr;
-  draw_chunks(visible_, opaque_program_, plant_opaque_program_, false, vp, eye, 0.0, settings_.plant_far_beyond, culling,
-              stats, true);
-  const bool plants = settings_.draw_plants;
-  if (plants && (settings_.plant_far_mesh || settings_.plant_near_mesh)) {
-    bind_common(plant_mesh_program_, &frame);
-    plant_mesh_program_.set("u_view_projection", vp);
-    if (settings_.plant_near_mesh) draw_near_meshes(false, plant_mesh_program_, eye, 0.0, culling, stats);
-    if (settings_.plant_far_mesh) draw_far_meshes(vp, eye, culling, stats);
+  GLint depth_func = GL_LESS;
+  GLboolean depth_mask = GL_TRUE;
+  if (settings_.depth_prepass) {
+    // Depth first (colour writes off, the same vertex shaders, so the same depths), then colour
+    // with GL_EQUAL: every pixel is shaded once instead of once per surface drawn over it
+    // (llvmpipe's frame is mostly fragment shading; issue #18). The counts of the voxel stats
+    // are the colour pass's; the pass's draws and triangles include both.
+    glGetIntegerv(GL_DEPTH_FUNC, &depth_func);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
+    GLboolean color_mask[4];
+    glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const VoxelFrameStats counted = stats_;
+    draw_opaque_geometry(depth_programs_, nullptr, vp, eye, culling, stats);
+    stats_ = counted;
+    glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_CULL_FACE);
   }
-  glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
-  bind_common(alpha_program_, &frame);
-  bind_common(plant_alpha_program_, &frame);
-  draw_chunks(visible_, alpha_program_, plant_alpha_program_, true, vp, eye, settings_.leaf_back_faces_within,
-              settings_.plant_far_beyond, culling, stats, true);
-  if (plants && settings_.plant_near_mesh) {
-    bind_common(plant_mesh_alpha_program_, &frame);
-    plant_mesh_alpha_program_.set("u_view_projection", vp);
-    draw_near_meshes(true, plant_mesh_alpha_program_, eye, settings_.leaf_back_faces_within, culling, stats);
-    glDisable(GL_CULL_FACE);
+  draw_opaque_geometry(colour_programs_, &frame, vp, eye, culling, stats);
+  if (settings_.depth_prepass) {
+    glDepthFunc(static_cast<GLenum>(depth_func));
+    glDepthMask(depth_mask);
   }
-  bind_common(tuft_program_, &frame);
-  draw_tufts(visible_, vp, eye, stats);
   bind_common(horizon_program_, &frame);
   draw_horizon(vp, eye, stats);
   if (cull_was) glEnable(GL_CULL_FACE);

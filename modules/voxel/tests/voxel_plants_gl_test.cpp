@@ -1,7 +1,7 @@
 // Plants at world scale (issue #18, "Voxel world"): hidden plant faces and parts are skipped
 // without changing the picture, far chunks draw plant shells within a bounded image change,
-// plants are culled one by one inside chunks the view or a shadow cascade cuts, and near and far
-// plants baked into meshes draw the instanced picture.
+// plants are culled one by one inside chunks the view or a shadow cascade cuts, near and far
+// plants baked into meshes draw the instanced picture, and the depth pre-pass the one-pass one.
 
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/testing.hpp>
@@ -79,6 +79,7 @@ VoxelRenderSettings near_only() {
   VoxelRenderSettings s;
   s.plant_far_beyond = 1.0e6f;
   s.plant_near_mesh = false;
+  s.depth_prepass = false;  // one pass: coplanar faces resolve by draw order as GL_GREATER does
   return s;
 }
 
@@ -198,6 +199,36 @@ TEST_F(VoxelPlantsGl, BakedNearPlantsAreCulledOneByOne) {
   // And the same picture as the instanced culled plants.
   const Shot instanced = render_view(*w, near_only(), eye, target);
   EXPECT_LE(differing_pixels(instanced.image, culled.image, 0.02f), kBakedMeshPixelBudget);
+}
+
+TEST_F(VoxelPlantsGl, DepthPrePassShadesTheSamePicture) {
+  auto w = make_world();
+  ASSERT_TRUE(w);
+  const glm::dvec3 eye(-12.0, 42.0, -12.0), target(16.0, 22.0, 16.0);
+  VoxelRenderSettings one_pass;
+  one_pass.depth_prepass = false;
+  const Shot before = render_view(*w, one_pass, eye, target);
+  auto renderer = VoxelRenderer::create(w->world, w->generator, VoxelRenderSettings{});
+  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  auto scene = testing::VoxelGlScene::create(320, 180);
+  scene.camera.set_position(eye);
+  scene.camera.look_at(target);
+  scene.render(**renderer);
+  const Image after = scene.color();
+  const render::PassStats two_passes = scene.last_stats;
+  (*renderer)->settings().depth_prepass = false;
+  scene.render(**renderer);
+  const render::PassStats colour_only = scene.last_stats;
+  // The pre-pass draws the same geometry once more (depth only)...
+  EXPECT_EQ(two_passes.triangles, 2 * colour_only.triangles);
+  EXPECT_EQ(two_passes.draw_calls, 2 * colour_only.draw_calls);
+  // ...and the voxel counts are the colour pass's.
+  EXPECT_EQ((*renderer)->frame_stats().plant_triangles, before.stats.plant_triangles);
+  // Same picture: only pixels where two coplanar faces overlap exactly may swap (the last one
+  // drawn wins a GL_EQUAL test, the first one GL_GREATER): leaves touching leaves.
+  const std::size_t changed = differing_pixels(before.image, after, 0.02f);
+  RecordProperty("pixels_changed", static_cast<int>(changed));
+  EXPECT_LE(changed, static_cast<std::size_t>(before.image.width() * before.image.height() / 1000));
 }
 
 TEST_F(VoxelPlantsGl, PlantsAreCulledOneByOneInTheViewAndInShadowCascades) {

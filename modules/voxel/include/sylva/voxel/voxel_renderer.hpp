@@ -105,6 +105,9 @@ struct VoxelRenderSettings {
   // leaf_back_faces_within drawn two-sided, beyond it back-face culled); off: instanced cubes.
   // The colour pass only: shadows keep the instanced cubes. The same picture (issue #18).
   bool plant_near_mesh = true;
+  // Colour pass in two steps: depth only, then colour with GL_EQUAL, so each pixel is shaded
+  // once (the same picture; fewer shaded fragments where surfaces overlap).
+  bool depth_prepass = true;
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -139,6 +142,7 @@ struct VoxelRenderSettings {
     v(plant_far_cell, "plant_far_cell", {.min = 1.0, .max = 8.0, .help = "Edge of the far plants' grid in start block sizes (1 = the plant's own block size; 2 = coarser shells, fewer cubes)", .rebuild = Rebuild::kGpu});
     v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
     v(plant_near_mesh, "plant_near_mesh", {.help = "Near plants' exact parts as baked meshes per chunk (faces pre-transformed, indexed, per-plant culling kept) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
+    v(depth_prepass, "depth_prepass", {.help = "Draw depth first, then colour with an equal depth test: each pixel shaded once (the same picture)"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
@@ -232,8 +236,17 @@ class VoxelRenderer final : public render::Drawable {
                          std::span<const std::uint32_t> plant_starts, BakedMesh& out);
   void upload_tufts(const ChunkCoord& c, ChunkGpu& gpu);
   void update_view_distance(const glm::dvec3& eye);
-  void draw_tufts(std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection, const glm::dvec3& origin,
-                  render::PassStats& stats);
+  void draw_tufts(const render::Program& program, std::span<ChunkGpu* const> chunks, const glm::mat4& view_projection,
+                  const glm::dvec3& origin, render::PassStats& stats);
+  // The programs of one run through the opaque pass's geometry: colour, or depth only (pre-pass).
+  struct OpaquePrograms {
+    const render::Program *chunks = nullptr, *plants = nullptr, *mesh = nullptr;
+    const render::Program *chunks_alpha = nullptr, *plants_alpha = nullptr, *mesh_alpha = nullptr, *tufts = nullptr;
+  };
+  // Chunks, plants (instanced and baked) and tufts of visible_, opaque then cut-out, with `p`
+  // (`frame` null for the depth programs). Leaves back-face culling off.
+  void draw_opaque_geometry(const OpaquePrograms& p, const render::FrameContext* frame, const glm::mat4& vp,
+                            const glm::dvec3& eye, const render::Frustum* culling, render::PassStats& stats);
   void draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
   void draw_translucent(const render::FrameContext& frame, render::PassStats& stats);
   void sort_translucent(ChunkGpu& gpu, const glm::dvec3& eye);
@@ -243,7 +256,8 @@ class VoxelRenderer final : public render::Drawable {
                    double full_cubes_within, double far_beyond, const render::Frustum* culling,
                    render::PassStats& stats, bool baked_plants = false);
   // The far chunks' baked shells (plant_far_mesh), in the opaque colour pass after draw_chunks.
-  void draw_far_meshes(const glm::mat4& view_projection, const glm::dvec3& origin, const render::Frustum* culling,
+  // `program` is bound by the caller.
+  void draw_far_meshes(const render::Program& program, const glm::dvec3& origin, const render::Frustum* culling,
                        render::PassStats& stats);
   // The near chunks' baked plants (plant_near_mesh) of one class (opaque / cut-out), colour pass;
   // `program` is bound by the caller. Cut-out chunks at least `full_within` away are drawn
@@ -275,6 +289,8 @@ class VoxelRenderer final : public render::Drawable {
       plant_mesh_alpha_program_;
   render::Program tuft_program_, horizon_program_, translucent_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
+  render::Program plant_mesh_depth_program_, plant_mesh_depth_alpha_program_, tuft_depth_program_;
+  OpaquePrograms colour_programs_, depth_programs_;
   render::Buffer no_shadows_ubo_;
   render::Buffer no_point_lights_ubo_;
   std::unique_ptr<render::ShadowCaster> caster_;
