@@ -24,9 +24,12 @@ uniform ivec2 u_field_size;      // field samples (columns, rows): beyond them i
 #ifndef SYLVA_TERRAIN_AIR
 #define SYLVA_TERRAIN_AIR 0
 #endif
-#if SYLVA_TERRAIN_AIR == 1
+#if SYLVA_TERRAIN_AIR == 1 || SYLVA_TERRAIN_AIR == 3
 #include "render/lib/fog.glsl"
 out vec3 v_air_extinction;  // air and haze extinction along the vertex's view ray [1/m], per channel
+#endif
+#if SYLVA_TERRAIN_AIR == 3
+out vec3 v_air_sky;  // sky radiance of the vertex's view direction (chunks below the camera)
 #endif
 
 out vec3 v_rel;      // camera-relative position [m]
@@ -69,7 +72,10 @@ void main() {
   gl_ClipDistance[0] = float(u_field_size.x - 1) + 1e-3 - v_grid.x;
   gl_ClipDistance[1] = float(u_field_size.y - 1) + 1e-3 - v_grid.y;
   gl_Position = u_view_projection * vec4(v_rel, 1.0);
-#if SYLVA_TERRAIN_AIR == 1
+#if SYLVA_TERRAIN_AIR == 1 || SYLVA_TERRAIN_AIR == 3
   v_air_extinction = air_extinction(v_rel);
+#endif
+#if SYLVA_TERRAIN_AIR == 3
+  v_air_sky = atmosphere_radiance(normalize(v_rel));
 #endif
 }

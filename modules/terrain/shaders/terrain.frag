@@ -28,13 +28,17 @@ uniform float u_spacing;
 uniform int u_level;           // LOD level of the chunk (debug)
 uniform vec4 u_flat_color;     // debug view 3, wireframe and bounds
 
-// Aerial perspective: 0 per pixel (apply_fog), 1 per vertex (chunk.vert), 2 off
+// Aerial perspective: 0 per pixel (apply_fog), 1 per vertex (chunk.vert), 2 off, 3 per vertex
+// with the sky radiance per vertex too (chunks below the camera)
 // (TerrainRenderSettings::aerial_perspective).
 #ifndef SYLVA_TERRAIN_AIR
 #define SYLVA_TERRAIN_AIR 0
 #endif
-#if SYLVA_TERRAIN_AIR == 1
+#if SYLVA_TERRAIN_AIR == 1 || SYLVA_TERRAIN_AIR == 3
 in vec3 v_air_extinction;
+#endif
+#if SYLVA_TERRAIN_AIR == 3
+in vec3 v_air_sky;
 #endif
 
 in vec3 v_rel;
@@ -98,6 +102,9 @@ void main() {
   o_color = vec4(apply_fog(color, v_rel), 1.0);
 #elif SYLVA_TERRAIN_AIR == 1
   o_color = vec4(air_from_vertex(color, v_rel, v_air_extinction), 1.0);
+#elif SYLVA_TERRAIN_AIR == 3
+  vec3 t = exp(-v_air_extinction * length(v_rel));
+  o_color = vec4(color * t + (min(t.r, min(t.g, t.b)) > 0.998 ? vec3(0.0) : v_air_sky * (1.0 - t)), 1.0);
 #else
   o_color = vec4(color, 1.0);
 #endif

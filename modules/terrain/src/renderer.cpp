@@ -24,11 +24,13 @@ constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2, kAttrCentre = 3
 // The colour-pass program of one debug view, with or without received shadows, with the air
 // per pixel, per vertex or off, fetching the detail scales from first_scale on (terrain.frag,
 // chunk.vert, material.glsl).
-Result<render::Program> make_shaded_program(bool shadows, DebugView view, AerialPerspective air, int first_scale = 0) {
+// vertex_sky: per_vertex air with the sky radiance per vertex as well (SYLVA_TERRAIN_AIR 3).
+Result<render::Program> make_shaded_program(bool shadows, DebugView view, AerialPerspective air, int first_scale = 0,
+                                            bool vertex_sky = false) {
   return render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
                                  {{"SYLVA_TERRAIN_SHADOWS", shadows ? "1" : "0"},
                                   {"SYLVA_TERRAIN_VIEW", std::to_string(static_cast<int>(view))},
-                                  {"SYLVA_TERRAIN_AIR", std::to_string(static_cast<int>(air))},
+                                  {"SYLVA_TERRAIN_AIR", vertex_sky ? "3" : std::to_string(static_cast<int>(air))},
                                   {"SYLVA_TERRAIN_FIRST_SCALE", std::to_string(first_scale)}});
 }
 
@@ -36,11 +38,11 @@ bool uses_material(DebugView view) { return view == DebugView::kShaded || view =
 
 // shaded_coarse_ for a view: the variants without the finer detail scales (empty where the view
 // has no material). Errors: the first variant that does not compile.
-Status make_coarse_programs(bool shadows, DebugView view, AerialPerspective air, render::Program (&coarse)[3]) {
-  for (int k = 0; k < 3; ++k) {
+Status make_coarse_programs(bool shadows, DebugView view, AerialPerspective air, render::Program (&coarse)[4]) {
+  for (int k = 0; k < 4; ++k) {
     coarse[k] = {};
-    if (!uses_material(view)) continue;
-    auto p = make_shaded_program(shadows, view, air, k + 1);
+    if (!uses_material(view) || (k == 3 && air != AerialPerspective::kPerVertex)) continue;
+    auto p = make_shaded_program(shadows, view, air, std::min(k + 1, 3), k == 3);
     if (!p.ok()) return p.error();
     coarse[k] = std::move(p).value();
   }
@@ -442,7 +444,8 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     // Each view's program has only the uniforms its view reads (the others are compiled out).
     const DebugView view = shaded_view_;
     const bool coarse = uses_material(view) && static_cast<bool>(shaded_coarse_[0]);
-    for (int k = 0; k < (coarse ? 4 : 1); ++k) {
+    const int programs = coarse ? (shaded_coarse_[3] ? 5 : 4) : 1;
+    for (int k = 0; k < programs; ++k) {
       const render::Program& p = k == 0 ? shaded_ : shaded_coarse_[k - 1];
       p.use();
       if (view == DebugView::kFlat) {
@@ -473,7 +476,11 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
           depth = std::min(depth, glm::dot(corner - eye, forward));
         }
         const int k = first_detail_scale(depth, lens.fov_y, lens.aspect, frame.viewport.y, settings_.material.detail_scale_m);
-        chunk_programs.push_back(k == 0 ? &shaded_ : &shaded_coarse_[k - 1]);
+        // Wholly below the camera (every view ray points down), a chunk without detail takes the
+        // sky radiance per vertex too: below the horizon it varies smoothly with the direction,
+        // unlike across it (the sky table's rows go with sqrt(dir.y)).
+        const bool vertex_sky = k == 3 && shaded_coarse_[3] && hi.y < eye.y;
+        chunk_programs.push_back(k == 0 ? &shaded_ : &shaded_coarse_[vertex_sky ? 3 : k - 1]);
       }
     }
     draw_geometry(shaded_, vp, levels, stats, false, nullptr, coarse ? &chunk_programs : nullptr);

@@ -181,8 +181,10 @@ class TerrainRenderer final : public render::Drawable {
   // wireframe overlay, compiled when first asked for.
   render::Program shaded_, flat_, depth_, bounds_;
   // shaded_ without the detail scales finer than 1, 2, 3 (none), for chunks beyond their fades
-  // (first_detail_scale); compiled for the shaded and materials views only.
-  render::Program shaded_coarse_[3];
+  // (first_detail_scale); compiled for the shaded and materials views only. [3]: no detail scale
+  // and the air's sky radiance per vertex too (per_vertex only), for such chunks wholly below
+  // the camera, where the sky below the horizon varies smoothly with the view direction.
+  render::Program shaded_coarse_[4];
   std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
