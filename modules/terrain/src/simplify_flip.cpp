@@ -115,22 +115,29 @@ bool closer_to_original(const FlipInputs& in, FlipScratch& s, std::uint32_t a, s
 std::size_t flip_worst_edges(const FlipInputs& in, std::vector<std::uint32_t>& tris, std::size_t nv,
                              FlipScratch& s) {
   build_fans(tris, nv, s.offset, s.fans);
-  // Every edge once (from the triangle where it runs from the lower id to the higher), then the
-  // worst by midpoint cost, highest first (ties by vertex ids: deterministic).
-  s.candidates.clear();
-  for (std::uint32_t a = 0; a < nv; ++a)
-    for (std::uint32_t i = s.offset[a]; i < s.offset[a + 1]; ++i) {
-      const std::uint32_t b = s.fans[i].next;
-      if (a < b) s.candidates.push_back({midpoint_cost(in, a, b), a, b, s.fans[i].prev});
-    }
-  const std::size_t keep = std::min(s.candidates.size(), std::max<std::size_t>(8, tris.size() / 3 / 500));
+  // Every edge once (from the triangle where it runs from the lower id to the higher); the worst
+  // `keep` by midpoint cost are kept in a bounded heap whose front is the least bad (ties by
+  // vertex ids: deterministic), then sorted worst first.
+  const std::size_t keep = std::max<std::size_t>(8, tris.size() / 3 / 500);
   const auto worse = [](const Candidate& x, const Candidate& y) {
     if (x.cost != y.cost) return x.cost > y.cost;
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   };
-  std::nth_element(s.candidates.begin(), s.candidates.begin() + static_cast<std::ptrdiff_t>(keep),
-                   s.candidates.end(), worse);
-  s.candidates.resize(keep);
+  s.candidates.clear();
+  for (std::uint32_t a = 0; a < nv; ++a)
+    for (std::uint32_t i = s.offset[a]; i < s.offset[a + 1]; ++i) {
+      const std::uint32_t b = s.fans[i].next;
+      if (a > b) continue;
+      const Candidate e{midpoint_cost(in, a, b), a, b, s.fans[i].prev};
+      if (s.candidates.size() < keep) {
+        s.candidates.push_back(e);
+        std::push_heap(s.candidates.begin(), s.candidates.end(), worse);
+      } else if (worse(e, s.candidates.front())) {
+        std::pop_heap(s.candidates.begin(), s.candidates.end(), worse);
+        s.candidates.back() = e;
+        std::push_heap(s.candidates.begin(), s.candidates.end(), worse);
+      }
+    }
   std::sort(s.candidates.begin(), s.candidates.end(), worse);
 
   s.flip_of.assign(nv, kNoVertex);
