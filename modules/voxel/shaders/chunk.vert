@@ -1,6 +1,7 @@
 #version 450 core
 // Chunk quads by vertex pulling: 6 vertices per PackedQuad (see mesher.hpp for the bit layout).
 #include "voxel/common.glsl"
+#include "voxel/air_vertex.glsl"
 
 layout(std430, binding = 1) readonly buffer VoxelQuads { uvec2 voxel_quads[]; };
 uniform uint u_quad_base;  // first quad of this draw (alpha-cut quads follow the opaque ones)
@@ -41,5 +42,6 @@ void main() {
   v_ao = float(ao[c]) / 3.0;
   v_layer = voxel_layer(block, axis, sign);
   v_block = block;
+  voxel_air_vertex(v_rel_pos);
   gl_Position = u_view_projection * vec4(v_rel_pos, 1.0);
 }

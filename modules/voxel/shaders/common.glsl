@@ -9,6 +9,13 @@ struct VoxelBlock {
   vec4 emission;   // rgb linear emitted light
   vec4 material;   // x specular intensity, y Phong shininess
 };
+// The air between the camera and a face (VoxelRenderSettings::aerial_perspective): 0 per pixel
+// (apply_fog in shade.frag), 1 per vertex (VOXEL_AIR_VERTEX in the vertex shaders: the
+// extinction per metre, interpolated; air_from_vertex per pixel), 2 off.
+#ifndef SYLVA_VOXEL_AIR
+#define SYLVA_VOXEL_AIR 0
+#endif
+
 layout(std430, binding = 3) readonly buffer VoxelBlocks { VoxelBlock voxel_blocks[]; };
 
 layout(binding = 0) uniform sampler2DArray u_diffuse;   // sRGB albedo + cut-out alpha

@@ -4,6 +4,7 @@
 // CROSS_QUADS builds the tuft variant (tufts.hpp): two crossed cut-out quads per instance, the
 // foot at center_size.xyz, height center_size.w, a turn about y, data.w = tint rgb + width (unorm8).
 #include "voxel/common.glsl"
+#include "voxel/air_vertex.glsl"
 
 struct PlantPartGpu {
   vec4 center_size;  // xyz centre relative to the chunk origin, w edge length
@@ -86,5 +87,6 @@ void main() {
   v_layer = voxel_layer(block, axis, sign);
 #endif
   v_block = block;
+  voxel_air_vertex(v_rel_pos);
   gl_Position = u_view_projection * vec4(v_rel_pos, 1.0);
 }

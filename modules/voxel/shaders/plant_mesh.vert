@@ -3,6 +3,7 @@
 // CPU, drawn indexed; vertex pulling by the index (gl_VertexID). The same varyings as plant.vert's
 // cubes, so shade.frag shades both alike.
 #include "voxel/common.glsl"
+#include "voxel/air_vertex.glsl"
 
 struct PlantMeshVertex {
   float px, py, pz;  // chunk-relative position, blocks
@@ -29,5 +30,6 @@ void main() {
   v_ao = 1.0;
   v_layer = voxel_layer(block, int(face >> 1), (face & 1u) != 0u ? -1 : 1);
   v_block = block;
+  voxel_air_vertex(v_rel_pos);
   gl_Position = u_view_projection * vec4(v_rel_pos, 1.0);
 }

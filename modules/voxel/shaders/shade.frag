@@ -2,7 +2,8 @@
 // Phong shading of voxel faces and plant parts (seed 004 §2.3): ambient scaled by ambient
 // occlusion, sun diffuse and specular (specular map, §2.3.2), point lights from emissive blocks
 // with attenuation 1 / (Kc + Kl d + Kq d^2) (§2.3.3.2), the host's point lights from the render
-// core (UBO 3), emission, fog, and the fade into the sky at the view distance
+// core (UBO 3), emission, the air (aerial perspective per pixel or per vertex, SYLVA_VOXEL_AIR),
+// and the fade into the sky at the view distance
 // (distance_fade.glsl). The ambient term is the render core's sky hemisphere plus sun light
 // bounced off the lit ground onto faces looking sideways or down, so a face turned away from the
 // sun is lit by sky and bounce light and never black. ALPHA_CUT builds the cut-out variant
@@ -43,8 +44,22 @@ in vec3 v_tint;
 #endif
 flat in uint v_layer;
 flat in uint v_block;
+#if SYLVA_VOXEL_AIR == 1
+in vec3 v_air_extinction;
+#endif
 
 out vec4 o_color;
+
+// The air between the camera and the face (SYLVA_VOXEL_AIR, common.glsl).
+vec3 voxel_air(vec3 color) {
+#if SYLVA_VOXEL_AIR == 0
+  return apply_fog(color, v_rel_pos);
+#elif SYLVA_VOXEL_AIR == 1
+  return air_from_vertex(color, v_rel_pos, v_air_extinction);
+#else
+  return color;
+#endif
+}
 
 float phong(vec3 n, vec3 view, vec3 l, float shininess) {
   return dot(n, l) > 0.0 ? pow(max(dot(view, reflect(-l, n)), 0.0), shininess) : 0.0;
@@ -99,8 +114,8 @@ void main() {
   color += albedo.rgb * sylva_point_lights_diffuse(v_rel_pos, n);
   color += b.emission.rgb * albedo.rgb * 2.0;
 #ifdef TRANSLUCENT
-  o_color = vec4(voxel_distance_fade(apply_fog(color, v_rel_pos), v_rel_pos), alpha);
+  o_color = vec4(voxel_distance_fade(voxel_air(color), v_rel_pos), alpha);
 #else
-  o_color = vec4(voxel_distance_fade(apply_fog(color, v_rel_pos), v_rel_pos), 1.0);
+  o_color = vec4(voxel_distance_fade(voxel_air(color), v_rel_pos), 1.0);
 #endif
 }

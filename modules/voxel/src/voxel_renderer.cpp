@@ -241,11 +241,16 @@ Status VoxelRenderer::set_shadow_receiver(ShadowReceiver receiver) {
 }
 
 Status VoxelRenderer::build_programs() {
+  // Every program gets the air's variant (SYLVA_VOXEL_AIR, common.glsl; the horizon's ignores
+  // it), the depth ones too, so the pre-pass runs the very vertex shaders of the colour pass.
+  const AerialPerspective air = settings_.aerial_perspective;
   const render::ShaderDefines alpha = {{"ALPHA_CUT", "1"}};
   const render::ShaderDefines tuft = {{"ALPHA_CUT", "1"}, {"CROSS_QUADS", "1"}};
-  auto make = [](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
-                 render::Program& out) -> Status {
-    auto p = render::Program::create(stages, defines);
+  auto make = [air](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
+                    render::Program& out) -> Status {
+    render::ShaderDefines with_air = defines;
+    with_air.emplace_back("SYLVA_VOXEL_AIR", std::to_string(static_cast<int>(air)));
+    auto p = render::Program::create(stages, with_air);
     if (!p.ok()) return p.error();
     out = std::move(*p);
     return ok_status();
@@ -272,6 +277,7 @@ Status VoxelRenderer::build_programs() {
                       &plant_alpha_program_, &plant_mesh_alpha_program_, &tuft_program_};
   depth_programs_ = {&depth_program_, &plant_depth_opaque_program_, &plant_mesh_depth_program_, &depth_alpha_program_,
                      &plant_depth_program_, &plant_mesh_depth_alpha_program_, &tuft_depth_program_};
+  programs_air_ = air;
   return ok_status();
 }
 
@@ -794,6 +800,14 @@ void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::
 }
 
 void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
+  if (settings_.aerial_perspective != programs_air_) {
+    // Settings change per frame (the scene module copies them in): recompile on a new air
+    // variant; on a compile error keep the old programs and say why.
+    if (Status built = build_programs(); !built.ok()) {
+      log_warn("voxel: aerial_perspective: {}", built.error().message);
+      programs_air_ = settings_.aerial_perspective;
+    }
+  }
   if (pass == render::Pass::kShadow) {
     // Inside ShadowMaps::render (the scene's shadow pass): cast into the cascade being drawn.
     if (const render::ShadowCasterContext* c = render::active_shadow_cascade(); c != nullptr && c->camera != nullptr) {

@@ -78,6 +78,19 @@ constexpr std::array<EnumName<ShadowPassShaders>, 3> enum_names(ShadowPassShader
            {ShadowPassShaders::kEarlyZ, "early_z"}}};
 }
 
+// The air between the camera and a face (render/lib/fog.glsl, the terrain's twin setting):
+// kPerPixel runs apply_fog in shade.frag (five exp per pixel); kPerVertex evaluates the air's
+// extinction per metre in the vertex shaders (air_extinction), interpolates it and keeps the
+// pixel's own distance, exponential, near cut-off and sky look-up (air_from_vertex): within
+// 2/255 of kPerPixel at the shipped spawn (README "vs fogleman/Craft"); kOff draws no air (the
+// distance fade into the sky at view_distance stays).
+enum class AerialPerspective : std::uint8_t { kPerPixel, kPerVertex, kOff };
+constexpr std::array<EnumName<AerialPerspective>, 3> enum_names(AerialPerspective) {
+  return {{{AerialPerspective::kPerPixel, "per_pixel"},
+           {AerialPerspective::kPerVertex, "per_vertex"},
+           {AerialPerspective::kOff, "off"}}};
+}
+
 struct VoxelRenderSettings {
   float alpha_cutoff = 0.5f;        // alpha-cut threshold (the seed used 0.05 for its textures)
   float translucent_cutoff = 0.05f; // translucent blocks: texels with lower alpha are discarded (the seed's threshold, §2.2)
@@ -108,6 +121,7 @@ struct VoxelRenderSettings {
   // Colour pass in two steps: depth only, then colour with GL_EQUAL, so each pixel is shaded
   // once (the same picture; fewer shaded fragments where surfaces overlap).
   bool depth_prepass = true;
+  AerialPerspective aerial_perspective = AerialPerspective::kPerVertex;  // the air over faces and plants
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
   bool receive_shadows = true;      // sample them in the colour pass (lit when no ShadowMaps is bound)
@@ -143,6 +157,8 @@ struct VoxelRenderSettings {
     v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
     v(plant_near_mesh, "plant_near_mesh", {.help = "Near plants' exact parts as baked meshes per chunk (faces pre-transformed, indexed, per-plant culling kept) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
     v(depth_prepass, "depth_prepass", {.help = "Draw depth first, then colour with an equal depth test: each pixel shaded once (the same picture)"});
+    v(aerial_perspective, "aerial_perspective",
+      {.help = "The air over blocks and plants: per_vertex (extinction interpolated), per_pixel or off"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
     v(receive_shadows, "receive_shadows", {.help = "Chunks and plants receive the sun's cascaded shadows"});
     v(shadow_shaders, "shadow_shaders", {.help = "Shadow pass: split (opaque early-z, cut-outs alpha-tested), alpha_tested (all) or early_z (all; cut-outs cast solid)"});
@@ -291,6 +307,7 @@ class VoxelRenderer final : public render::Drawable {
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Program plant_mesh_depth_program_, plant_mesh_depth_alpha_program_, tuft_depth_program_;
   OpaquePrograms colour_programs_, depth_programs_;
+  AerialPerspective programs_air_ = AerialPerspective::kPerVertex;  // the air the programs were built with
   render::Buffer no_shadows_ubo_;
   render::Buffer no_point_lights_ubo_;
   std::unique_ptr<render::ShadowCaster> caster_;
