@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace sylva;
@@ -31,13 +32,14 @@ struct Frame {
 };
 
 // A 3 x 3 chunk column world (seed 3, the shipped spawn's) seen from 70 blocks above its middle,
-// plants past 40 blocks as far shells, with `near` / `far` as the file's plant_near_mesh / plant_far_mesh.
-Frame render_file(const scene::testing::TestDir& dir, bool near, bool far) {
+// plants past 40 blocks as far shells, with `render` added to the file's voxel.render and `sun`
+// as its sun block.
+Frame render_file(const scene::testing::TestDir& dir, const std::string& render, const std::string& sun = "{}") {
   const std::string text = fmt::format(R"({{"camera": {{"position": [16, 70, 16], "yaw_deg": 45, "pitch_deg": -60, "fov_deg": 60}},
-      "render": {{"msaa_samples": 1, "shadows": {{"enabled": false}}, "tone_map": false}},
+      "render": {{"msaa_samples": 1, "shadows": {{"enabled": false}}, "tone_map": false}}, "sun": {},
       "voxel": {{"center": [16, 16], "radius_chunks": 1, "threads": 2, "worldgen": {{"seed": 3, "variants_per_species": 4}},
-                 "render": {{"plant_near_mesh": {}, "plant_far_mesh": {}, "plant_far_beyond": 40}}}}}})",
-                                       near, far);
+                 "render": {{"plant_far_beyond": 40{}}}}}}})",
+                                       sun, render);
   const auto file = dir.path / "scene.json";
   EXPECT_TRUE(write_file_atomic(file, text).ok());
   auto scene = scene::testing::open_scene_file(file);
@@ -62,14 +64,22 @@ std::size_t differing_pixels(const Image& a, const Image& b, float tolerance) {
   return n;
 }
 
+float max_difference(const Image& a, const Image& b) {
+  float m = 0.0f;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x)
+      for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(a.at(x, y, c) - b.at(x, y, c)));
+  return m;
+}
+
 std::size_t count(const nlohmann::json& stats, const char* name) { return stats.at(name).get<std::size_t>(); }
 
 TEST_F(VoxelRenderSettingsGl, PlantMeshSettingsFromTheSceneFileChooseHowPlantsAreDrawn) {
   if (!find_module("voxel")) GTEST_SKIP() << "voxel is built out";
   scene::testing::TestDir dir("sylva_voxel_render_settings");
-  const Frame instanced = render_file(dir, false, false);
-  const Frame near_baked = render_file(dir, true, false);
-  const Frame baked = render_file(dir, true, true);
+  const Frame instanced = render_file(dir, R"(, "plant_near_mesh": false, "plant_far_mesh": false)");
+  const Frame near_baked = render_file(dir, R"(, "plant_near_mesh": true, "plant_far_mesh": false)");
+  const Frame baked = render_file(dir, R"(, "plant_near_mesh": true, "plant_far_mesh": true)");
   ASSERT_FALSE(instanced.stats.is_null() || near_baked.stats.is_null() || baked.stats.is_null());
   // Instanced: every plant is a cube instance, nothing baked; near and far chunks in view.
   EXPECT_GT(count(instanced.stats, "plant_parts_drawn"), 1000u);
@@ -92,6 +102,26 @@ TEST_F(VoxelRenderSettingsGl, PlantMeshSettingsFromTheSceneFileChooseHowPlantsAr
   for (int y = 0; y < baked.image.height(); ++y)
     for (int x = 0; x < baked.image.width(); ++x) lit += baked.image.at(x, y, 0) + baked.image.at(x, y, 1) > 0.05f;
   EXPECT_GT(lit, static_cast<std::size_t>(baked.image.width() * baked.image.height() / 2));
+}
+
+// voxel.render.aerial_perspective from the file: per_pixel, per_vertex (the default, also when the
+// file names none) and off draw three different programs' pictures, per_vertex within 2/255 of
+// per_pixel. A haze thinning with height makes the extinction per metre depend on the view ray.
+TEST_F(VoxelRenderSettingsGl, AerialPerspectiveFromTheSceneFile) {
+  if (!find_module("voxel")) GTEST_SKIP() << "voxel is built out";
+  scene::testing::TestDir dir("sylva_voxel_render_air");
+  const std::string haze = R"({"fog_density": 0.006, "fog_height_falloff": 0.03})";
+  const Frame per_pixel = render_file(dir, R"(, "aerial_perspective": "per_pixel")", haze);
+  const Frame per_vertex = render_file(dir, R"(, "aerial_perspective": "per_vertex")", haze);
+  const Frame unnamed = render_file(dir, "", haze);
+  const Frame off = render_file(dir, R"(, "aerial_perspective": "off")", haze);
+  ASSERT_GT(per_pixel.image.width(), 0);
+  ASSERT_EQ(per_pixel.image.width(), off.image.width());
+  EXPECT_LE(max_difference(per_pixel.image, per_vertex.image), 2.0f / 255.0f + 1e-6f);
+  EXPECT_GT(differing_pixels(per_pixel.image, per_vertex.image, 0.0f), 0u) << "per_vertex drew per_pixel's programs";
+  EXPECT_EQ(differing_pixels(per_vertex.image, unnamed.image, 0.0f), 0u) << "per_vertex is the default";
+  EXPECT_GT(differing_pixels(per_pixel.image, off.image, 8.0f / 255.0f), per_pixel.image.pixel_count() / 4)
+      << "off still draws the air";
 }
 
 }  // namespace
