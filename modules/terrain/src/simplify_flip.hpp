@@ -36,8 +36,13 @@ struct FlipInputs {
 
 // Work arrays, reused across calls by the caller (no allocation once they have grown).
 struct FlipScratch {
-  std::vector<std::uint32_t> offset;        // fans of the reduced mesh
+  // Fans of the reduced mesh, only for the candidates' vertices (a, b, c): slot_of maps such a
+  // vertex to its slot (kNoVertex otherwise; reset after each call), offset / fans are the slots'
+  // corners in CSR form, touching the triangles that hold a slot vertex.
+  std::vector<std::uint32_t> slot_of;
+  std::vector<std::uint32_t> offset;
   std::vector<Corner> fans;
+  std::vector<std::uint32_t> touching;
   struct Candidate {
     double cost;
     std::uint32_t a, b, c;                  // triangle (a, b, c) holding the edge a -> b
