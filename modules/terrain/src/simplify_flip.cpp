@@ -11,12 +11,21 @@ namespace {
 
 using Candidate = FlipScratch::Candidate;
 
-// Mean squared distance of the midpoint of (a, b) to the planes both vertices stand for.
-double midpoint_cost(const FlipInputs& in, std::uint32_t a, std::uint32_t b) {
+// Mean squared distance of the midpoint of (a, b) to the planes both vertices stand for. It runs
+// on every edge, so the quadric sum (Q_a + Q_b)(mid) is written out in Horner form (12 products
+// instead of Quadric::evaluate's 21).
+inline double midpoint_cost(const FlipInputs& in, std::uint32_t a, std::uint32_t b) {
   const double w = in.weights[a] + in.weights[b];
   if (w <= 0.0) return 0.0;
-  const glm::dvec3 mid = 0.5 * (glm::dvec3(in.positions[a]) + glm::dvec3(in.positions[b]));
-  return in.quadrics[a].error_sum(in.quadrics[b], mid) / w;
+  const glm::vec3 pa = in.positions[a], pb = in.positions[b];
+  const double x = 0.5 * (double{pa.x} + double{pb.x}), y = 0.5 * (double{pa.y} + double{pb.y}),
+               z = 0.5 * (double{pa.z} + double{pb.z});
+  const std::array<double, 10>& qa = in.quadrics[a].m;
+  const std::array<double, 10>& qb = in.quadrics[b].m;
+  const auto q = [&](std::size_t i) { return qa[i] + qb[i]; };  // in registers, no summed copy
+  return (x * (q(0) * x + 2.0 * (q(1) * y + q(2) * z + q(3))) + y * (q(4) * y + 2.0 * (q(5) * z + q(6))) +
+          z * (q(7) * z + 2.0 * q(8)) + q(9)) /
+         w;
 }
 
 // The fans of the candidates' vertices a, b, c (FlipScratch::slot_of): one pass over the
@@ -173,7 +182,7 @@ std::size_t flip_worst_edges(const FlipInputs& in, std::vector<std::uint32_t>& t
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   };
   s.candidates.clear();
-  const auto consider = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+  const auto consider = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) __attribute__((always_inline)) {
     if (a > b) return;
     const Candidate e{midpoint_cost(in, a, b), a, b, c};
     if (s.candidates.size() < keep) {

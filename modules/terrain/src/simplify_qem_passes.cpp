@@ -198,20 +198,20 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   // Open boundary: a vertex is interior when its fan is closed, i.e. the vertices following it in
   // its triangles are the vertices preceding it (an edge a->b without b->a leaves b unmatched in
   // a's fan). Locked vertices need no test: an open edge locks both its ends, and each end sees
-  // the edge in its own fan.
+  // the edge in its own fan. Set membership by stamps (O(fan) per vertex; comparing every corner
+  // with every other cost ~8 % of the whole reduction on the dragon).
+  s.mark.assign(nv, 0u);
+  std::uint32_t mark_id = 0;
   for (std::uint32_t a = 0; a < nv; ++a) {
     if (s.locked[a]) continue;
     const Corner* f = s.fans.data() + s.offset[a];
     const std::size_t n = s.offset[a + 1] - s.offset[a];
+    mark_id += 2;
+    for (std::size_t i = 0; i < n; ++i) s.mark[f[i].prev] = mark_id;
     bool closed = true;
-    for (std::size_t i = 0; i < n && closed; ++i) {
-      bool next_found = false, prev_found = false;
-      for (std::size_t j = 0; j < n; ++j) {
-        next_found |= f[j].prev == f[i].next;
-        prev_found |= f[j].next == f[i].prev;
-      }
-      closed = next_found && prev_found;
-    }
+    for (std::size_t i = 0; i < n; ++i) closed &= s.mark[f[i].next] == mark_id;
+    for (std::size_t i = 0; i < n; ++i) s.mark[f[i].next] = mark_id + 1;
+    for (std::size_t i = 0; i < n; ++i) closed &= s.mark[f[i].prev] == mark_id + 1;
     if (!closed) s.locked[a] = 1;
   }
 
@@ -219,8 +219,6 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   s.remap.resize(nv);
   s.busy.resize(nv);
   s.target.resize(nv);
-  s.mark.assign(nv, 0u);
-  std::uint32_t mark_id = 0;
   std::size_t triangles = s.tris.size() / 3;
   bool first = true;
   float max_cost = 0.0f;
