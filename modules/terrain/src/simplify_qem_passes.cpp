@@ -193,8 +193,6 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   for (std::size_t i = 0; i < nv; ++i) s.normal[i] = glm::vec3(s.normal_sum[i]);
 
   build_fans(s.tris, nv, s.offset, s.fans);
-  s.original_offset = s.offset;
-  s.original_fans = s.fans;
   // Open boundary: a vertex is interior when its fan is closed, i.e. the vertices following it in
   // its triangles are the vertices preceding it (an edge a->b without b->a leaves b unmatched in
   // a's fan). Locked vertices need no test: an open edge locks both its ends, and each end sees
@@ -229,7 +227,14 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   for (std::uint32_t v = 0; v < nv; ++v) s.absorbed_last[v] = v;
   while (triangles > target_triangles) {
     ++st.passes;
-    if (!first) build_fans(s.tris, nv, s.offset, s.fans);
+    if (!first) {
+      // The input's fans move aside for the repair (no copy), their buffers take this pass's.
+      if (st.passes == 2) {
+        s.original_offset.swap(s.offset);
+        s.original_fans.swap(s.fans);
+      }
+      build_fans(s.tris, nv, s.offset, s.fans);
+    }
     first = false;
     const Corner* fans = s.fans.data();
     // Every free vertex proposes its cheapest collapse. Boundary vertices are locked, so a free
@@ -396,6 +401,10 @@ std::vector<std::uint32_t> simplify_qem_passes(std::span<const glm::vec3> positi
   }
   // The worst spots left between the vertices: bounded edge flips (simplify_flip.hpp).
   if (st.passes > 0) {
+    if (st.passes == 1) {  // the input's fans are still the first pass's
+      s.original_offset.swap(s.offset);
+      s.original_fans.swap(s.fans);
+    }
     const detail::FlipInputs in{s.pos, s.normal, s.q, s.weight, s.absorbed_next, s.original_offset, s.original_fans};
     st.flips = detail::flip_worst_edges(in, s.tris, nv, s.flip);
   }
