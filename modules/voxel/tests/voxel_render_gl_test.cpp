@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <span>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -331,22 +332,35 @@ TEST_F(VoxelRenderGl, ShadowHookIsPluggableAndDepthPassDraws) {
   EXPECT_GT(written, depth->pixel_count() / 2);
 }
 
-// Fills `world` with the generated chunks of seed 3 (the shipped spawn's) within 2 chunks of the
-// origin, meshed; returns the generator (null on failure, with a test failure recorded).
-std::shared_ptr<const WorldGenerator> generate_seed3(World& world) {
+// The generated chunks of seed 3 (the shipped spawn's) within 2 chunks of the origin, meshed,
+// with a renderer of the default settings.
+struct GeneratedWorld {
+  World world;
+  std::shared_ptr<const WorldGenerator> generator;
+  std::unique_ptr<VoxelRenderer> renderer;
+};
+
+// Null (with a test failure recorded) when the generator or the renderer cannot be created.
+std::unique_ptr<GeneratedWorld> generate_seed3() {
   WorldGenSettings gs;
   gs.seed = 3;
   gs.variants_per_species = 4;
   auto gen = WorldGenerator::create(gs);
   EXPECT_TRUE(gen.ok()) << gen.error().message;
   if (!gen.ok()) return nullptr;
+  auto g = std::make_unique<GeneratedWorld>();
+  g->generator = *gen;
   WorkerPool pool(2);
   std::int64_t y0, y1;
   chunk_y_range(gs, y0, y1);
   const auto coords = chunk_box({0, 0, 0}, 2, y0, y1);
-  populate(world, **gen, coords, pool);
-  remesh_parallel(world, pool, MesherKind::kBitmask);
-  return *gen;
+  populate(g->world, *g->generator, coords, pool);
+  remesh_parallel(g->world, pool, MesherKind::kBitmask);
+  auto renderer = VoxelRenderer::create(g->world, g->generator);
+  EXPECT_TRUE(renderer.ok()) << renderer.error().message;
+  if (!renderer.ok()) return nullptr;
+  g->renderer = std::move(*renderer);
+  return g;
 }
 
 // A hazy view over the generated world (ground, plants, tufts), 100-150 blocks away.
@@ -357,17 +371,17 @@ void look_over_generated_world(testing::VoxelGlScene& scene) {
 }
 
 TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
-  World world;
-  const auto gen = generate_seed3(world);
-  ASSERT_TRUE(gen);
-  auto renderer = VoxelRenderer::create(world, gen);
-  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
+  const auto g = generate_seed3();
+  ASSERT_TRUE(g);
+  VoxelRenderer& renderer = *g->renderer;
+  const World& world = g->world;
+  const WorldGenerator* gen = g->generator.get();
   auto scene = testing::VoxelGlScene::create(320, 180);
   look_over_generated_world(scene);
-  scene.render(**renderer);
+  scene.render(renderer);
   const Image img = scene.color();
   testing::save_png(img, "voxel_generated_world");
-  EXPECT_GT((*renderer)->frame_stats().plant_triangles, 0u);
+  EXPECT_GT(renderer.frame_stats().plant_triangles, 0u);
   // Not blank: plenty of pixels differ from the clear colour.
   std::size_t drawn = 0;
   for (int y = 0; y < img.height(); ++y)
@@ -388,12 +402,12 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
     scene.lighting.fog_density = 0.0f;
     scene.camera.set_position(base + glm::dvec3(-11.0, 12.0, -11.0));
     scene.camera.look_at(base + glm::dvec3(0.0, 7.0, 0.0));
-    scene.render(**renderer);
+    scene.render(renderer);
     const Image unshadowed = scene.color();
     testing::save_png(unshadowed, std::string("voxel_tree_") + gen->species().species.at(tree->species).name);
     // The same view in the render core's cascaded shadows: the tree shades the ground and itself.
     scene.lighting.sun_direction = glm::normalize(glm::vec3(0.6f, 0.5f, 0.3f));
-    scene.render(**renderer);
+    scene.render(renderer);
     const Image sunlit = scene.color();
     render::ShadowSettings ss;
     ss.cascade_count = 1;
@@ -401,12 +415,12 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
     ss.max_distance = 50.0f;
     auto maps = render::ShadowMaps::create(ss);
     ASSERT_TRUE(maps.ok());
-    maps->add_caster(&(*renderer)->shadow_caster());
+    maps->add_caster(&renderer.shadow_caster());
     render::apply_reversed_z_state();
     ASSERT_TRUE(maps->render(scene.camera, scene.lighting.sun_direction, nullptr, nullptr).ok());
-    maps->remove_caster(&(*renderer)->shadow_caster());
+    maps->remove_caster(&renderer.shadow_caster());
     maps->bind();
-    scene.render(**renderer);
+    scene.render(renderer);
     const Image shadowed = scene.color();
     testing::save_png(shadowed, std::string("voxel_tree_shadowed_") + gen->species().species.at(tree->species).name);
     double a = 0.0, b = 0.0;
@@ -425,12 +439,9 @@ TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
 // the vertices, distance, exponential and sky per pixel) draws blocks, plants and tufts within
 // 2/255 of per_pixel (apply_fog) but through its own programs; off draws no air.
 TEST_F(VoxelRenderGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
-  World world;
-  const auto gen = generate_seed3(world);
-  ASSERT_TRUE(gen);
-  auto renderer = VoxelRenderer::create(world, gen);
-  ASSERT_TRUE(renderer.ok()) << renderer.error().message;
-  VoxelRenderer& r = **renderer;
+  const auto g = generate_seed3();
+  ASSERT_TRUE(g);
+  VoxelRenderer& r = *g->renderer;
   EXPECT_EQ(r.settings().aerial_perspective, AerialPerspective::kPerVertex) << "the default";
   auto scene = testing::VoxelGlScene::create(256, 144);
   look_over_generated_world(scene);
