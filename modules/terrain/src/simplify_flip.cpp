@@ -182,6 +182,7 @@ std::size_t flip_worst_edges(const FlipInputs& in, std::vector<std::uint32_t>& t
     return x.a != y.a ? x.a < y.a : x.b < y.b;
   };
   s.candidates.clear();
+  // Inlined: it runs three times per triangle of the reduced mesh.
   const auto consider = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) __attribute__((always_inline)) {
     if (a > b) return;
     const Candidate e{midpoint_cost(in, a, b), a, b, c};
