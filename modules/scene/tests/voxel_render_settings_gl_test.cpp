@@ -4,6 +4,7 @@
 // plants, and the pictures match.
 #include <sylva/core/atomic_file.hpp>
 #include <sylva/core/image.hpp>
+#include <sylva/core/image_metrics.hpp>
 #include <sylva/render/framebuffer.hpp>
 #include <sylva/render/queries.hpp>
 #include <sylva/render/readback.hpp>
@@ -53,24 +54,13 @@ Frame render_file(const scene::testing::TestDir& dir, const std::string& render,
   return {render::read_color(fb).value(), scene->module_stats()["voxel"]};
 }
 
+// Pixels whose largest channel difference exceeds `tolerance`, and the largest difference
+// (core's image metrics; the frames' alpha is 1 everywhere, so only colour counts).
 std::size_t differing_pixels(const Image& a, const Image& b, float tolerance) {
-  std::size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      bool differs = false;
-      for (int c = 0; c < 3; ++c) differs |= std::abs(a.at(x, y, c) - b.at(x, y, c)) > tolerance;
-      n += differs;
-    }
-  return n;
+  return count_exceeding(a, b, tolerance).value().pixels;
 }
 
-float max_difference(const Image& a, const Image& b) {
-  float m = 0.0f;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c) m = std::max(m, std::abs(a.at(x, y, c) - b.at(x, y, c)));
-  return m;
-}
+float max_difference(const Image& a, const Image& b) { return count_exceeding(a, b, 0.0f).value().max_difference; }
 
 std::size_t count(const nlohmann::json& stats, const char* name) { return stats.at(name).get<std::size_t>(); }
 

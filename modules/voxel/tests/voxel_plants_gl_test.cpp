@@ -3,6 +3,7 @@
 // plants are culled one by one inside chunks the view or a shadow cascade cuts, near and far
 // plants baked into meshes draw the instanced picture, and the depth pre-pass the one-pass one.
 
+#include <sylva/core/image_metrics.hpp>
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/testing.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
@@ -58,15 +59,9 @@ Shot render_view(const GeneratedWorld& w, const VoxelRenderSettings& settings, c
   return {scene.color(), (*renderer)->frame_stats()};
 }
 
+// Pixels whose largest channel difference exceeds `tolerance` (core's image metrics).
 std::size_t differing_pixels(const Image& a, const Image& b, float tolerance) {
-  std::size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x) {
-      bool differs = false;
-      for (int c = 0; c < 3; ++c) differs |= std::abs(a.at(x, y, c) - b.at(x, y, c)) > tolerance;
-      n += differs;
-    }
-  return n;
+  return count_exceeding(a, b, tolerance).value().pixels;
 }
 
 // Baked far shells against instanced ones (320 x 180): the same faces, rasterised from the same
