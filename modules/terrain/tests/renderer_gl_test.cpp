@@ -263,7 +263,7 @@ TEST_F(TerrainGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir) {
 class EnableSpy {
  public:
   EnableSpy() {
-    glEnable(GL_DITHER);  // resolved first: epoxy's resolver stub would overwrite the spy
+    glEnable(GL_DITHER);  // called once first: epoxy resolves its function pointer on the first call, which would overwrite the spy
     real_ = epoxy_glEnable;
     epoxy_glEnable = &record;
     seen_.clear();
