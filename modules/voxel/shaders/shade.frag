@@ -10,13 +10,19 @@
 // (discard below u_alpha_cutoff, two-sided normals); CROSS_QUADS the tuft variant (tinted, its
 // normal already faces the viewer); TRANSLUCENT the blended variant for glass, water and ice
 // (seed §2.2: alpha = texture alpha x the block's opacity, texels below u_translucent_cutoff
-// discarded, the seed's 0.05).
+// discarded, the seed's 0.05). SYLVA_VOXEL_POINT_LIGHTS 0 leaves out both point-light loops: on
+// llvmpipe a loop's body runs once per pixel even for zero lights, at about a sixth of the
+// frame at the shipped spawn (VoxelRenderer picks the variant per frame; issue #18).
 #include "voxel/common.glsl"
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
 #include "render/lib/point_lights.glsl"
 #include "voxel/distance_fade.glsl"
 #include "voxel/shadow_hook.glsl"
+
+#ifndef SYLVA_VOXEL_POINT_LIGHTS
+#define SYLVA_VOXEL_POINT_LIGHTS 1
+#endif
 
 #if !defined(ALPHA_CUT) && !defined(TRANSLUCENT)
 layout(early_fragment_tests) in;
@@ -101,6 +107,7 @@ void main() {
   vec3 sun_lit = lambert(n, l) * albedo.rgb;
   if (specular) sun_lit += phong(n, view, l, shininess) * spec_map;
   color += sun_radiance() * lit * sun_lit;
+#if SYLVA_VOXEL_POINT_LIGHTS
   for (int i = 0; i < u_light_count; ++i) {
     vec3 d = u_light_pos[i].xyz - v_rel_pos;
     float dist = length(d);
@@ -112,6 +119,7 @@ void main() {
   }
   // The host's point lights (e.g. the scene's), same attenuation family, diffuse only.
   color += albedo.rgb * sylva_point_lights_diffuse(v_rel_pos, n);
+#endif
   color += b.emission.rgb * albedo.rgb * 2.0;
 #ifdef TRANSLUCENT
   o_color = vec4(voxel_distance_fade(voxel_air(color), v_rel_pos), alpha);

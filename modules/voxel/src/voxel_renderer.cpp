@@ -125,6 +125,13 @@ struct VoxelRenderer::ChunkGpu {
   glm::dvec3 origin{0.0};
 };
 
+struct VoxelRenderer::ColourPrograms {
+  render::Program opaque, alpha, translucent, plant_opaque, plant_alpha, tuft, plant_mesh, plant_mesh_alpha;
+  OpaquePrograms opaque_pass() const {
+    return {&opaque, &plant_opaque, &plant_mesh, &alpha, &plant_alpha, &plant_mesh_alpha, &tuft};
+  }
+};
+
 VoxelRenderer::~VoxelRenderer() = default;
 
 Result<std::unique_ptr<VoxelRenderer>> VoxelRenderer::create(const World& world,
@@ -240,41 +247,73 @@ Status VoxelRenderer::set_shadow_receiver(ShadowReceiver receiver) {
   return build_programs();
 }
 
-Status VoxelRenderer::build_programs() {
-  // Every program gets the air's variant (SYLVA_VOXEL_AIR, common.glsl; the horizon's ignores
-  // it), the depth ones too, so the pre-pass runs the very vertex shaders of the colour pass.
+namespace {
+
+// A program of `stages` with `defines` and the air's variant (SYLVA_VOXEL_AIR, common.glsl).
+Status make_program(std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
+                    AerialPerspective air, render::Program& out) {
+  render::ShaderDefines with_air = defines;
+  with_air.emplace_back("SYLVA_VOXEL_AIR", std::to_string(static_cast<int>(air)));
+  auto p = render::Program::create(stages, with_air);
+  if (!p.ok()) return p.error();
+  out = std::move(*p);
+  return ok_status();
+}
+
+const render::ShaderDefines kAlphaCut = {{"ALPHA_CUT", "1"}};
+const render::ShaderDefines kTuft = {{"ALPHA_CUT", "1"}, {"CROSS_QUADS", "1"}};
+
+}  // namespace
+
+Status VoxelRenderer::build_colour_programs(bool point_lights) {
   const AerialPerspective air = settings_.aerial_perspective;
-  const render::ShaderDefines alpha = {{"ALPHA_CUT", "1"}};
-  const render::ShaderDefines tuft = {{"ALPHA_CUT", "1"}, {"CROSS_QUADS", "1"}};
-  auto make = [air](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
-                    render::Program& out) -> Status {
-    render::ShaderDefines with_air = defines;
-    with_air.emplace_back("SYLVA_VOXEL_AIR", std::to_string(static_cast<int>(air)));
-    auto p = render::Program::create(stages, with_air);
-    if (!p.ok()) return p.error();
-    out = std::move(*p);
-    return ok_status();
+  auto lights = [point_lights](render::ShaderDefines d) {
+    d.emplace_back("SYLVA_VOXEL_POINT_LIGHTS", point_lights ? "1" : "0");
+    return d;
   };
-  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, {}, opaque_program_));
-  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, alpha, alpha_program_));
-  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/shade.frag"}, {{"TRANSLUCENT", "1"}}, translucent_program_));
-  SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, {}, plant_opaque_program_));
-  SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, alpha, plant_alpha_program_));
-  SYLVA_TRY(make({"voxel/plant.vert", "voxel/shade.frag"}, tuft, tuft_program_));
-  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/shade.frag"}, {}, plant_mesh_program_));
-  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/shade.frag"}, alpha, plant_mesh_alpha_program_));
+  auto set = std::make_unique<ColourPrograms>();
+  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, lights({}), air, set->opaque));
+  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, lights(kAlphaCut), air, set->alpha));
+  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, lights({{"TRANSLUCENT", "1"}}), air, set->translucent));
+  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, lights({}), air, set->plant_opaque));
+  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, lights(kAlphaCut), air, set->plant_alpha));
+  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, lights(kTuft), air, set->tuft));
+  SYLVA_TRY(make_program({"voxel/plant_mesh.vert", "voxel/shade.frag"}, lights({}), air, set->plant_mesh));
+  SYLVA_TRY(make_program({"voxel/plant_mesh.vert", "voxel/shade.frag"}, lights(kAlphaCut), air, set->plant_mesh_alpha));
+  colour_[point_lights ? 1 : 0] = std::move(set);
+  return ok_status();
+}
+
+const VoxelRenderer::ColourPrograms* VoxelRenderer::colour_programs(bool point_lights) {
+  if (point_lights && !colour_[1]) {
+    // First frame with point lights: build the variant with the loops. On a compile error the
+    // lights stay dark (the variant without them draws) and the log says why.
+    if (Status built = build_colour_programs(true); !built.ok()) {
+      log_warn("voxel: point-light shaders: {}", built.error().message);
+      return colour_[0].get();
+    }
+  }
+  return colour_[point_lights ? 1 : 0].get();
+}
+
+Status VoxelRenderer::build_programs() {
+  // Every program gets the air's variant, the depth ones too, so the pre-pass runs the very
+  // vertex shaders of the colour pass (the horizon's ignores it).
+  const AerialPerspective air = settings_.aerial_perspective;
+  auto make = [air](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
+                    render::Program& out) { return make_program(stages, defines, air, out); };
+  SYLVA_TRY(build_colour_programs(false));
+  colour_[1].reset();  // rebuilt with the new air when lights next need it
   SYLVA_TRY(make({"voxel/horizon.vert", "voxel/horizon.frag"}, {}, horizon_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
-  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, alpha, depth_alpha_program_));
-  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, alpha, plant_depth_program_));
+  SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, kAlphaCut, depth_alpha_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, kAlphaCut, plant_depth_program_));
   SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, {}, plant_depth_opaque_program_));
   // The depth pre-pass (depth_prepass): the colour programs' vertex shaders with the same
   // defines, so every vertex lands on the same depth in both passes.
   SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/depth.frag"}, {}, plant_mesh_depth_program_));
-  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/depth.frag"}, alpha, plant_mesh_depth_alpha_program_));
-  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, tuft, tuft_depth_program_));
-  colour_programs_ = {&opaque_program_, &plant_opaque_program_, &plant_mesh_program_, &alpha_program_,
-                      &plant_alpha_program_, &plant_mesh_alpha_program_, &tuft_program_};
+  SYLVA_TRY(make({"voxel/plant_mesh.vert", "voxel/depth.frag"}, kAlphaCut, plant_mesh_depth_alpha_program_));
+  SYLVA_TRY(make({"voxel/plant.vert", "voxel/depth.frag"}, kTuft, tuft_depth_program_));
   depth_programs_ = {&depth_program_, &plant_depth_opaque_program_, &plant_mesh_depth_program_, &depth_alpha_program_,
                      &plant_depth_program_, &plant_mesh_depth_alpha_program_, &tuft_depth_program_};
   programs_air_ = air;
@@ -762,6 +801,12 @@ VoxelRenderer::UboBinding VoxelRenderer::bind_fallback_block(GLuint index, const
   return b;
 }
 
+bool VoxelRenderer::point_lights_shaded(const UboBinding& host_lights) {
+  const bool lit = !light_pos_.empty() || !host_lights.replaced;
+  stats_.point_light_shaders = lit ? 1 : 0;
+  return lit;
+}
+
 void VoxelRenderer::restore_block(const UboBinding& b) {
   if (!b.replaced) return;
   const auto buffer = static_cast<GLuint>(b.buffer);
@@ -830,6 +875,7 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   // blocks (none) when it bound nothing; restored afterwards for the other drawables.
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
+  const ColourPrograms* colour = colour_programs(point_lights_shaded(light_block));
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -861,7 +907,7 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
     glDepthMask(GL_FALSE);
     glEnable(GL_CULL_FACE);
   }
-  draw_opaque_geometry(colour_programs_, &frame, vp, eye, culling, stats);
+  draw_opaque_geometry(colour->opaque_pass(), &frame, vp, eye, culling, stats);
   if (settings_.depth_prepass) {
     glDepthFunc(static_cast<GLenum>(depth_func));
     glDepthMask(depth_mask);
@@ -922,6 +968,7 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   vao_.bind();
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
+  const render::Program& translucent_program = colour_programs(point_lights_shaded(light_block))->translucent;
   const render::SavedBlendState saved;
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -931,16 +978,16 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
   glDepthMask(GL_FALSE);
   const glm::dvec3 eye = frame.camera.position();
-  bind_common(translucent_program_, &frame);
-  translucent_program_.use();
-  translucent_program_.set("u_view_projection", frame.camera.view_projection());
+  bind_common(translucent_program, &frame);
+  translucent_program.use();
+  translucent_program.set("u_view_projection", frame.camera.view_projection());
   // visible_ is front to back.
   for (auto it = visible_.rbegin(); it != visible_.rend(); ++it) {
     ChunkGpu* gpu = *it;
     if (gpu->translucent_quads == 0) continue;
     sort_translucent(*gpu, eye);
-    translucent_program_.set("u_chunk_offset", glm::vec3(gpu->origin - eye));
-    translucent_program_.set("u_quad_base", gpu->opaque_quads + gpu->alpha_quads);
+    translucent_program.set("u_chunk_offset", glm::vec3(gpu->origin - eye));
+    translucent_program.set("u_quad_base", gpu->opaque_quads + gpu->alpha_quads);
     gpu->quads.bind_base(GL_SHADER_STORAGE_BUFFER, kQuadBinding);
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(gpu->translucent_quads) * 6);
     ++stats.draw_calls;

@@ -2,6 +2,7 @@
 // blocks from the origin render exactly like at the origin; point lights and culling work; a
 // generated world renders (screenshots saved for inspection).
 
+#include <sylva/core/image_metrics.hpp>
 #include <sylva/render/point_lights.hpp>
 #include <sylva/render/shadow_maps.hpp>
 #include <sylva/render/testing.hpp>
@@ -482,6 +483,40 @@ TEST_F(VoxelRenderGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir)
               vertex_differs, drawn, max_vertex * 255.0f, off_differs);
   EXPECT_GT(vertex_differs, 0u) << "per_vertex drew the per-pixel programs";
   EXPECT_GT(off_differs, drawn / 4) << "off still draws the air";
+}
+
+// Without point lights (no emissive block lit, no host block bound) the colour passes run the
+// shaders without the point-light loops (llvmpipe runs a loop body once per pixel even for zero
+// lights; issue #18); a host block switches to the shaders with them. The same picture when
+// that block's one light shines with intensity 0.
+TEST_F(VoxelRenderGl, ShadersWithoutPointLightLoopsDrawTheSamePictureWhenNoLightShines) {
+  const auto g = generate_seed3();
+  ASSERT_TRUE(g);
+  VoxelRenderer& r = *g->renderer;
+  auto scene = testing::VoxelGlScene::create(256, 144);
+  look_over_generated_world(scene);
+  glBindBufferBase(GL_UNIFORM_BUFFER, render::kPointLightBinding, 0);
+  scene.render(r);
+  const Image without_loops = scene.color();
+  EXPECT_EQ(r.frame_stats().point_lights, 0u);
+  EXPECT_EQ(r.frame_stats().point_light_shaders, 0u) << "no light: the shaders without loops";
+  EXPECT_GT(r.frame_stats().plant_triangles, 0u);
+  EXPECT_GT(r.frame_stats().tufts_drawn, 0u);
+  render::PointLightUniforms lights = render::PointLightUniforms::create();
+  render::PointLight dark_lamp;
+  dark_lamp.position = glm::dvec3(scene.camera.position()) + glm::dvec3(0.0, -2.0, 0.0);
+  dark_lamp.intensity = 0.0f;
+  ASSERT_TRUE(lights.update(std::span<const render::PointLight>(&dark_lamp, 1), scene.camera.position()).ok());
+  lights.bind();
+  scene.render(r);
+  const Image with_loops = scene.color();
+  EXPECT_EQ(r.frame_stats().point_light_shaders, 1u) << "a host block: the shaders with loops";
+  glBindBufferBase(GL_UNIFORM_BUFFER, render::kPointLightBinding, 0);
+  const DifferenceCount d = count_exceeding(without_loops, with_loops, 0.0f).value();
+  std::printf("point-light loops: %zu of %zu pixels differ, max %.2f/255\n", d.pixels, d.total, d.max_difference * 255.0f);
+  EXPECT_EQ(d.pixels, 0u);
+  scene.render(r);
+  EXPECT_EQ(r.frame_stats().point_light_shaders, 0u) << "back to the shaders without loops";
 }
 
 }  // namespace

@@ -196,6 +196,9 @@ struct VoxelFrameStats {
   std::size_t tufts_drawn = 0;
   float view_distance = 0.0f;  // blocks: where the fade into the sky ended this frame (0: no fade)
   std::size_t point_lights = 0;
+  // 1 when the colour passes ran the shaders with point-light loops (emissive blocks lit this
+  // frame or a host point-light block bound), 0 when they ran the variant without them.
+  std::size_t point_light_shaders = 0;
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
   std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
   std::size_t translucent_quads_drawn = 0;  // in draw(kTransparent), also counted in quads_drawn
@@ -244,6 +247,11 @@ class VoxelRenderer final : public render::Drawable {
   struct ChunkGpu;
   struct BakedMesh;
   Status build_programs();
+  // The colour programs of one point-light variant (SYLVA_VOXEL_POINT_LIGHTS in shade.frag).
+  struct ColourPrograms;
+  // colour_[1] (with point-light loops) is built on the first frame that needs it.
+  Status build_colour_programs(bool point_lights);
+  const ColourPrograms* colour_programs(bool point_lights);
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
   void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
   // gpu.plant's parts [first, first + count) -> `out` (plant_mesh.hpp), one cluster per entry of
@@ -297,16 +305,22 @@ class VoxelRenderer final : public render::Drawable {
   };
   static UboBinding bind_fallback_block(GLuint index, const render::Buffer& fallback, bool use_host);
   static void restore_block(const UboBinding& b);
+  // Whether this frame's colour passes need the point-light loops: emissive blocks picked in
+  // update(), or a host block at kPointLightBinding (`host_lights` not replaced by the empty
+  // fallback). Records the answer in stats_.point_light_shaders.
+  bool point_lights_shaded(const UboBinding& host_lights);
 
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
-  render::Program opaque_program_, alpha_program_, plant_opaque_program_, plant_alpha_program_, plant_mesh_program_,
-      plant_mesh_alpha_program_;
-  render::Program tuft_program_, horizon_program_, translucent_program_;
+  // [0] without point lights, [1] with (null until built). llvmpipe runs both sides of every
+  // branch and every loop body at least once per pixel, so an empty light loop costs as much
+  // as one light: the shipped spawn has none (issue #18).
+  std::unique_ptr<ColourPrograms> colour_[2];
+  render::Program horizon_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Program plant_mesh_depth_program_, plant_mesh_depth_alpha_program_, tuft_depth_program_;
-  OpaquePrograms colour_programs_, depth_programs_;
+  OpaquePrograms depth_programs_;
   AerialPerspective programs_air_ = AerialPerspective::kPerVertex;  // the air the programs were built with
   render::Buffer no_shadows_ubo_;
   render::Buffer no_point_lights_ubo_;
