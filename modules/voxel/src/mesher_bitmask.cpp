@@ -409,6 +409,16 @@ class BitmaskMesher final : public Mesher {
         } else {
           open_merge = faces & ~alone;
           faces &= ~open_merge;
+          if (single != kAir) {
+            // Alone faces of a one-id chunk (checkerboard): unit quads without an id read. The ids
+            // of +-X faces lie p^2 apart (8 KB at 62^3), one cache line per face.
+            const std::uint32_t open_word1 = pack_word1(single, F, 0xffu);
+            while (faces) {
+              const int b = std::countr_zero(faces);
+              faces &= faces - 1;
+              *dst_opaque++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), open_word1};
+            }
+          }
           while (faces) {  // alone: unit quads
             const int b = std::countr_zero(faces);
             faces &= faces - 1;

@@ -199,6 +199,37 @@ TEST(MesherBitmaskShapes, OneBlockIdChunksGiveTheQuadsOfTheGeneralPath) {
   }
 }
 
+TEST(MesherBitmaskShapes, OneBlockIdCheckerboardWritesItsAloneFacesLikeTheGeneralPath) {
+  // A one-id chunk writes the faces that can merge with nothing (no face beside them in their
+  // slice) as unit quads without reading their ids. A 3D checkerboard over a stone floor (every
+  // checker face alone) against the same chunk with one block of another id buried in the floor
+  // (general path, ids read): the same quads in the same order, AO on and off, both row passes.
+  const auto& palette = testing::test_palette();
+  for (bool avx2 : {true, false}) {
+    if (!avx2) {
+      ASSERT_EQ(setenv("SYLVA_VOXEL_NO_AVX2", "1", 1), 0);
+    }
+    for (bool ao : {true, false}) {
+      MesherOptions options;
+      options.ambient_occlusion = ao;
+      for (int n : {9, 17, 33, 62, 64}) {
+        const PaddedBlocks one =
+            fill(n, [](int x, int y, int z) -> BlockId { return y < 2 || ((x + y + z) & 1) ? 1 : kAir; });
+        PaddedBlocks two = one;
+        two.set(n / 2, 0, n / 2, 2);
+        ChunkMesh single, general;
+        make_mesher(MesherKind::kBitmask, options)->mesh(one, palette, single);
+        make_mesher(MesherKind::kBitmask, options)->mesh(two, palette, general);
+        const std::string what = "avx2 " + std::to_string(avx2) + " ao " + std::to_string(ao) + " n=" + std::to_string(n);
+        EXPECT_GT(single.opaque.size(), static_cast<std::size_t>(n * n)) << what;
+        EXPECT_EQ(single.opaque, general.opaque) << what;
+        EXPECT_TRUE(single.alpha_cut.empty() && general.alpha_cut.empty()) << what;
+      }
+    }
+    unsetenv("SYLVA_VOXEL_NO_AVX2");
+  }
+}
+
 TEST(MesherBitmaskShapes, OccludedRowsSplitOpenFacesFromTheTableOnes) {
   // With AO on, a row with something opaque in front sends only the faces with an opaque block
   // around them through the AO table; the open ones that may merge go to their slot at once.
