@@ -36,6 +36,21 @@ uniform vec3 u_sand_color;
 // Tile ratios between the scales: not integers, so the repeats of one never line up with another's.
 const float kScale1 = 5.3, kScale2 = 28.0;
 
+// One texel of the shape texture (RGBA16_SNORM, material.hpp) decoded: the field's unit normal,
+// curvature ((mean height around - height) / radius) and the ~400 m macro variation.
+struct ShapeSample {
+  vec3 normal;
+  float curvature;
+  float macro;
+};
+ShapeSample decode_shape(vec4 shape) {
+  ShapeSample s;
+  s.normal = vec3(shape.x, sqrt(max(1.0 - dot(shape.xy, shape.xy), 0.0)), shape.y);
+  s.curvature = shape.z;
+  s.macro = 1.6 * shape.w;
+  return s;
+}
+
 struct TerrainSurface {
   vec3 albedo;     // linear
   vec3 normal;     // with the detail relief

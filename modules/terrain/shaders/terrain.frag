@@ -22,6 +22,16 @@ layout(binding = 2) uniform sampler2D u_shape;
 #define SYLVA_TERRAIN_VIEW 0
 #endif
 
+// 1: the albedo and occlusion come from the baked far material (SRGB8_ALPHA8, texel (i, j) =
+// field sample (i, j), mipmapped; far_material.hpp) instead of terrain_surface; only compiled
+// with SYLVA_TERRAIN_FIRST_SCALE 3 and the shaded view.
+#ifndef SYLVA_TERRAIN_BAKED
+#define SYLVA_TERRAIN_BAKED 0
+#endif
+#if SYLVA_TERRAIN_BAKED
+layout(binding = 3) uniform sampler2D u_far_material;
+#endif
+
 uniform int u_has_shape;       // 0: normals from screen-space derivatives, no curvature
 uniform ivec2 u_field_size;    // field samples (columns, rows)
 uniform float u_spacing;
@@ -63,10 +73,10 @@ void main() {
   vec3 n;
   float curvature = 0.0, macro = 0.0;
   if (u_has_shape != 0) {
-    vec4 shape = texture(u_shape, (v_grid + 0.5) / vec2(u_field_size));
-    n = vec3(shape.x, sqrt(max(1.0 - dot(shape.xy, shape.xy), 0.0)), shape.y);
-    curvature = shape.z;
-    macro = 1.6 * shape.w;
+    ShapeSample shape = decode_shape(texture(u_shape, (v_grid + 0.5) / vec2(u_field_size)));
+    n = shape.normal;
+    curvature = shape.curvature;
+    macro = shape.macro;
   } else {
     n = normalize(cross(dFdy(v_rel), dFdx(v_rel)));
     if (n.y < 0.0) n = -n;
@@ -79,7 +89,18 @@ void main() {
 #endif
   o_color = vec4(c * (0.35 + 0.65 * max(dot(n, sun_direction()), 0.0)), 1.0);
 #else
+#if SYLVA_TERRAIN_BAKED
+  // Far chunks (renderer.cpp, far_material.hpp): the material without detail scales, evaluated
+  // once per field sample by far_material_bake.frag and filtered like the shape texture; the
+  // normal (no detail relief at first scale 3) stays the shape texture's.
+  vec4 baked = texture(u_far_material, (v_grid + 0.5) / vec2(u_field_size));
+  TerrainSurface surface;
+  surface.albedo = baked.rgb;
+  surface.normal = n;
+  surface.occlusion = baked.a;
+#else
   TerrainSurface surface = terrain_surface(vec3(v_grid.x * u_spacing, h, v_grid.y * u_spacing), n, curvature, h, macro);
+#endif
 #if SYLVA_TERRAIN_VIEW == 4
   // Unlit layer colours: snow white, rock/scree grey, dirt brown, sand yellow, vegetation green.
   vec3 c = vec3(0.15, 0.55, 0.1);

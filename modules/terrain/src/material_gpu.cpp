@@ -29,7 +29,7 @@ render::Texture make_detail_texture() {
   return render::Texture::from_image(noise, options).value();
 }
 
-void update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
+SampleRect update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
                           int x1, int z1) {
   const int grow = static_cast<int>(std::ceil(std::min(radius_m / field.spacing(), 4096.0))) + 1;
   x0 = std::max(x0 - grow, 0), z0 = std::max(z0 - grow, 0);
@@ -41,6 +41,7 @@ void update_shape_texture(const render::Texture& texture, const HeightField& fie
     compute_terrain_shape(field, radius_m, x0, z, x1, ze, band);
     glTextureSubImage2D(texture.id(), 0, x0, z, x1 - x0, ze - z, GL_RGBA, GL_FLOAT, band.data());
   }
+  return SampleRect{x0, z0, x1, z1};
 }
 
 Result<render::Texture> make_shape_texture(const HeightField& field, float radius_m) {
@@ -57,26 +58,40 @@ Result<render::Texture> make_shape_texture(const HeightField& field, float radiu
   return t;
 }
 
-void set_material_uniforms(const render::Program& program, const MaterialSettings& m, const Climate& climate) {
+MaterialUniforms material_uniforms(const MaterialSettings& m, const Climate& climate) {
   const MaterialLines lines = material_lines(m, climate);
-  program.set("u_lines", glm::vec4(lines.snow, lines.rock, lines.tree, lines.water));
+  MaterialUniforms u;
+  u.lines = glm::vec4(lines.snow, lines.rock, lines.tree, lines.water);
   const float rock_slope = 1.0f - std::cos(glm::radians(m.rock_slope_deg));
-  program.set("u_layer", glm::vec4(m.beach_height_m, rock_slope, 1.0f / m.detail_scale_m, m.detail_strength));
-  program.set("u_pole", glm::vec2(0.0f, climate.latitude_deg < 0.0f ? 1.0f : -1.0f));
-  program.set("u_grass_color", m.grass_color);
-  program.set("u_meadow_color", m.meadow_color);
-  program.set("u_dirt_color", m.dirt_color);
-  program.set("u_scree_color", m.scree_color);
-  program.set("u_rock_color", m.rock_color);
-  program.set("u_snow_color", m.snow_color);
-  program.set("u_sand_color", m.sand_color);
+  u.layer = glm::vec4(m.beach_height_m, rock_slope, 1.0f / m.detail_scale_m, m.detail_strength);
+  u.pole = glm::vec2(0.0f, climate.latitude_deg < 0.0f ? 1.0f : -1.0f);
+  u.colors = {m.grass_color, m.meadow_color, m.dirt_color, m.scree_color, m.rock_color, m.snow_color, m.sand_color};
+  return u;
+}
+
+void set_material_uniforms(const render::Program& program, const MaterialUniforms& u) {
+  program.set("u_lines", u.lines);
+  program.set("u_layer", u.layer);
+  program.set("u_pole", u.pole);
+  constexpr const char* kColorNames[7] = {"u_grass_color", "u_meadow_color", "u_dirt_color", "u_scree_color",
+                                          "u_rock_color",  "u_snow_color",   "u_sand_color"};
+  for (std::size_t i = 0; i < u.colors.size(); ++i) program.set(kColorNames[i], u.colors[i]);
+}
+
+void set_material_uniforms(const render::Program& program, const MaterialSettings& m, const Climate& climate) {
+  set_material_uniforms(program, material_uniforms(m, climate));
+}
+
+double min_pixel_footprint_m(double min_depth_m, double fov_y_rad, double aspect, int viewport_height) {
+  if (!(min_depth_m > 0.0) || viewport_height <= 0) return 0.0;
+  const double ty = std::tan(0.5 * fov_y_rad), tx = ty * aspect;
+  const double focal_px = 0.5 * viewport_height / ty;
+  return min_depth_m / (focal_px * (1.0 + tx * tx + ty * ty));
 }
 
 int first_detail_scale(double min_depth_m, double fov_y_rad, double aspect, int viewport_height, float detail_scale_m) {
-  if (!(min_depth_m > 0.0) || viewport_height <= 0 || !(detail_scale_m > 0.0f)) return 0;
-  const double ty = std::tan(0.5 * fov_y_rad), tx = ty * aspect;
-  const double focal_px = 0.5 * viewport_height / ty;
-  const double footprint_m = min_depth_m / (focal_px * (1.0 + tx * tx + ty * ty));
+  const double footprint_m = min_pixel_footprint_m(min_depth_m, fov_y_rad, aspect, viewport_height);
+  if (!(footprint_m > 0.0) || !(detail_scale_m > 0.0f)) return 0;
   // Tiles of the three scales (kScale1, kScale2 in material.glsl); a scale's fade is 0 once its
   // texel count per pixel, footprint / tile, passes 1/32.
   constexpr double kTileRatio[3] = {1.0, 5.3, 28.0};

@@ -6,7 +6,10 @@
 #include <sylva/core/result.hpp>
 #include <sylva/render/shader_library.hpp>
 #include <sylva/render/texture.hpp>
+#include <sylva/terrain/edit_layer.hpp>
 #include <sylva/terrain/material.hpp>
+
+#include <array>
 
 namespace sylva::terrain {
 
@@ -19,8 +22,8 @@ render::Texture make_detail_texture();
 // linear, clamped, bound at unit 2. SNORM, not half floats: llvmpipe filters it on a fast path. Errors: kLimit beyond GL_MAX_TEXTURE_SIZE (naming the size).
 Result<render::Texture> make_shape_texture(const HeightField& field, float radius_m);
 // Recomputes the samples an edit of [x0, x1) x [z0, z1) changes (the rectangle grown by the
-// radius) and uploads only those.
-void update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
+// radius) and uploads only those; returns that grown rectangle (clamped to the field).
+SampleRect update_shape_texture(const render::Texture& texture, const HeightField& field, float radius_m, int x0, int z0,
                           int x1, int z1);
 
 // The finest detail scale (0-3; 3: none) that a fragment of ground at least min_depth_m in front
@@ -31,8 +34,22 @@ void update_shape_texture(const render::Texture& texture, const HeightField& fie
 // anywhere on the screen (2.3x below the true coarse derivatives at its tightest, test
 // TerrainMaterialVariants), so no extra margin. Compiled in as SYLVA_TERRAIN_FIRST_SCALE.
 int first_detail_scale(double min_depth_m, double fov_y_rad, double aspect, int viewport_height, float detail_scale_m);
+// That footprint bound [m per pixel] (0 for a depth <= 0 or an empty viewport).
+double min_pixel_footprint_m(double min_depth_m, double fov_y_rad, double aspect, int viewport_height);
 
-// The material's uniforms (u_lines, u_layer, u_pole, colours) on the bound program.
+// The material's uniforms (material.glsl: u_lines, u_layer, u_pole, the layer colours) for a
+// material and climate. Compared by the renderer to know when the baked far material
+// (far_material.hpp) is stale.
+struct MaterialUniforms {
+  glm::vec4 lines{0.0f};  // snow, rock, tree line, water level [m]
+  glm::vec4 layer{0.0f};  // beach height [m], rock slope (1 - n.y), 1 / finest tile [1/m], detail strength
+  glm::vec2 pole{0.0f};
+  std::array<glm::vec3, 7> colors{};  // grass, meadow, dirt, scree, rock, snow, sand (linear)
+  bool operator==(const MaterialUniforms&) const = default;
+};
+MaterialUniforms material_uniforms(const MaterialSettings& settings, const Climate& climate);
+// Sets them on the bound program.
+void set_material_uniforms(const render::Program& program, const MaterialUniforms& uniforms);
 void set_material_uniforms(const render::Program& program, const MaterialSettings& settings, const Climate& climate);
 
 }  // namespace sylva::terrain

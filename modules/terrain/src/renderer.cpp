@@ -6,6 +6,7 @@
 #include <sylva/terrain/frame_mesh.hpp>
 #include <sylva/terrain/height_texture.hpp>
 
+#include "far_material.hpp"
 #include "material_gpu.hpp"
 
 #include <algorithm>
@@ -25,13 +26,15 @@ constexpr GLuint kAttrGrid = 0, kAttrHeight = 1, kAttrSkirt = 2, kAttrCentre = 3
 // per pixel, per vertex or off, fetching the detail scales from first_scale on (terrain.frag,
 // chunk.vert, material.glsl).
 // vertex_sky: per_vertex air with the sky radiance per vertex as well (SYLVA_TERRAIN_AIR 3).
+// baked: the material read from the baked far material (SYLVA_TERRAIN_BAKED, first_scale 3).
 Result<render::Program> make_shaded_program(bool shadows, DebugView view, AerialPerspective air, int first_scale = 0,
-                                            bool vertex_sky = false) {
+                                            bool vertex_sky = false, bool baked = false) {
   return render::Program::create({"terrain/chunk.vert", "terrain/terrain.frag"},
                                  {{"SYLVA_TERRAIN_SHADOWS", shadows ? "1" : "0"},
                                   {"SYLVA_TERRAIN_VIEW", std::to_string(static_cast<int>(view))},
                                   {"SYLVA_TERRAIN_AIR", vertex_sky ? "3" : std::to_string(static_cast<int>(air))},
-                                  {"SYLVA_TERRAIN_FIRST_SCALE", std::to_string(first_scale)}});
+                                  {"SYLVA_TERRAIN_FIRST_SCALE", std::to_string(first_scale)},
+                                  {"SYLVA_TERRAIN_BAKED", baked ? "1" : "0"}});
 }
 
 bool uses_material(DebugView view) { return view == DebugView::kShaded || view == DebugView::kMaterials; }
@@ -48,6 +51,27 @@ Status make_coarse_programs(bool shadows, DebugView view, AerialPerspective air,
   }
   return {};
 }
+
+// shaded_baked_: [0] like shaded_coarse_[2], [1] like shaded_coarse_[3], reading the baked far
+// material; empty unless far_material is baked and the view is the shaded one (the materials
+// view shows the layer weights, which the bake does not keep).
+Status make_baked_programs(bool shadows, DebugView view, AerialPerspective air, FarMaterial far,
+                           render::Program (&baked)[2]) {
+  for (int k = 0; k < 2; ++k) {
+    baked[k] = {};
+    if (far != FarMaterial::kBaked || view != DebugView::kShaded || (k == 1 && air != AerialPerspective::kPerVertex)) {
+      continue;
+    }
+    auto p = make_shaded_program(shadows, view, air, 3, k == 1, true);
+    if (!p.ok()) return p.error();
+    baked[k] = std::move(p).value();
+  }
+  return {};
+}
+
+// A far chunk takes the baked material where one field sample spans at most this many pixels at
+// its nearest corner (README "vs CDLOD": the measured picture against the computed material).
+constexpr double kBakedMaxTexelPx = 4.0;
 }  // namespace
 
 LodView TerrainRenderer::view_for(const render::Camera& camera, glm::ivec2 viewport) {
@@ -149,7 +173,16 @@ void TerrainRenderer::update_height_textures(const HeightField& field, int x0, i
       shape_ = {};
     }
   }
-  if (shape_) update_shape_texture(shape_, field, shape_radius_m_, x0, z0, x1, z1);
+  if (!shape_) {
+    far_bake_.reset();
+    return;
+  }
+  const SampleRect changed = update_shape_texture(shape_, field, shape_radius_m_, x0, z0, x1, z1);
+  // A field of another size gets a new bake on the next draw; else only the changed samples.
+  if (far_bake_ && (far_bake_->texture().width() != field.columns() || far_bake_->texture().height() != field.rows())) {
+    far_bake_.reset();
+  }
+  if (far_bake_) far_bake_->mark_dirty(changed);
 }
 
 Status TerrainRenderer::init(const HeightField* field) {
@@ -159,10 +192,12 @@ Status TerrainRenderer::init(const HeightField* field) {
   shaded_with_shadows_ = settings_.receive_shadows;
   shaded_view_ = settings_.debug_view;
   shaded_air_ = settings_.aerial_perspective;
+  shaded_far_ = settings_.far_material;
   auto shaded = make_shaded_program(shaded_with_shadows_, shaded_view_, shaded_air_);
   if (!shaded.ok()) return shaded.error();
   shaded_ = std::move(shaded).value();
   SYLVA_TRY(make_coarse_programs(shaded_with_shadows_, shaded_view_, shaded_air_, shaded_coarse_));
+  SYLVA_TRY(make_baked_programs(shaded_with_shadows_, shaded_view_, shaded_air_, shaded_far_, shaded_baked_));
   auto depth = render::Program::create({"terrain/chunk.vert", "terrain/depth.frag"});
   if (!depth.ok()) return depth.error();
   depth_ = std::move(depth).value();
@@ -176,6 +211,7 @@ Status TerrainRenderer::init(const HeightField* field) {
     if (heights.ok()) {
       heights_ = std::move(heights).value();
       has_heights_ = true;
+      field_spacing_m_ = static_cast<float>(field->spacing());
       shape_radius_m_ = settings_.material.curvature_radius_m;
       shape_ = std::move(make_shape_texture(*field, shape_radius_m_)).value();  // same size: fits too
     } else {
@@ -322,6 +358,25 @@ void TerrainRenderer::update(const render::FrameContext& frame) {
   stats_.gpu_bytes = gpu_bytes_;
 }
 
+std::int64_t TerrainRenderer::far_material_texels_baked() const {
+  return far_bake_ ? far_bake_->texels_baked() : 0;
+}
+
+bool TerrainRenderer::bake_far_material() {
+  if (!far_bake_ && !far_bake_failed_) {
+    auto bake = FarMaterialBake::create(shape_.width(), shape_.height());
+    if (bake.ok()) {
+      far_bake_ = std::make_unique<FarMaterialBake>(std::move(bake).value());
+    } else {
+      log_warn("terrain: far_material baked: {}; far chunks compute their material", bake.error().message);
+      far_bake_failed_ = true;
+    }
+  }
+  if (!far_bake_) return false;
+  far_bake_->refresh(heights_, shape_, material_uniforms(settings_.material, climate_));
+  return true;
+}
+
 void TerrainRenderer::set_frame_uniforms(const render::Program& program, const glm::mat4& view_projection) const {
   program.set("u_origin", frame_.origin);
   program.set("u_camera", frame_.camera);
@@ -425,17 +480,22 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     }
   } else {
     if (settings_.receive_shadows != shaded_with_shadows_ || settings_.debug_view != shaded_view_ ||
-        settings_.aerial_perspective != shaded_air_) {
+        settings_.aerial_perspective != shaded_air_ || settings_.far_material != shaded_far_) {
       const AerialPerspective air = settings_.aerial_perspective;
+      const FarMaterial far = settings_.far_material;
       auto p = make_shaded_program(settings_.receive_shadows, settings_.debug_view, air);
       Status coarse = p.ok() ? make_coarse_programs(settings_.receive_shadows, settings_.debug_view, air, shaded_coarse_)
                              : Status{};
+      if (coarse.ok() && p.ok()) {
+        coarse = make_baked_programs(settings_.receive_shadows, settings_.debug_view, air, far, shaded_baked_);
+      }
       if (p.ok() && !coarse.ok()) p = coarse.error();
       if (p.ok()) {
         shaded_ = std::move(p).value();
         shaded_with_shadows_ = settings_.receive_shadows;
         shaded_view_ = settings_.debug_view;
         shaded_air_ = air;
+        shaded_far_ = far;
       } else {
         log_warn("terrain: {}", p.error().message);
       }
@@ -444,20 +504,25 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     // Each view's program has only the uniforms its view reads (the others are compiled out).
     const DebugView view = shaded_view_;
     const bool coarse = uses_material(view) && static_cast<bool>(shaded_coarse_[0]);
-    const int programs = coarse ? (shaded_coarse_[3] ? 5 : 4) : 1;
+    // The baked far material: made on first use, refreshed where the field or material changed.
+    const bool baked = coarse && shaded_baked_[0] && shape_ && bake_far_material();
+    const int programs = coarse ? 7 : 1;
     for (int k = 0; k < programs; ++k) {
-      const render::Program& p = k == 0 ? shaded_ : shaded_coarse_[k - 1];
+      const render::Program& p = k == 0 ? shaded_ : k <= 4 ? shaded_coarse_[k - 1] : shaded_baked_[k - 5];
+      if (!p) continue;
       p.use();
       if (view == DebugView::kFlat) {
         p.set("u_flat_color", glm::vec4(0.6f, 0.6f, 0.6f, 1.0f));
       } else {
         p.set("u_has_shape", shape_ ? 1 : 0);
-        if (uses_material(view)) set_material_uniforms(p, settings_.material, climate_);
+        // The baked variants read the material from the bake (its uniforms are compiled out).
+        if (uses_material(view) && k < 5) set_material_uniforms(p, settings_.material, climate_);
       }
       if (k > 0) set_frame_uniforms(p, vp);
     }
     detail_.bind(1);
     if (shape_) shape_.bind(2);
+    if (baked) far_bake_->texture().bind(3);
     const bool levels = view == DebugView::kLodColors;
     std::vector<const render::Program*>& chunk_programs = chunk_programs_;  // no allocation per frame
     chunk_programs.clear();
@@ -467,6 +532,7 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       const glm::dvec3 eye = frame.camera.position(), forward(frame.camera.forward());
       const render::PerspectiveParams& lens = frame.camera.perspective();
       chunk_programs.reserve(selection_->chunks.size());
+      stats_.far_baked_chunks = 0;
       for (const SelectedChunk& s : selection_->chunks) {
         glm::dvec3 lo, hi;
         tree_->chunk_bounds(s.index, lo, hi);
@@ -480,7 +546,16 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
         // sky radiance per vertex too: below the horizon it varies smoothly with the direction,
         // unlike across it (the sky table's rows go with sqrt(dir.y)).
         const bool vertex_sky = k == 3 && shaded_coarse_[3] && hi.y < eye.y;
-        chunk_programs.push_back(k == 0 ? &shaded_ : &shaded_coarse_[vertex_sky ? 3 : k - 1]);
+        // A field sample spans at most spacing / footprint pixels anywhere on the chunk.
+        const bool far = baked && k == 3 &&
+                         field_spacing_m_ <= kBakedMaxTexelPx * min_pixel_footprint_m(depth, lens.fov_y, lens.aspect,
+                                                                                      frame.viewport.y);
+        if (far) {
+          chunk_programs.push_back(&shaded_baked_[vertex_sky ? 1 : 0]);
+          ++stats_.far_baked_chunks;
+        } else {
+          chunk_programs.push_back(k == 0 ? &shaded_ : &shaded_coarse_[vertex_sky ? 3 : k - 1]);
+        }
       }
     }
     draw_geometry(shaded_, vp, levels, stats, false, nullptr, coarse ? &chunk_programs : nullptr);

@@ -35,6 +35,8 @@
 
 namespace sylva::terrain {
 
+class FarMaterialBake;
+
 // kMaterials: unlit layer colours (snow white, rock and scree grey, dirt brown, sand yellow,
 // grass and meadow green), where the material put each layer.
 enum class DebugView : std::uint8_t { kShaded, kLodColors, kMorph, kFlat, kMaterials };
@@ -58,11 +60,23 @@ constexpr std::array<EnumName<AerialPerspective>, 3> enum_names(AerialPerspectiv
            {AerialPerspective::kOff, "off"}}};
 }
 
+// The material of far chunks, those that draw no detail scale (issue 18). kBaked (default) reads
+// the layered material's albedo and occlusion from a texture baked once per field sample on the
+// GPU (src/far_material.hpp: the same material.glsl, rebuilt where the field is edited and when
+// the material or climate changes) where a field sample spans at most a few pixels on screen
+// (README "vs CDLOD": the bake's bilinear magnification is then invisible); kComputed evaluates
+// the layer arithmetic for every pixel, as nearer chunks always do.
+enum class FarMaterial : std::uint8_t { kBaked, kComputed };
+constexpr std::array<EnumName<FarMaterial>, 2> enum_names(FarMaterial) {
+  return {{{FarMaterial::kBaked, "baked"}, {FarMaterial::kComputed, "computed"}}};
+}
+
 struct TerrainRenderSettings {
   LodSettings lod;
   MaterialSettings material;
   DebugView debug_view = DebugView::kShaded;
   AerialPerspective aerial_perspective = AerialPerspective::kPerVertex;
+  FarMaterial far_material = FarMaterial::kBaked;
   bool wireframe = false;       // chunk triangles as lines over the shaded terrain
   bool chunk_bounds = false;    // bounding boxes of the drawn chunks
   bool receive_shadows = true;  // sample the host's cascaded shadows (needs ShadowMaps::bind())
@@ -76,6 +90,8 @@ struct TerrainRenderSettings {
     v(debug_view, "debug_view", {.help = "shaded, lod_colors, morph, flat or materials"});
     v(aerial_perspective, "aerial_perspective",
       {.help = "The air over the ground: per_vertex (extinction interpolated), per_pixel or off"});
+    v(far_material, "far_material",
+      {.help = "Far ground's material: baked (a texture per field sample) or computed per pixel"});
     v(wireframe, "wireframe", {.help = "Draw triangle edges"});
     v(chunk_bounds, "chunk_bounds", {.help = "Draw the drawn chunks' bounding boxes"});
     v(receive_shadows, "receive_shadows", {.help = "Receive cascaded shadows", .rebuild = Rebuild::kGpu});
@@ -90,6 +106,7 @@ struct TerrainFrameStats {
   std::uint64_t seam_triangles = 0;
   std::uint64_t skirt_triangles = 0;
   std::uint64_t uploads = 0;      // chunk meshes uploaded this frame
+  std::uint32_t far_baked_chunks = 0;  // chunks drawn with the baked far material (far_material)
   double update_ms = 0.0;         // selection + batch assembly
   std::size_t gpu_bytes = 0;      // resident GPU meshes
 };
@@ -138,6 +155,9 @@ class TerrainRenderer final : public render::Drawable {
   // Texels of the height texture re-uploaded by apply_height_edit so far: only each edit's
   // rectangle (update_height_texture), independent of the field size (issue 15).
   std::int64_t height_texels_uploaded() const { return height_texels_uploaded_; }
+  // Field samples the baked far material has evaluated so far (all of them per full bake, each
+  // edit's grown rectangle after): 0 before the first frame that draws with it.
+  std::int64_t far_material_texels_baked() const;
 
   // The LodView a camera and viewport give (what update() selects with).
   static LodView view_for(const render::Camera& camera, glm::ivec2 viewport);
@@ -185,6 +205,10 @@ class TerrainRenderer final : public render::Drawable {
   // and the air's sky radiance per vertex too (per_vertex only), for such chunks wholly below
   // the camera, where the sky below the horizon varies smoothly with the view direction.
   render::Program shaded_coarse_[4];
+  // far_material baked: shaded_coarse_[2] and [3] reading the baked far material instead of
+  // computing it (SYLVA_TERRAIN_BAKED), for chunks whose field samples span few pixels.
+  render::Program shaded_baked_[2];
+  FarMaterial shaded_far_ = FarMaterial::kBaked;
   std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
@@ -196,6 +220,13 @@ class TerrainRenderer final : public render::Drawable {
   // the GPU) and the curvature radius it was computed with.
   render::Texture detail_, shape_;
   float shape_radius_m_ = 0.0f;
+  float field_spacing_m_ = 1.0f;
+  // The baked far material, made on the first frame that draws with it (null before and when it
+  // could not be made: then far chunks compute their material).
+  std::unique_ptr<FarMaterialBake> far_bake_;
+  bool far_bake_failed_ = false;
+  // Makes (once) and refreshes far_bake_; false where there is none.
+  bool bake_far_material();
   Climate climate_;
   std::unordered_map<std::uint32_t, GpuMesh> gpu_;
   std::size_t gpu_bytes_ = 0;
