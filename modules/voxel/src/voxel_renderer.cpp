@@ -819,9 +819,10 @@ void VoxelRenderer::restore_block(const UboBinding& b) {
 
 void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::FrameContext* frame, const glm::mat4& vp,
                                          const glm::dvec3& eye, const render::Frustum* culling, render::PassStats& stats) {
-  bind_common(*p.chunks, frame);
-  bind_common(*p.plants, frame);
-  draw_chunks(visible_, *p.chunks, *p.plants, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats, true);
+  // Plants and tufts first, the ground after them: they stand in front of the ground they hide,
+  // and llvmpipe's early depth test then skips shading the ground behind them, instead of
+  // shading it and shading over it (without the pre-pass; chunks are front to back). Only
+  // coplanar faces of different kinds could come out differently: none at the shipped spawn.
   const bool plants = settings_.draw_plants;
   if (plants && (settings_.plant_far_mesh || settings_.plant_near_mesh)) {
     bind_common(*p.mesh, frame);
@@ -830,10 +831,6 @@ void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::
     if (settings_.plant_far_mesh) draw_far_meshes(*p.mesh, eye, culling, stats);
   }
   glDisable(GL_CULL_FACE);  // cut-out faces are seen from both sides (seed §2.1)
-  bind_common(*p.chunks_alpha, frame);
-  bind_common(*p.plants_alpha, frame);
-  draw_chunks(visible_, *p.chunks_alpha, *p.plants_alpha, true, vp, eye, settings_.leaf_back_faces_within,
-              settings_.plant_far_beyond, culling, stats, true);
   if (plants && settings_.plant_near_mesh) {
     bind_common(*p.mesh_alpha, frame);
     p.mesh_alpha->set("u_view_projection", vp);
@@ -842,6 +839,15 @@ void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::
   }
   bind_common(*p.tufts, frame);
   draw_tufts(*p.tufts, visible_, vp, eye, stats);
+  glEnable(GL_CULL_FACE);
+  bind_common(*p.chunks, frame);
+  bind_common(*p.plants, frame);
+  draw_chunks(visible_, *p.chunks, *p.plants, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats, true);
+  glDisable(GL_CULL_FACE);
+  bind_common(*p.chunks_alpha, frame);
+  bind_common(*p.plants_alpha, frame);
+  draw_chunks(visible_, *p.chunks_alpha, *p.plants_alpha, true, vp, eye, settings_.leaf_back_faces_within,
+              settings_.plant_far_beyond, culling, stats, true);
 }
 
 void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, render::PassStats& stats) {
