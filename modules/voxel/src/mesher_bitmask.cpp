@@ -229,6 +229,7 @@ class BitmaskMesher final : public Mesher {
     const int n = kN > 0 ? kN : n_;
     const int p = n + 2;
     const int stride[3] = {1, p * p, p};
+    const int mp = mask_pitch(p);  // of the mask arrays
     const bool ao_on = options_.ambient_occlusion;
     const int front = kSign * stride[kAxis];
     // Stride between consecutive bits of a row, in the padded id array: bits run along y for
@@ -259,15 +260,15 @@ class BitmaskMesher final : public Mesher {
       const int layer = s + kSign;  // the slice in front of the faces, in [-1, n]
       // Visible faces of every row of the slice, and the rows holding any (bit r), so the loop
       // below visits only those.
-      const std::uint64_t* lrows = lm + idx2(layer, 0, p);  // lrows[r]: row r; [-1] and [n] are padding
-      const std::uint64_t* srows = am + idx2(s, 0, p);
+      const std::uint64_t* lrows = lm + idx2(layer, 0, mp);  // lrows[r]: row r; [-1] and [n] are padding
+      const std::uint64_t* srows = am + idx2(s, 0, mp);
       if constexpr (kRowsAlongX) {
         // Rows x of slice z and of the layer in front: the (x, z) columns, p apart, gathered
         // only for slices with a face (found from the contiguous (z, y) rows: most +-Z slices
         // of a solid chunk have none).
-        if (face_rows<kN>(az_.data() + idx2(s, 0, p), oz_.data() + idx2(layer, 0, p), n, face_rows_) == 0) continue;
-        for (int x = 0; x < n; ++x) zslice_[x] = am[(x + 1) * p + s + 1];
-        for (int x = -1; x <= n; ++x) zlayer_[x + 1] = lm[(x + 1) * p + layer + 1];
+        if (face_rows<kN>(az_.data() + idx2(s, 0, mp), oz_.data() + idx2(layer, 0, mp), n, face_rows_) == 0) continue;
+        for (int x = 0; x < n; ++x) zslice_[x] = am[(x + 1) * mp + s + 1];
+        for (int x = -1; x <= n; ++x) zlayer_[x + 1] = lm[(x + 1) * mp + layer + 1];
         srows = zslice_;
         lrows = zlayer_ + 1;
       }
@@ -542,8 +543,9 @@ class BitmaskMesher final : public Mesher {
     const int n = kN > 0 ? kN : n_;
     const int p = n + 2;
     const auto pp = static_cast<std::size_t>(p * p);
+    const int mp = mask_pitch(p);
     // Every entry is written below (no clearing pass: it cost as much as a transpose).
-    for (auto* v : {&ax_, &ox_, &az_, &oz_, &ay_, &oy_}) v->resize(pp);
+    for (auto* v : {&ax_, &ox_, &az_, &oz_, &ay_, &oy_}) v->resize(static_cast<std::size_t>(p * mp));
     const std::uint8_t* opaque = palette.opaque_table().data();
     const BlockId* ids = blocks.ids.data();
     const BlockId first_special = palette.first_alpha_cut();
@@ -581,10 +583,10 @@ class BitmaskMesher final : public Mesher {
     for (int zz = 0; zz < p; zz += lanes) {
       const bool second = lanes == 2 && zz + 1 < p;
       // Rows y of slab zz are az[zz][1 .. n], contiguous.
-      const std::uint64_t* sa0 = az + static_cast<std::size_t>(zz * p + 1);
-      const std::uint64_t* so0 = oz + static_cast<std::size_t>(zz * p + 1);
-      const std::uint64_t* sa1 = second ? sa0 + p : kNoSlab;
-      const std::uint64_t* so1 = second ? so0 + p : kNoSlab;
+      const std::uint64_t* sa0 = az + static_cast<std::size_t>(zz * mp + 1);
+      const std::uint64_t* so0 = oz + static_cast<std::size_t>(zz * mp + 1);
+      const std::uint64_t* sa1 = second ? sa0 + mp : kNoSlab;
+      const std::uint64_t* so1 = second ? so0 + mp : kNoSlab;
       std::uint64_t diff = 0;  // opaque == non-air (no alpha-cut block in the slabs): one transpose
       // Slabs whose rows are each empty or full (air, solid chunks, air over a flat floor)
       // transpose to the same column for every x: the mask of the full rows (col0, col1).
@@ -608,30 +610,30 @@ class BitmaskMesher final : public Mesher {
           oc = o;
         }
         for (int x = 0; x < n; ++x) {
-          ay[(x + 1) * p + zz] = a[x] & low_lane;
-          oy[(x + 1) * p + zz] = oc[x] & low_lane;
+          ay[(x + 1) * mp + zz] = a[x] & low_lane;
+          oy[(x + 1) * mp + zz] = oc[x] & low_lane;
         }
         if (second) {
           for (int x = 0; x < n; ++x) {
-            ay[(x + 1) * p + zz + 1] = a[x] >> 32;
-            oy[(x + 1) * p + zz + 1] = oc[x] >> 32;
+            ay[(x + 1) * mp + zz + 1] = a[x] >> 32;
+            oy[(x + 1) * mp + zz + 1] = oc[x] >> 32;
           }
         }
       } else {
         for (int x = 0; x < n; ++x) {
-          ay[(x + 1) * p + zz] = col0;
-          oy[(x + 1) * p + zz] = col0;
+          ay[(x + 1) * mp + zz] = col0;
+          oy[(x + 1) * mp + zz] = col0;
         }
         if (second) {
           for (int x = 0; x < n; ++x) {
-            ay[(x + 1) * p + zz + 1] = col1;
-            oy[(x + 1) * p + zz + 1] = col1;
+            ay[(x + 1) * mp + zz + 1] = col1;
+            oy[(x + 1) * mp + zz + 1] = col1;
           }
         }
       }
       for (int z = zz; z < zz + (second ? 2 : 1); ++z) {
         oy[z] = bytes_to_bits(lo_end + z * p + 1, n);
-        oy[(n + 1) * p + z] = bytes_to_bits(hi_end + z * p + 1, n);
+        oy[(n + 1) * mp + z] = bytes_to_bits(hi_end + z * p + 1, n);
       }
     }
   }
