@@ -60,12 +60,14 @@ constexpr std::array<EnumName<AerialPerspective>, 3> enum_names(AerialPerspectiv
            {AerialPerspective::kOff, "off"}}};
 }
 
-// The material of far chunks, those that draw no detail scale (issue 18). kBaked (default) reads
-// the layered material's albedo and occlusion from a texture baked once per field sample on the
-// GPU (src/far_material.hpp: the same material.glsl, rebuilt where the field is edited and when
-// the material or climate changes) where a field sample spans at most a few pixels on screen
-// (README "vs CDLOD": the bake's bilinear magnification is then invisible); kComputed evaluates
-// the layer arithmetic for every pixel, as nearer chunks always do.
+// The material of far chunks, those that draw no detail scale (issue 18). kComputed (default)
+// evaluates the layer arithmetic for every pixel, as nearer chunks always do; kBaked reads the
+// albedo and occlusion from a texture baked once per field sample on the GPU
+// (src/far_material.hpp: the same material.glsl, re-baked where the field is edited and when the
+// material or climate changes) for chunks whose field samples span at most 4 pixels (the bake's
+// bilinear magnification is then invisible) and mip-filters it where samples are smaller than a
+// pixel. Not the default: on llvmpipe one filtered fetch costs about what the far material's
+// arithmetic does (README "vs CDLOD": the race view gains nothing measurable).
 enum class FarMaterial : std::uint8_t { kBaked, kComputed };
 constexpr std::array<EnumName<FarMaterial>, 2> enum_names(FarMaterial) {
   return {{{FarMaterial::kBaked, "baked"}, {FarMaterial::kComputed, "computed"}}};
@@ -76,7 +78,7 @@ struct TerrainRenderSettings {
   MaterialSettings material;
   DebugView debug_view = DebugView::kShaded;
   AerialPerspective aerial_perspective = AerialPerspective::kPerVertex;
-  FarMaterial far_material = FarMaterial::kBaked;
+  FarMaterial far_material = FarMaterial::kComputed;
   bool wireframe = false;       // chunk triangles as lines over the shaded terrain
   bool chunk_bounds = false;    // bounding boxes of the drawn chunks
   bool receive_shadows = true;  // sample the host's cascaded shadows (needs ShadowMaps::bind())
@@ -91,7 +93,7 @@ struct TerrainRenderSettings {
     v(aerial_perspective, "aerial_perspective",
       {.help = "The air over the ground: per_vertex (extinction interpolated), per_pixel or off"});
     v(far_material, "far_material",
-      {.help = "Far ground's material: baked (a texture per field sample) or computed per pixel"});
+      {.help = "Far ground's material: computed per pixel, or baked (a texture per field sample)"});
     v(wireframe, "wireframe", {.help = "Draw triangle edges"});
     v(chunk_bounds, "chunk_bounds", {.help = "Draw the drawn chunks' bounding boxes"});
     v(receive_shadows, "receive_shadows", {.help = "Receive cascaded shadows", .rebuild = Rebuild::kGpu});
@@ -208,7 +210,7 @@ class TerrainRenderer final : public render::Drawable {
   // far_material baked: shaded_coarse_[2] and [3] reading the baked far material instead of
   // computing it (SYLVA_TERRAIN_BAKED), for chunks whose field samples span few pixels.
   render::Program shaded_baked_[2];
-  FarMaterial shaded_far_ = FarMaterial::kBaked;
+  FarMaterial shaded_far_ = FarMaterial::kComputed;
   std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
   DebugView shaded_view_ = DebugView::kShaded;
