@@ -244,11 +244,13 @@ Result<SuiteSpec> voxel_suite() {
       "Voxel mesher choice (hidden-face culling, greedy, bitmask greedy): the same visible surface from fewer "
       "quads, so the image error must stay at zero while the cost drops; and the view radius in chunks against the "
       "full world; and far plants as shells from 0 blocks or never (issue 18; default 96; the module's "
-      "plant_triangles and plant_far_chunks stats).";
+      "plant_triangles and plant_far_chunks stats); and the depth pre-pass, off by default (issue 18: each "
+      "vertex twice against each pixel shaded once).";
   r.sweep_groups = {
       {{"voxel.mesher", {"culled", "greedy", "bitmask"}}},
       {{"voxel.radius_chunks", {"0", "1"}}},
       {{"voxel.render.plant_far_beyond", {"0", "1000000"}}},
+      {{"voxel.render.depth_prepass", {"true"}}},
   };
   r.reference = {{"voxel.mesher", "culled"}, {"voxel.radius_chunks", "2"}};
   r.reference_note = "hidden-face culling only (one quad per visible block face) over the whole 5 x 5 chunk world";

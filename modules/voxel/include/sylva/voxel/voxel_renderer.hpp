@@ -119,8 +119,10 @@ struct VoxelRenderSettings {
   // The colour pass only: shadows keep the instanced cubes. The same picture (issue #18).
   bool plant_near_mesh = true;
   // Colour pass in two steps: depth only, then colour with GL_EQUAL, so each pixel is shaded
-  // once (the same picture; fewer shaded fragments where surfaces overlap).
-  bool depth_prepass = true;
+  // once (the same picture; fewer shaded fragments where surfaces overlap). Off by default:
+  // with plants drawn before the ground and no empty point-light loops the second run through
+  // the vertices costs more than the fragments it saves (issue #18, voxel README).
+  bool depth_prepass = false;
   AerialPerspective aerial_perspective = AerialPerspective::kPerVertex;  // the air over faces and plants
   int texture_size = 16;            // texels per block side
   bool cast_shadows = true;         // draw into the render core's cascades (draw(kShadow), shadow_caster())
@@ -156,7 +158,7 @@ struct VoxelRenderSettings {
     v(plant_far_cell, "plant_far_cell", {.min = 1.0, .max = 8.0, .help = "Edge of the far plants' grid in start block sizes (1 = the plant's own block size; 2 = coarser shells, fewer cubes)", .rebuild = Rebuild::kGpu});
     v(plant_far_mesh, "plant_far_mesh", {.help = "Far plant shells as one baked mesh per chunk (faces pre-transformed, indexed, face groups turned away skipped) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
     v(plant_near_mesh, "plant_near_mesh", {.help = "Near plants' exact parts as baked meshes per chunk (faces pre-transformed, indexed, per-plant culling kept) instead of instanced cubes (the same picture)", .rebuild = Rebuild::kGpu});
-    v(depth_prepass, "depth_prepass", {.help = "Draw depth first, then colour with an equal depth test: each pixel shaded once (the same picture)"});
+    v(depth_prepass, "depth_prepass", {.help = "Draw depth first, then colour with an equal depth test: each pixel shaded once, every vertex twice (the same picture)"});
     v(aerial_perspective, "aerial_perspective",
       {.help = "The air over blocks and plants: per_vertex (extinction interpolated), per_pixel or off"});
     v(cast_shadows, "cast_shadows", {.help = "Chunks and plants cast into the sun's cascaded shadow maps"});
