@@ -161,11 +161,13 @@ TEST(MesherBitmaskShapes, WithoutAoEveryWidthCoversLikeTheCulledMesher) {
   }
 }
 
-TEST(MesherBitmaskShapes, OneBlockIdChunksGiveTheQuadsOfTheGeneralPath) {
-  // A chunk holding one plain block id (air aside) groups its faces without reading ids. The
-  // same hills with one stone block of another id buried under them (no face of its own, AO
-  // unchanged) take the general path: the quads must be the same, in the same order, with AO
-  // on and off, on both row passes. One alpha-cut or sides-only id keeps the general path.
+// Meshes the one-id chunk shape(n) and the same chunk with one stone block of another id buried
+// at (n / 2, 0, n / 2) (no face of its own, AO unchanged: the general path, ids read), with AO
+// on and off, on both row passes, sizes 9-64: the quads must be the same, in the same order.
+// more(ao, one, single mesh, what) adds the caller's checks.
+void expect_one_id_path_like_general(
+    const std::function<PaddedBlocks(int)>& shape,
+    const std::function<void(bool, const PaddedBlocks&, const ChunkMesh&, const std::string&)>& more) {
   const auto& palette = testing::test_palette();
   for (bool avx2 : {true, false}) {
     if (!avx2) {
@@ -175,59 +177,50 @@ TEST(MesherBitmaskShapes, OneBlockIdChunksGiveTheQuadsOfTheGeneralPath) {
       MesherOptions options;
       options.ambient_occlusion = ao;
       for (int n : {9, 17, 33, 62, 64}) {
-        auto height = [n](int x, int z) { return 2 + ((x + 1) * 7 + (z + 1) * 5 + (x + 1) * (z + 1)) % (n - 2); };
-        const PaddedBlocks one = fill(n, [&](int x, int y, int z) -> BlockId { return y < height(x, z) ? 1 : kAir; });
+        const PaddedBlocks one = shape(n);
         PaddedBlocks two = one;
         two.set(n / 2, 0, n / 2, 2);
         ChunkMesh single, general;
         make_mesher(MesherKind::kBitmask, options)->mesh(one, palette, single);
         make_mesher(MesherKind::kBitmask, options)->mesh(two, palette, general);
         const std::string what = "avx2 " + std::to_string(avx2) + " ao " + std::to_string(ao) + " n=" + std::to_string(n);
-        EXPECT_FALSE(single.empty()) << what;
         EXPECT_EQ(single.opaque, general.opaque) << what;
         EXPECT_EQ(single.alpha_cut, general.alpha_cut) << what;
-        if (ao) {
-          expect_reference(one, "one id " + what);
-          for (BlockId id : {BlockId{4}, BlockId{7}}) {
-            expect_reference(fill(n, [&](int x, int y, int z) -> BlockId { return y < height(x, z) ? id : kAir; }),
-                             "one id " + std::to_string(id) + " " + what);
-          }
-        }
+        more(ao, one, single, what);
       }
     }
     unsetenv("SYLVA_VOXEL_NO_AVX2");
   }
 }
 
+TEST(MesherBitmaskShapes, OneBlockIdChunksGiveTheQuadsOfTheGeneralPath) {
+  // A chunk holding one plain block id (air aside) groups its faces without reading ids: hills
+  // against the general path. One alpha-cut or sides-only id keeps the general path.
+  auto height = [](int n, int x, int z) { return 2 + ((x + 1) * 7 + (z + 1) * 5 + (x + 1) * (z + 1)) % (n - 2); };
+  auto hills = [&](int n, BlockId id) {
+    return fill(n, [&](int x, int y, int z) -> BlockId { return y < height(n, x, z) ? id : kAir; });
+  };
+  expect_one_id_path_like_general([&](int n) { return hills(n, 1); },
+                                  [&](bool ao, const PaddedBlocks& one, const ChunkMesh& single, const std::string& what) {
+                                    EXPECT_FALSE(single.empty()) << what;
+                                    if (!ao) return;
+                                    expect_reference(one, "one id " + what);
+                                    for (BlockId id : {BlockId{4}, BlockId{7}}) {
+                                      expect_reference(hills(one.n, id), "one id " + std::to_string(id) + " " + what);
+                                    }
+                                  });
+}
+
 TEST(MesherBitmaskShapes, OneBlockIdCheckerboardWritesItsAloneFacesLikeTheGeneralPath) {
   // A one-id chunk writes the faces that can merge with nothing (no face beside them in their
-  // slice) as unit quads without reading their ids. A 3D checkerboard over a stone floor (every
-  // checker face alone) against the same chunk with one block of another id buried in the floor
-  // (general path, ids read): the same quads in the same order, AO on and off, both row passes.
-  const auto& palette = testing::test_palette();
-  for (bool avx2 : {true, false}) {
-    if (!avx2) {
-      ASSERT_EQ(setenv("SYLVA_VOXEL_NO_AVX2", "1", 1), 0);
-    }
-    for (bool ao : {true, false}) {
-      MesherOptions options;
-      options.ambient_occlusion = ao;
-      for (int n : {9, 17, 33, 62, 64}) {
-        const PaddedBlocks one =
-            fill(n, [](int x, int y, int z) -> BlockId { return y < 2 || ((x + y + z) & 1) ? 1 : kAir; });
-        PaddedBlocks two = one;
-        two.set(n / 2, 0, n / 2, 2);
-        ChunkMesh single, general;
-        make_mesher(MesherKind::kBitmask, options)->mesh(one, palette, single);
-        make_mesher(MesherKind::kBitmask, options)->mesh(two, palette, general);
-        const std::string what = "avx2 " + std::to_string(avx2) + " ao " + std::to_string(ao) + " n=" + std::to_string(n);
-        EXPECT_GT(single.opaque.size(), static_cast<std::size_t>(n * n)) << what;
-        EXPECT_EQ(single.opaque, general.opaque) << what;
-        EXPECT_TRUE(single.alpha_cut.empty() && general.alpha_cut.empty()) << what;
-      }
-    }
-    unsetenv("SYLVA_VOXEL_NO_AVX2");
-  }
+  // slice) as unit quads without reading their ids: a 3D checkerboard over a stone floor (every
+  // checker face alone) against the general path.
+  expect_one_id_path_like_general(
+      [](int n) { return fill(n, [](int x, int y, int z) -> BlockId { return y < 2 || ((x + y + z) & 1) ? 1 : kAir; }); },
+      [](bool, const PaddedBlocks& one, const ChunkMesh& single, const std::string& what) {
+        EXPECT_GT(single.opaque.size(), static_cast<std::size_t>(one.n * one.n)) << what;
+        EXPECT_TRUE(single.alpha_cut.empty()) << what;
+      });
 }
 
 TEST(MesherBitmaskShapes, OccludedRowsSplitOpenFacesFromTheTableOnes) {
