@@ -148,6 +148,7 @@ class VoxelInstance final : public ModuleInstance {
             {"plants_culled", s.plants_culled}, {"plant_mesh_triangles", s.plant_mesh_triangles},
             {"plant_mesh_groups_skipped", s.plant_mesh_groups_skipped},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
+            {"point_light_shaders", s.point_light_shaders},
             {"shadow_chunks_cast", s.shadow_chunks_cast}, {"translucent_quads_drawn", s.translucent_quads_drawn},
             {"translucent_sorts", s.translucent_sorts},
             {"generation_ms", generation_ms_},
