@@ -189,7 +189,7 @@ Status TerrainRenderer::init(const HeightField* field) {
   SYLVA_TRY(validate_params(settings_, "terrain"));
   render::embedded::register_terrain_shaders();
   render::embedded::register_render_shaders();
-  shaded_with_shadows_ = settings_.receive_shadows;
+  shaded_with_shadows_ = false;  // until a frame's shadow pass runs (draw)
   shaded_view_ = settings_.debug_view;
   shaded_air_ = settings_.aerial_perspective;
   shaded_far_ = settings_.far_material;
@@ -475,24 +475,27 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
   glDisable(GL_CULL_FACE);  // seam fans are vertical and may face either way
   if (pass == render::Pass::kShadow) {
     const render::ShadowCasterContext* cascade = render::active_shadow_cascade();
+    if (cascade != nullptr) shadow_pass_frame_ = frame_number_;
     if (settings_.cast_shadows && cascade != nullptr) {
       draw_geometry(depth_, cascade->relative_view_projection, false, stats, true, &cascade->light_frustum);
     }
   } else {
-    if (settings_.receive_shadows != shaded_with_shadows_ || settings_.debug_view != shaded_view_ ||
+    // Shadows are received (compiled in) only on frames whose shadow pass ran: with the host's
+    // shadows off, sylva_shadow returns 1 for every pixel, but llvmpipe would still run its
+    // cascade loop and PCF taps under an all-off mask (README "vs CDLOD": 52 ms of 178 per race
+    // frame, same picture byte for byte).
+    const bool receive = settings_.receive_shadows && shadow_pass_frame_ == frame_number_;
+    if (receive != shaded_with_shadows_ || settings_.debug_view != shaded_view_ ||
         settings_.aerial_perspective != shaded_air_ || settings_.far_material != shaded_far_) {
       const AerialPerspective air = settings_.aerial_perspective;
       const FarMaterial far = settings_.far_material;
-      auto p = make_shaded_program(settings_.receive_shadows, settings_.debug_view, air);
-      Status coarse = p.ok() ? make_coarse_programs(settings_.receive_shadows, settings_.debug_view, air, shaded_coarse_)
-                             : Status{};
-      if (coarse.ok() && p.ok()) {
-        coarse = make_baked_programs(settings_.receive_shadows, settings_.debug_view, air, far, shaded_baked_);
-      }
+      auto p = make_shaded_program(receive, settings_.debug_view, air);
+      Status coarse = p.ok() ? make_coarse_programs(receive, settings_.debug_view, air, shaded_coarse_) : Status{};
+      if (coarse.ok() && p.ok()) coarse = make_baked_programs(receive, settings_.debug_view, air, far, shaded_baked_);
       if (p.ok() && !coarse.ok()) p = coarse.error();
       if (p.ok()) {
         shaded_ = std::move(p).value();
-        shaded_with_shadows_ = settings_.receive_shadows;
+        shaded_with_shadows_ = receive;
         shaded_view_ = settings_.debug_view;
         shaded_air_ = air;
         shaded_far_ = far;

@@ -81,7 +81,9 @@ struct TerrainRenderSettings {
   FarMaterial far_material = FarMaterial::kComputed;
   bool wireframe = false;       // chunk triangles as lines over the shaded terrain
   bool chunk_bounds = false;    // bounding boxes of the drawn chunks
-  bool receive_shadows = true;  // sample the host's cascaded shadows (needs ShadowMaps::bind())
+  // Sample the host's cascaded shadows (needs ShadowMaps::bind()) on frames whose shadow pass ran
+  // (draw(kShadow) with an active cascade); other frames draw without the receiving code.
+  bool receive_shadows = true;
   bool cast_shadows = true;
   double gpu_cache_mb = 512.0;  // uploaded chunk meshes kept on the GPU
 
@@ -157,6 +159,9 @@ class TerrainRenderer final : public render::Drawable {
   // Texels of the height texture re-uploaded by apply_height_edit so far: only each edit's
   // rectangle (update_height_texture), independent of the field size (issue 15).
   std::int64_t height_texels_uploaded() const { return height_texels_uploaded_; }
+  // Whether the last colour pass drew with the shadow-receiving programs: receive_shadows and a
+  // shadow pass in the same frame (the program a frame without one runs has no receiving code).
+  bool shadows_received() const { return shaded_with_shadows_; }
   // Field samples the baked far material has evaluated so far (all of them per full bake, each
   // edit's grown rectangle after): 0 before the first frame that draws with it.
   std::int64_t far_material_texels_baked() const;
@@ -198,6 +203,7 @@ class TerrainRenderer final : public render::Drawable {
   VertexFrame frame_;
   TerrainFrameStats stats_;
   std::uint64_t frame_number_ = 0;
+  std::uint64_t shadow_pass_frame_ = 0;  // the last frame whose shadow pass reached draw(kShadow)
 
   // shaded_ is compiled for one debug view and the shadow switch (terrain.frag); flat_ draws the
   // wireframe overlay, compiled when first asked for.
