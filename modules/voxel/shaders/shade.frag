@@ -12,7 +12,9 @@
 // (seed §2.2: alpha = texture alpha x the block's opacity, texels below u_translucent_cutoff
 // discarded, the seed's 0.05). SYLVA_VOXEL_POINT_LIGHTS 0 leaves out both point-light loops: on
 // llvmpipe a loop's body runs once per pixel even for zero lights, at about a sixth of the
-// frame at the shipped spawn (VoxelRenderer picks the variant per frame; issue #18).
+// frame at the shipped spawn; SYLVA_VOXEL_SHADOWS 0 leaves out the shadow hook (lit = 1, what
+// the disabled shadow block returns), which llvmpipe runs in full under a mask otherwise
+// (VoxelRenderer picks both per frame; issue #18).
 #include "voxel/common.glsl"
 #include "render/lib/lighting.glsl"
 #include "render/lib/fog.glsl"
@@ -22,6 +24,9 @@
 
 #ifndef SYLVA_VOXEL_POINT_LIGHTS
 #define SYLVA_VOXEL_POINT_LIGHTS 1
+#endif
+#ifndef SYLVA_VOXEL_SHADOWS
+#define SYLVA_VOXEL_SHADOWS 1
 #endif
 
 #if !defined(ALPHA_CUT) && !defined(TRANSLUCENT)
@@ -97,7 +102,11 @@ void main() {
   float ao = mix(1.0, v_ao, u_ao_strength);
 
   vec3 l = sun_direction();
+#if SYLVA_VOXEL_SHADOWS
   float lit = voxel_shadow(v_rel_pos, n);
+#else
+  float lit = 1.0;
+#endif
   // Bounce: sun on the ground (irradiance ~ sun * max(l.y, 0)) reflected with albedo u_bounce,
   // seen by a face in proportion to how much of the ground it faces, (1 - n.y) / 2.
   vec3 bounce = sun_radiance() * (max(l.y, 0.0) * u_bounce * (0.5 - 0.5 * n.y));

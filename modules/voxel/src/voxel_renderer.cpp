@@ -265,35 +265,36 @@ const render::ShaderDefines kTuft = {{"ALPHA_CUT", "1"}, {"CROSS_QUADS", "1"}};
 
 }  // namespace
 
-Status VoxelRenderer::build_colour_programs(bool point_lights) {
+Status VoxelRenderer::build_colour_programs(unsigned variant) {
   const AerialPerspective air = settings_.aerial_perspective;
-  auto lights = [point_lights](render::ShaderDefines d) {
-    d.emplace_back("SYLVA_VOXEL_POINT_LIGHTS", point_lights ? "1" : "0");
+  auto with_variant = [variant](render::ShaderDefines d) {
+    d.emplace_back("SYLVA_VOXEL_POINT_LIGHTS", (variant & kPointLightLoops) != 0 ? "1" : "0");
+    d.emplace_back("SYLVA_VOXEL_SHADOWS", (variant & kShadowLookup) != 0 ? "1" : "0");
     return d;
   };
   auto set = std::make_unique<ColourPrograms>();
-  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, lights({}), air, set->opaque));
-  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, lights(kAlphaCut), air, set->alpha));
-  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, lights({{"TRANSLUCENT", "1"}}), air, set->translucent));
-  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, lights({}), air, set->plant_opaque));
-  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, lights(kAlphaCut), air, set->plant_alpha));
-  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, lights(kTuft), air, set->tuft));
-  SYLVA_TRY(make_program({"voxel/plant_mesh.vert", "voxel/shade.frag"}, lights({}), air, set->plant_mesh));
-  SYLVA_TRY(make_program({"voxel/plant_mesh.vert", "voxel/shade.frag"}, lights(kAlphaCut), air, set->plant_mesh_alpha));
-  colour_[point_lights ? 1 : 0] = std::move(set);
+  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, with_variant({}), air, set->opaque));
+  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, with_variant(kAlphaCut), air, set->alpha));
+  SYLVA_TRY(make_program({"voxel/chunk.vert", "voxel/shade.frag"}, with_variant({{"TRANSLUCENT", "1"}}), air, set->translucent));
+  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, with_variant({}), air, set->plant_opaque));
+  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, with_variant(kAlphaCut), air, set->plant_alpha));
+  SYLVA_TRY(make_program({"voxel/plant.vert", "voxel/shade.frag"}, with_variant(kTuft), air, set->tuft));
+  SYLVA_TRY(make_program({"voxel/plant_mesh.vert", "voxel/shade.frag"}, with_variant({}), air, set->plant_mesh));
+  SYLVA_TRY(make_program({"voxel/plant_mesh.vert", "voxel/shade.frag"}, with_variant(kAlphaCut), air, set->plant_mesh_alpha));
+  colour_[variant] = std::move(set);
   return ok_status();
 }
 
-const VoxelRenderer::ColourPrograms* VoxelRenderer::colour_programs(bool point_lights) {
-  if (point_lights && !colour_[1]) {
-    // First frame with point lights: build the variant with the loops. On a compile error the
-    // lights stay dark (the variant without them draws) and the log says why.
-    if (Status built = build_colour_programs(true); !built.ok()) {
-      log_warn("voxel: point-light shaders: {}", built.error().message);
-      return colour_[0].get();
+const VoxelRenderer::ColourPrograms* VoxelRenderer::colour_programs(unsigned variant) {
+  if (!colour_[variant]) {
+    // First frame of this variant. On a compile error the full variant (built by
+    // build_programs) draws and the log says why.
+    if (Status built = build_colour_programs(variant); !built.ok()) {
+      log_warn("voxel: colour shader variant {}: {}", variant, built.error().message);
+      return colour_[kPointLightLoops | kShadowLookup].get();
     }
   }
-  return colour_[point_lights ? 1 : 0].get();
+  return colour_[variant].get();
 }
 
 Status VoxelRenderer::build_programs() {
@@ -302,8 +303,19 @@ Status VoxelRenderer::build_programs() {
   const AerialPerspective air = settings_.aerial_perspective;
   auto make = [air](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
                     render::Program& out) { return make_program(stages, defines, air, out); };
-  SYLVA_TRY(build_colour_programs(false));
-  colour_[1].reset();  // rebuilt with the new air when lights next need it
+  for (auto& set : colour_) set.reset();  // rebuilt with the new air when next needed
+  SYLVA_TRY(build_colour_programs(kPointLightLoops | kShadowLookup));  // the fallback of every variant
+  shadow_enabled_offset_ = -1;
+  if (shadow_.glsl_source.empty() || shadow_.lit_when_core_shadows_disabled) {
+    const GLuint program = colour_[kPointLightLoops | kShadowLookup]->opaque.id();
+    const GLuint params = glGetProgramResourceIndex(program, GL_UNIFORM, "sylva_shadow_params");
+    if (params != GL_INVALID_INDEX) {
+      const GLenum property = GL_OFFSET;
+      GLint offset = -1;
+      glGetProgramResourceiv(program, GL_UNIFORM, params, 1, &property, 1, nullptr, &offset);
+      if (offset >= 0) shadow_enabled_offset_ = offset + 2 * static_cast<GLint>(sizeof(GLint));  // .z
+    }
+  }
   SYLVA_TRY(make({"voxel/horizon.vert", "voxel/horizon.frag"}, {}, horizon_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, {}, depth_program_));
   SYLVA_TRY(make({"voxel/chunk.vert", "voxel/depth.frag"}, kAlphaCut, depth_alpha_program_));
@@ -793,12 +805,35 @@ VoxelRenderer::UboBinding VoxelRenderer::bind_fallback_block(GLuint index, const
   UboBinding b;
   b.index = index;
   glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, index, &b.buffer);
-  if (use_host && b.buffer != 0) return b;
   glGetInteger64i_v(GL_UNIFORM_BUFFER_START, index, &b.start);
   glGetInteger64i_v(GL_UNIFORM_BUFFER_SIZE, index, &b.size);
+  if (use_host && b.buffer != 0) return b;
   fallback.bind_base(GL_UNIFORM_BUFFER, index);
   b.replaced = true;
   return b;
+}
+
+bool VoxelRenderer::shadow_lookups_needed(const UboBinding& host_shadows) {
+  bool needed = true;  // a custom hook: only it knows
+  if (shadow_.glsl_source.empty() || shadow_.lit_when_core_shadows_disabled) {
+    needed = settings_.receive_shadows && !host_shadows.replaced && host_shadows_enabled(host_shadows);
+  }
+  stats_.shadow_lookup_shaders = needed ? 1 : 0;
+  return needed;
+}
+
+bool VoxelRenderer::host_shadows_enabled(const UboBinding& host_shadows) const {
+  // sylva_shadow_params.z of the host's block (render/lib/shadows.glsl: 0 = disabled), at the
+  // offset the linker gave it in a program that samples the shadows (no copy of the layout).
+  if (shadow_enabled_offset_ < 0) return true;
+  const auto buffer = static_cast<GLuint>(host_shadows.buffer);
+  GLint64 size = host_shadows.size;
+  if (size == 0) glGetNamedBufferParameteri64v(buffer, GL_BUFFER_SIZE, &size);
+  const GLint64 at = host_shadows.start + shadow_enabled_offset_;
+  if (at + static_cast<GLint64>(sizeof(GLint)) > host_shadows.start + size) return true;
+  GLint enabled = 1;
+  glGetNamedBufferSubData(buffer, static_cast<GLintptr>(at), sizeof(GLint), &enabled);
+  return enabled != 0;
 }
 
 bool VoxelRenderer::point_lights_shaded(const UboBinding& host_lights) {
@@ -881,7 +916,8 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   // blocks (none) when it bound nothing; restored afterwards for the other drawables.
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
-  const ColourPrograms* colour = colour_programs(point_lights_shaded(light_block));
+  const ColourPrograms* colour = colour_programs((point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
+                                                 (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u));
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -974,7 +1010,9 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   vao_.bind();
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
-  const render::Program& translucent_program = colour_programs(point_lights_shaded(light_block))->translucent;
+  const render::Program& translucent_program =
+      colour_programs((point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
+                      (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u))->translucent;
   const render::SavedBlendState saved;
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);

@@ -148,7 +148,7 @@ class VoxelInstance final : public ModuleInstance {
             {"plants_culled", s.plants_culled}, {"plant_mesh_triangles", s.plant_mesh_triangles},
             {"plant_mesh_groups_skipped", s.plant_mesh_groups_skipped},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
-            {"point_light_shaders", s.point_light_shaders},
+            {"point_light_shaders", s.point_light_shaders}, {"shadow_lookup_shaders", s.shadow_lookup_shaders},
             {"shadow_chunks_cast", s.shadow_chunks_cast}, {"translucent_quads_drawn", s.translucent_quads_drawn},
             {"translucent_sorts", s.translucent_sorts},
             {"generation_ms", generation_ms_},
@@ -269,7 +269,7 @@ class VoxelInstance final : public ModuleInstance {
     voxel::remesh_parallel(*world, pool, s.mesher);
     auto renderer = voxel::VoxelRenderer::create(*world, *generator, s.render);
     if (!renderer.ok()) return make_error(renderer.error().code, "voxel: " + renderer.error().message);
-    Status receiver = (*renderer)->set_shadow_receiver({kShadowReceiver, [](GLuint) {}});
+    Status receiver = (*renderer)->set_shadow_receiver({kShadowReceiver, [](GLuint) {}, true});
     if (!receiver.ok()) return make_error(receiver.error().code, "voxel: " + receiver.error().message);
     renderer_ = std::move(*renderer);
     renderer_ptr_ = renderer_.get();

@@ -182,6 +182,10 @@ struct VoxelRenderSettings {
 struct ShadowReceiver {
   std::string glsl_source;  // full text of the hook; empty restores the render core's cascades
   std::function<void(GLuint program)> bind;
+  // True when the hook returns 1 wherever the render core's shadow block says "disabled" (it
+  // only samples the core's cascades): the renderer then leaves it out in such frames, as it
+  // does the default hook. False: the hook runs in every frame.
+  bool lit_when_core_shadows_disabled = false;
 };
 
 struct VoxelFrameStats {
@@ -201,6 +205,9 @@ struct VoxelFrameStats {
   // 1 when the colour passes ran the shaders with point-light loops (emissive blocks lit this
   // frame or a host point-light block bound), 0 when they ran the variant without them.
   std::size_t point_light_shaders = 0;
+  // 1 when the colour passes sampled the sun's shadows (shadow_lookups_needed), 0 when they
+  // ran the variant without the look-up (lit everywhere, as the disabled block says).
+  std::size_t shadow_lookup_shaders = 0;
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
   std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
   std::size_t translucent_quads_drawn = 0;  // in draw(kTransparent), also counted in quads_drawn
@@ -249,11 +256,13 @@ class VoxelRenderer final : public render::Drawable {
   struct ChunkGpu;
   struct BakedMesh;
   Status build_programs();
-  // The colour programs of one point-light variant (SYLVA_VOXEL_POINT_LIGHTS in shade.frag).
+  // The colour programs of one shader variant: kPointLightLoops (SYLVA_VOXEL_POINT_LIGHTS in
+  // shade.frag) and kShadowLookup (SYLVA_VOXEL_SHADOWS) bits; each is built on the first frame
+  // that needs it.
   struct ColourPrograms;
-  // colour_[1] (with point-light loops) is built on the first frame that needs it.
-  Status build_colour_programs(bool point_lights);
-  const ColourPrograms* colour_programs(bool point_lights);
+  static constexpr unsigned kPointLightLoops = 1u, kShadowLookup = 2u, kColourVariants = 4u;
+  Status build_colour_programs(unsigned variant);
+  const ColourPrograms* colour_programs(unsigned variant);
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
   void upload_plants(const ChunkCoord& c, ChunkGpu& gpu);
   // gpu.plant's parts [first, first + count) -> `out` (plant_mesh.hpp), one cluster per entry of
@@ -311,14 +320,22 @@ class VoxelRenderer final : public render::Drawable {
   // update(), or a host block at kPointLightBinding (`host_lights` not replaced by the empty
   // fallback). Records the answer in stats_.point_light_shaders.
   bool point_lights_shaded(const UboBinding& host_lights);
+  // Whether this frame's colour passes sample the sun's shadows: always with a custom
+  // ShadowReceiver (unless lit_when_core_shadows_disabled); with the render core's (the
+  // default) only when receive_shadows is on and
+  // the host bound a shadow block that is enabled (the scene binds one saying "disabled" when
+  // its shadows are off; read back, 4 bytes a pass). Records it in stats_.shadow_lookup_shaders.
+  bool shadow_lookups_needed(const UboBinding& host_shadows);
+  bool host_shadows_enabled(const UboBinding& host_shadows) const;
 
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
   VoxelRenderSettings settings_;
-  // [0] without point lights, [1] with (null until built). llvmpipe runs both sides of every
-  // branch and every loop body at least once per pixel, so an empty light loop costs as much
-  // as one light: the shipped spawn has none (issue #18).
-  std::unique_ptr<ColourPrograms> colour_[2];
+  // By variant bits (null until built). llvmpipe runs both sides of every branch and every loop
+  // body at least once per pixel, so an empty light loop costs as much as one light and a
+  // disabled shadow look-up as an enabled one: the shipped spawn has neither (issue #18).
+  std::unique_ptr<ColourPrograms> colour_[kColourVariants];
+  GLint shadow_enabled_offset_ = -1;  // bytes: sylva_shadow_params.z in SylvaShadows (-1: unknown)
   render::Program horizon_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
   render::Program plant_mesh_depth_program_, plant_mesh_depth_alpha_program_, tuft_depth_program_;
