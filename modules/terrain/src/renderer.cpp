@@ -358,6 +358,25 @@ void TerrainRenderer::update(const render::FrameContext& frame) {
   stats_.gpu_bytes = gpu_bytes_;
 }
 
+bool TerrainRenderer::beyond_shadow_maps(const glm::dvec3& lo, const glm::dvec3& hi) const {
+  if (shadow_pass_frame_ != frame_number_ || shadow_cascades_.empty()) return false;
+  for (const CascadeFootprint& f : shadow_cascades_) {
+    const glm::dvec3 a = lo - f.origin, b = hi - f.origin;
+    bool outside = false;
+    for (const glm::vec4& plane : f.sides) {
+      // The box corner farthest along the plane's inward normal.
+      const glm::dvec3 n(plane);
+      const glm::dvec3 corner(n.x > 0.0 ? b.x : a.x, n.y > 0.0 ? b.y : a.y, n.z > 0.0 ? b.z : a.z);
+      if (glm::dot(n, corner) + double(plane.w) < -f.margin_m) {
+        outside = true;
+        break;
+      }
+    }
+    if (!outside) return false;
+  }
+  return true;
+}
+
 std::int64_t TerrainRenderer::far_material_texels_baked() const {
   return far_bake_ ? far_bake_->texels_baked() : 0;
 }
@@ -475,7 +494,17 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
   glDisable(GL_CULL_FACE);  // seam fans are vertical and may face either way
   if (pass == render::Pass::kShadow) {
     const render::ShadowCasterContext* cascade = render::active_shadow_cascade();
-    if (cascade != nullptr) shadow_pass_frame_ = frame_number_;
+    if (cascade != nullptr) {
+      if (shadow_pass_frame_ != frame_number_) shadow_cascades_.clear();
+      shadow_pass_frame_ = frame_number_;
+      // Margin: the normal offset (at most normal_offset 8 x (pcf_radius 3 + 1) texels,
+      // ShadowSettings' limits) plus the bilinear PCF reach (pcf_radius + 1 texels).
+      CascadeFootprint f;
+      for (int i = 0; i < 4; ++i) f.sides[static_cast<std::size_t>(i)] = cascade->light_frustum.planes()[static_cast<std::size_t>(i)];
+      f.origin = cascade->light_frustum.origin();
+      f.margin_m = 40.0 * cascade->texel_size;
+      shadow_cascades_.push_back(f);
+    }
     if (settings_.cast_shadows && cascade != nullptr) {
       draw_geometry(depth_, cascade->relative_view_projection, false, stats, true, &cascade->light_frustum);
     }
@@ -492,6 +521,16 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       auto p = make_shaded_program(receive, settings_.debug_view, air);
       Status coarse = p.ok() ? make_coarse_programs(receive, settings_.debug_view, air, shaded_coarse_) : Status{};
       if (coarse.ok() && p.ok()) coarse = make_baked_programs(receive, settings_.debug_view, air, far, shaded_baked_);
+      for (int k = 0; k < 2 && coarse.ok() && p.ok(); ++k) {
+        unshadowed_far_[k] = {};
+        if (!receive || !uses_material(settings_.debug_view) || (k == 1 && air != AerialPerspective::kPerVertex)) continue;
+        auto u = make_shaded_program(false, settings_.debug_view, air, 3, k == 1);
+        if (u.ok()) {
+          unshadowed_far_[k] = std::move(u).value();
+        } else {
+          coarse = u.error();
+        }
+      }
       if (p.ok() && !coarse.ok()) p = coarse.error();
       if (p.ok()) {
         shaded_ = std::move(p).value();
@@ -509,9 +548,12 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
     const bool coarse = uses_material(view) && static_cast<bool>(shaded_coarse_[0]);
     // The baked far material: made on first use, refreshed where the field or material changed.
     const bool baked = coarse && shaded_baked_[0] && shape_ && bake_far_material();
-    const int programs = coarse ? 7 : 1;
+    const int programs = coarse ? 9 : 1;
     for (int k = 0; k < programs; ++k) {
-      const render::Program& p = k == 0 ? shaded_ : k <= 4 ? shaded_coarse_[k - 1] : shaded_baked_[k - 5];
+      const render::Program& p = k == 0   ? shaded_
+                                 : k <= 4 ? shaded_coarse_[k - 1]
+                                 : k <= 6 ? shaded_baked_[k - 5]
+                                          : unshadowed_far_[k - 7];
       if (!p) continue;
       p.use();
       if (view == DebugView::kFlat) {
@@ -519,7 +561,7 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       } else {
         p.set("u_has_shape", shape_ ? 1 : 0);
         // The baked variants read the material from the bake (its uniforms are compiled out).
-        if (uses_material(view) && k < 5) set_material_uniforms(p, settings_.material, climate_);
+        if (uses_material(view) && (k < 5 || k > 6)) set_material_uniforms(p, settings_.material, climate_);
       }
       if (k > 0) set_frame_uniforms(p, vp);
     }
@@ -536,6 +578,7 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
       const render::PerspectiveParams& lens = frame.camera.perspective();
       chunk_programs.reserve(selection_->chunks.size());
       stats_.far_baked_chunks = 0;
+      stats_.beyond_shadow_chunks = 0;
       for (const SelectedChunk& s : selection_->chunks) {
         glm::dvec3 lo, hi;
         tree_->chunk_bounds(s.index, lo, hi);
@@ -556,6 +599,9 @@ void TerrainRenderer::draw(render::Pass pass, const render::FrameContext& frame,
         if (far) {
           chunk_programs.push_back(&shaded_baked_[vertex_sky ? 1 : 0]);
           ++stats_.far_baked_chunks;
+        } else if (k == 3 && unshadowed_far_[vertex_sky ? 1 : 0] && beyond_shadow_maps(lo, hi)) {
+          chunk_programs.push_back(&unshadowed_far_[vertex_sky ? 1 : 0]);
+          ++stats_.beyond_shadow_chunks;
         } else {
           chunk_programs.push_back(k == 0 ? &shaded_ : &shaded_coarse_[vertex_sky ? 3 : k - 1]);
         }

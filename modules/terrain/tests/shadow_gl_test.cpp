@@ -105,6 +105,7 @@ void expect_ridge_shadow(const render::Camera& cam, const char* name) {
   const ShadowRun shadowed = render_frame(terrain, target, *maps, cam);
   EXPECT_GT(shadowed.shadow_stats.draw_calls, 0u) << "the terrain drew into the cascades";
   EXPECT_TRUE(terrain.shadows_received());
+  EXPECT_EQ(terrain.frame_stats().beyond_shadow_chunks, 0u) << "every chunk lies inside the cascades";
   // The host's shadows off (no caster runs): the terrain draws without the receiving code (issue
   // 18: llvmpipe ran its cascade loop and taps for every pixel anyway), the same picture as
   // receive_shadows off.
@@ -160,6 +161,59 @@ TEST_F(TerrainShadowGl, AnOffScreenRidgeStillCastsIntoView) {
   cam.set_position({96.0, 60.0, 128.0});
   cam.look_at({176.0, 0.0, 128.0});
   expect_ridge_shadow(cam, "ridge_behind_camera");
+}
+
+// Issue 18: chunks outside every cascade's shadow map (by the receiver's normal offset and PCF
+// reach) are drawn without the receiving code, since sylva_shadow is 1 on all of their pixels.
+// A 4 km field seen over 600 m of cascades: the far chunks go without it, the near ones keep it
+// (the lee of a ridge near the camera is still shadowed), and the picture of the far ground equals receive_shadows off.
+TEST_F(TerrainShadowGl, ChunksBeyondEveryShadowMapSkipTheReceivingCode) {
+  HeightField field(257, 257, 16.0);
+  for (int j = 0; j < field.rows(); ++j)
+    for (int i = 0; i < field.columns(); ++i) {
+      const double x = i * 16.0, ridge = (x - 500.0) / 24.0;  // a 60 m ridge 400 m ahead of the camera
+      field.sample(i, j) = static_cast<float>(40.0 * std::sin(i * 0.07) * std::cos(j * 0.05) + 0.03 * x +
+                                              60.0 * std::exp(-ridge * ridge));
+    }
+  field.update_range();
+  ChunkTreeSettings ts;
+  ts.leaf_dimension = 17;
+  auto tree = std::make_shared<const ChunkTree>(std::move(ChunkTree::build(field, ts)).value());
+  auto created = TerrainRenderer::create(tree, &field, {});
+  ASSERT_TRUE(created.ok()) << created.error().describe();
+  TerrainRenderer& terrain = **created;
+  GlTarget target = GlTarget::create(kW, kH);
+  target.lighting.sun_direction = glm::normalize(glm::vec3(-1.0f, 0.5f, 0.2f));
+  render::ShadowSettings ss;
+  ss.cascade_count = 2;
+  ss.max_distance = 600.0f;
+  Result<render::ShadowMaps> maps = render::ShadowMaps::create(ss);
+  ASSERT_TRUE(maps.ok()) << maps.error().describe();
+  render::Camera cam;
+  cam.perspective().fov_y = glm::radians(60.0f);
+  cam.perspective().near_plane = 0.5f;
+  cam.perspective().far_plane = 0.0f;
+  cam.set_aspect(kW, kH);
+  cam.set_position({100.0, 160.0, 2000.0});
+  cam.look_at({3000.0, 0.0, 2000.0});
+  const ShadowRun shadowed = render_frame(terrain, target, *maps, cam);
+  ASSERT_TRUE(terrain.shadows_received());
+  const TerrainFrameStats stats = terrain.frame_stats();
+  std::printf("%u of %u chunks beyond the shadow maps\n", stats.beyond_shadow_chunks, stats.selection.chunks);
+  EXPECT_GT(stats.beyond_shadow_chunks, 0u);
+  EXPECT_LT(stats.beyond_shadow_chunks, stats.selection.chunks) << "the near chunks keep their shadows";
+  terrain.settings().receive_shadows = false;
+  const ShadowRun unshadowed = render_frame(terrain, target, *maps, cam);
+  // The upper third of the picture is far ground (beyond 600 m) or sky: the same either way.
+  for (int y = 0; y < kH / 3; ++y)
+    for (int x = 0; x < kW; ++x)
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(shadowed.image.at(x, y, c), unshadowed.image.at(x, y, c)) << x << "," << y;
+  save_png(shadowed.image, "beyond_shadow_maps_shadowed");
+  save_png(unshadowed.image, "beyond_shadow_maps_unshadowed");
+  std::size_t near_shadowed = 0;
+  for (int y = kH / 2; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) near_shadowed += shadowed.image.at(x, y, 1) < unshadowed.image.at(x, y, 1) - 0.02f;
+  EXPECT_GT(near_shadowed, 20u) << "the near ground still receives its shadows";
 }
 
 }  // namespace

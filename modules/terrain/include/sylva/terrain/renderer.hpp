@@ -111,6 +111,7 @@ struct TerrainFrameStats {
   std::uint64_t skirt_triangles = 0;
   std::uint64_t uploads = 0;      // chunk meshes uploaded this frame
   std::uint32_t far_baked_chunks = 0;  // chunks drawn with the baked far material (far_material)
+  std::uint32_t beyond_shadow_chunks = 0;  // chunks outside every shadow map, drawn without receiving
   double update_ms = 0.0;         // selection + batch assembly
   std::size_t gpu_bytes = 0;      // resident GPU meshes
 };
@@ -204,6 +205,16 @@ class TerrainRenderer final : public render::Drawable {
   TerrainFrameStats stats_;
   std::uint64_t frame_number_ = 0;
   std::uint64_t shadow_pass_frame_ = 0;  // the last frame whose shadow pass reached draw(kShadow)
+  // The side planes (camera-relative, inward) of that pass's cascades and a margin [m] covering
+  // the receiver's normal offset and PCF reach: a chunk outside one side plane of every cascade
+  // by the margin gets sylva_shadow = 1 on every pixel (shadows.glsl), so it is drawn without it.
+  struct CascadeFootprint {
+    std::array<glm::vec4, 4> sides;
+    glm::dvec3 origin{0.0};
+    double margin_m = 0.0;
+  };
+  std::vector<CascadeFootprint> shadow_cascades_;
+  bool beyond_shadow_maps(const glm::dvec3& lo, const glm::dvec3& hi) const;
 
   // shaded_ is compiled for one debug view and the shadow switch (terrain.frag); flat_ draws the
   // wireframe overlay, compiled when first asked for.
@@ -216,6 +227,9 @@ class TerrainRenderer final : public render::Drawable {
   // far_material baked: shaded_coarse_[2] and [3] reading the baked far material instead of
   // computing it (SYLVA_TERRAIN_BAKED), for chunks whose field samples span few pixels.
   render::Program shaded_baked_[2];
+  // With shadows received: shaded_coarse_[2] and [3] without the receiving code, for chunks
+  // beyond every shadow map (beyond_shadow_maps).
+  render::Program unshadowed_far_[2];
   FarMaterial shaded_far_ = FarMaterial::kComputed;
   std::vector<const render::Program*> chunk_programs_;  // per selected chunk, this frame (reused)
   bool shaded_with_shadows_ = false;
