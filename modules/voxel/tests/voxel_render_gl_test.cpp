@@ -372,6 +372,13 @@ void look_over_generated_world(testing::VoxelGlScene& scene) {
   scene.camera.look_at({16.0, 20.0, 16.0});
 }
 
+// The overview at 256 x 144 that the shader-variant tests draw.
+testing::VoxelGlScene overview_256x144() {
+  auto scene = testing::VoxelGlScene::create(256, 144);
+  look_over_generated_world(scene);
+  return scene;
+}
+
 TEST_F(VoxelRenderGl, GeneratedWorldWithPlantsRenders) {
   const auto g = generate_seed3();
   ASSERT_TRUE(g);
@@ -445,8 +452,7 @@ TEST_F(VoxelRenderGl, AerialPerspectivePerVertexMatchesPerPixelAndOffDrawsNoAir)
   ASSERT_TRUE(g);
   VoxelRenderer& r = *g->renderer;
   EXPECT_EQ(r.settings().aerial_perspective, AerialPerspective::kPerVertex) << "the default";
-  auto scene = testing::VoxelGlScene::create(256, 144);
-  look_over_generated_world(scene);
+  auto scene = overview_256x144();
   // Haze thinning with height: the extinction per metre then depends on the ray's direction, so
   // interpolating it is not exact (with uniform haze it is nearly constant).
   scene.lighting.fog_height_falloff = 0.03f;
@@ -494,8 +500,7 @@ TEST_F(VoxelRenderGl, ShadersWithoutPointLightLoopsDrawTheSamePictureWhenNoLight
   const auto g = generate_seed3();
   ASSERT_TRUE(g);
   VoxelRenderer& r = *g->renderer;
-  auto scene = testing::VoxelGlScene::create(256, 144);
-  look_over_generated_world(scene);
+  auto scene = overview_256x144();
   glBindBufferBase(GL_UNIFORM_BUFFER, render::kPointLightBinding, 0);
   scene.render(r);
   const Image without_loops = scene.color();
@@ -528,8 +533,7 @@ TEST_F(VoxelRenderGl, ShadowLookupLeftOutWhileTheHostsShadowsAreDisabled) {
   const auto g = generate_seed3();
   ASSERT_TRUE(g);
   VoxelRenderer& r = *g->renderer;
-  auto scene = testing::VoxelGlScene::create(256, 144);
-  look_over_generated_world(scene);
+  auto scene = overview_256x144();
   render::ShadowSettings ss;
   ss.cascade_count = 1;
   ss.resolution = 256;
