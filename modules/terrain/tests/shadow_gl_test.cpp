@@ -80,6 +80,18 @@ double mean_green(const Image& im, const render::Camera& cam, double x0, double 
   return n > 0 ? sum / n : 0.0;
 }
 
+// 60 degrees vertical, kW x kH, at `eye` looking at `target` (world metres).
+render::Camera camera_looking(const glm::dvec3& eye, const glm::dvec3& target) {
+  render::Camera cam;
+  cam.perspective().fov_y = glm::radians(60.0f);
+  cam.perspective().near_plane = 0.5f;
+  cam.perspective().far_plane = 0.0f;
+  cam.set_aspect(kW, kH);
+  cam.set_position(eye);
+  cam.look_at(target);
+  return cam;
+}
+
 void expect_ridge_shadow(const render::Camera& cam, const char* name) {
   const HeightField field = ridge_field();
   ChunkTreeSettings ts;
@@ -140,33 +152,22 @@ void expect_ridge_shadow(const render::Camera& cam, const char* name) {
 }
 
 TEST_F(TerrainShadowGl, RidgeShadowsTheValleyWithALowSun) {
-  render::Camera cam;
-  cam.perspective().fov_y = glm::radians(60.0f);
-  cam.perspective().near_plane = 0.5f;
-  cam.perspective().far_plane = 0.0f;
-  cam.set_aspect(kW, kH);
-  cam.set_position({250.0, 170.0, 128.0});
-  cam.look_at({120.0, 0.0, 128.0});
+  const render::Camera cam = camera_looking({250.0, 170.0, 128.0}, {120.0, 0.0, 128.0});
   expect_ridge_shadow(cam, "ridge_in_view");
 }
 
 // The ridge is behind the camera (outside its frustum) and still casts into view: casters are
 // selected without the camera frustum and culled per cascade with the light frustum.
 TEST_F(TerrainShadowGl, AnOffScreenRidgeStillCastsIntoView) {
-  render::Camera cam;
-  cam.perspective().fov_y = glm::radians(60.0f);
-  cam.perspective().near_plane = 0.5f;
-  cam.perspective().far_plane = 0.0f;
-  cam.set_aspect(kW, kH);
-  cam.set_position({96.0, 60.0, 128.0});
-  cam.look_at({176.0, 0.0, 128.0});
+  const render::Camera cam = camera_looking({96.0, 60.0, 128.0}, {176.0, 0.0, 128.0});
   expect_ridge_shadow(cam, "ridge_behind_camera");
 }
 
 // Issue 18: chunks outside every cascade's shadow map (by the receiver's normal offset and PCF
 // reach) are drawn without the receiving code, since sylva_shadow is 1 on all of their pixels.
 // A 4 km field seen over 600 m of cascades: the far chunks go without it, the near ones keep it
-// (the lee of a ridge near the camera is still shadowed), and the picture of the far ground equals receive_shadows off.
+// (the lee of a ridge near the camera is still shadowed), and the picture of the far ground
+// equals receive_shadows off.
 TEST_F(TerrainShadowGl, ChunksBeyondEveryShadowMapSkipTheReceivingCode) {
   HeightField field(257, 257, 16.0);
   for (int j = 0; j < field.rows(); ++j)
@@ -189,13 +190,7 @@ TEST_F(TerrainShadowGl, ChunksBeyondEveryShadowMapSkipTheReceivingCode) {
   ss.max_distance = 600.0f;
   Result<render::ShadowMaps> maps = render::ShadowMaps::create(ss);
   ASSERT_TRUE(maps.ok()) << maps.error().describe();
-  render::Camera cam;
-  cam.perspective().fov_y = glm::radians(60.0f);
-  cam.perspective().near_plane = 0.5f;
-  cam.perspective().far_plane = 0.0f;
-  cam.set_aspect(kW, kH);
-  cam.set_position({100.0, 160.0, 2000.0});
-  cam.look_at({3000.0, 0.0, 2000.0});
+  const render::Camera cam = camera_looking({100.0, 160.0, 2000.0}, {3000.0, 0.0, 2000.0});
   const ShadowRun shadowed = render_frame(terrain, target, *maps, cam);
   ASSERT_TRUE(terrain.shadows_received());
   const TerrainFrameStats stats = terrain.frame_stats();
