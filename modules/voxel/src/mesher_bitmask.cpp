@@ -175,6 +175,10 @@ class BitmaskMesher final : public Mesher {
     // One plain block id in the chunk (air aside): its faces need no ids to find their slot.
     single_ = spread_.single();
     if (single_ != kAir && (single_ >= palette.size() || flags_[single_] != 0)) single_ = kAir;
+    // Only plain opaque blocks (every id up to the OR of the chunk's ids has no flag): AO-off
+    // slices merge without slot planes (merge_by_id()).
+    plain_ = spread_.any < palette.size();
+    for (std::size_t i = 1; plain_ && i <= spread_.any; ++i) plain_ = flags_[i] == 0;
     const BlockId* ids = blocks.ids.data();
     count_[0] = count_[1] = 0;
     // Faces on the chunk's edge rows read their padding neighbours straight from the ids.
@@ -299,6 +303,22 @@ class BitmaskMesher final : public Mesher {
       }
       PackedQuad* dst_opaque = lists_[0]->data() + count_[0];
       PackedQuad* dst_alpha = lists_[1]->data() + count_[1];
+      if (plain_ && !ao_on) {
+        // AO off, plain opaque blocks only: the rectangles straight from the face rows, ids
+        // compared in place (see merge_by_id()), no slot planes.
+        PackedQuad* const start = dst_opaque;
+        int ox, oy, oz;
+        origin(F, kRowsAlongX, s, 0, 0, ox, oy, oz);
+        std::size_t alone = 0;
+        dst_opaque = merge_by_id<F, kRowsAlongX>(ids + (ox + 1) + p * ((oz + 1) + p * (oy + 1)), s, row_ids, bit_stride,
+                                                 nonempty, dst_opaque, alone);
+        if constexpr (kAxis == 0) {
+          x_unit_ += alone;
+          x_merged_ += static_cast<std::size_t>(dst_opaque - start) - alone;
+        }
+        count_[0] = static_cast<std::size_t>(dst_opaque - lists_[0]->data());
+        continue;
+      }
       slot_count_ = 0;
       if (++slice_stamp_ == 0) {  // stamps wrapped: forget every entry
         std::fill(slot_index_.begin(), slot_index_.end(), SlotRef{});
@@ -479,6 +499,193 @@ class BitmaskMesher final : public Mesher {
         count_[list] = static_cast<std::size_t>((list == 0 ? dst_opaque : dst_alpha) - lists_[list]->data());
       }
     }
+  }
+
+  // Greedy rectangles of one slice's face rows (face_rows_, consumed) for chunks of plain opaque
+  // blocks without AO, the key being the block id alone: the lowest face left in the lowest row
+  // starts a run of faces of its id along the row, which then grows over the next rows while
+  // they hold faces of that id at every bit of the run. Per block id this is the slot planes'
+  // merge (merge_slot()) on that id's faces, so the quads are the same set, in another order;
+  // faces with no face beside them (written as unit quads at once otherwise) come out as 1 x 1.
+  // The ids are compared in place instead of bucketed per id first (issue #18: with the slot
+  // planes AO off cost more than AO on on mixed-id chunks). slice_ids: the padded ids of bit 0,
+  // row 0; rows step by row_ids, bits by bit_stride. Returns the end of what it wrote; alone:
+  // the count of faces with no face beside them (+-X only, for the +-Z orientation choice).
+  template <int F, bool kRowsAlongX>
+  PackedQuad* merge_by_id(const BlockId* slice_ids, int s, int row_ids, int bit_stride, std::uint64_t nonempty,
+                          PackedQuad* dst, std::size_t& alone) {
+    constexpr int kAxis = F >> 1;
+    constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
+    constexpr bool kRowsAreU = kAxis == 1 || kRowsAlongX;
+    const int n = n_;
+    const BlockId single = single_;
+    std::uint64_t* rows = face_rows_;
+    // Faces with no face beside them (left, right, rows r - 1 and r + 1) merge with nothing: unit
+    // quads in a tight loop, without the run and row tests (checkerboard, most of random 50 %).
+    // Found for every row before any row is consumed.
+    std::uint64_t alone_rows = 0;  // bit r: row r holds alone faces
+    for (std::uint64_t left = nonempty; left; left &= left - 1) {
+      const int r = std::countr_zero(left);
+      const std::uint64_t f = rows[r];
+      const std::uint64_t prev = r > 0 ? rows[r - 1] : 0;
+      const std::uint64_t next = r + 1 < n ? rows[r + 1] : 0;
+      alone_[r] = f & ~(f << 1 | f >> 1 | prev | next);
+      alone_rows |= static_cast<std::uint64_t>(alone_[r] != 0) << r;
+    }
+    // Slices where most rows hold alone faces (random content: many short runs of either id)
+    // take the branch-poor variant: ids compared a whole row at a time up front.
+    if (single == kAir && 2 * std::popcount(alone_rows) > std::popcount(nonempty)) {
+      return merge_dense<F, kRowsAlongX>(slice_ids, s, row_ids, bit_stride, nonempty, dst, alone);
+    }
+    constexpr int kBitShift = kBitsAlongY ? 6 : 0;  // PackedQuad word0 shifts of the bit and row axes
+    constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
+    int x0, y0, z0;
+    origin(F, kRowsAlongX, s, 0, 0, x0, y0, z0);
+    const std::uint32_t slice_word0 = pack_word0(x0, y0, z0, 1, 1);
+    const std::uint32_t single_word1 = pack_word1(single, F, 0xffu);
+    // Bits along x: same_next masks of the rows (bit b: ids b and b + 1 equal), made once per row
+    // when first needed.
+    std::uint64_t have_same = 0;
+    auto same_next = [&](int r) __attribute__((always_inline)) {
+      if (!((have_same >> r) & 1)) {
+        same_[r] = same_next_mask(slice_ids + r * row_ids, n);
+        have_same |= std::uint64_t{1} << r;
+      }
+      return same_[r];
+    };
+    for (std::uint64_t left = nonempty; left; left &= left - 1) {
+      const int r = std::countr_zero(left);
+      const BlockId* row = slice_ids + r * row_ids;
+      std::uint64_t unit = alone_[r];
+      rows[r] &= ~unit;
+      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(std::popcount(unit));
+      const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << kRowShift);
+      if (single != kAir) {
+        for (; unit; unit &= unit - 1) {
+          *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(std::countr_zero(unit)) << kBitShift), single_word1};
+        }
+      }
+      for (; unit; unit &= unit - 1) {
+        const int b = std::countr_zero(unit);
+        *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(row[b * bit_stride], F, 0xffu)};
+      }
+      while (rows[r]) {
+        const int b = std::countr_zero(rows[r]);
+        const std::uint64_t from_b = rows[r] >> b;
+        int w;
+        BlockId id = single;
+        if (single != kAir) {
+          w = std::countr_one(from_b);
+        } else if constexpr (!kBitsAlongY) {
+          id = row[b];
+          w = 1 + std::countr_one((from_b >> 1) & (same_next(r) >> b));
+        } else {
+          id = row[b * bit_stride];
+          const int most = std::countr_one(from_b);
+          w = 1;
+          while (w < most && row[(b + w) * bit_stride] == id) ++w;
+        }
+        const std::uint64_t run = (w == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << w) - 1)) << b;
+        rows[r] &= ~run;
+        // Grows while the next row holds faces of the run's id at every bit of the run.
+        int h = 1;
+        for (; r + h < n && (rows[r + h] & run) == run; ++h) {
+          if (single == kAir) {
+            const BlockId* next = row + h * row_ids;
+            if constexpr (!kBitsAlongY) {
+              const std::uint64_t inner = run & (run >> 1);  // bits b .. b + w - 2
+              if (next[b] != id || (same_next(r + h) & inner) != inner) break;
+            } else {
+              int k = 0;
+              while (k < w && next[(b + k) * bit_stride] == id) ++k;
+              if (k < w) break;
+            }
+          }
+          rows[r + h] &= ~run;
+        }
+        int x, y, z;
+        origin(F, kRowsAlongX, s, r, b, x, y, z);
+        *dst++ = PackedQuad{pack_word0(x, y, z, kRowsAreU ? h : w, kRowsAreU ? w : h), pack_word1(id, F, 0xffu)};
+      }
+    }
+    return dst;
+  }
+
+  // merge_by_id() for slices of many short runs of mixed ids (random content): the same
+  // rectangles, with the ids of every row with merging faces compared up front, a row at a time
+  // (SSE2): along the row (same_) and with the next row (down_); bits along y first gather the
+  // merging faces' ids (p^2 apart) into contiguous rows, each read once. The run and row tests
+  // are then mask operations, whose data-dependent branches cost more than the compares there.
+  template <int F, bool kRowsAlongX>
+  PackedQuad* merge_dense(const BlockId* slice_ids, int s, int row_ids, int bit_stride, std::uint64_t nonempty,
+                          PackedQuad* dst, std::size_t& alone) {
+    constexpr int kAxis = F >> 1;
+    constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
+    constexpr bool kRowsAreU = kAxis == 1 || kRowsAlongX;
+    constexpr int kBitShift = kBitsAlongY ? 6 : 0;
+    constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
+    const int n = n_;
+    std::uint64_t* rows = face_rows_;
+    std::uint64_t merging = 0;  // bit r: row r has faces that may merge
+    for (std::uint64_t left = nonempty; left; left &= left - 1) {
+      const int r = std::countr_zero(left);
+      merging |= static_cast<std::uint64_t>(rows[r] != alone_[r]) << r;
+    }
+    auto row_of = [&](int r) __attribute__((always_inline)) -> const BlockId* {
+      if constexpr (kBitsAlongY) {
+        return id_rows_[r];
+      } else {
+        return slice_ids + r * row_ids;
+      }
+    };
+    if constexpr (kBitsAlongY) {
+      for (std::uint64_t left = merging; left; left &= left - 1) {
+        const int r = std::countr_zero(left);
+        const BlockId* src = slice_ids + r * row_ids;
+        for (std::uint64_t f = rows[r] & ~alone_[r]; f; f &= f - 1) {
+          const int b = std::countr_zero(f);
+          id_rows_[r][b] = src[b * bit_stride];
+        }
+      }
+    }
+    for (std::uint64_t left = merging; left; left &= left - 1) {
+      const int r = std::countr_zero(left);
+      const BlockId* ids_r = row_of(r);
+      same_[r] = equal_mask(ids_r, ids_r + 1, n);
+      down_[r] = (merging >> (r + 1)) & 1 ? equal_mask(ids_r, row_of(r + 1), n) : 0;
+    }
+    int x0, y0, z0;
+    origin(F, kRowsAlongX, s, 0, 0, x0, y0, z0);
+    const std::uint32_t slice_word0 = pack_word0(x0, y0, z0, 1, 1);
+    for (std::uint64_t left = nonempty; left; left &= left - 1) {
+      const int r = std::countr_zero(left);
+      const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << kRowShift);
+      const BlockId* src = slice_ids + r * row_ids;
+      std::uint64_t unit = alone_[r];
+      rows[r] &= ~unit;
+      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(std::popcount(unit));
+      for (; unit; unit &= unit - 1) {
+        const int b = std::countr_zero(unit);
+        *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(src[b * bit_stride], F, 0xffu)};
+      }
+      const BlockId* ids_r = row_of(r);
+      const std::uint64_t same = same_[r];
+      while (rows[r]) {
+        const int b = std::countr_zero(rows[r]);
+        const int w = 1 + std::countr_one(((rows[r] >> 1) & same) >> b);
+        const std::uint64_t run = (w == 64 ? ~std::uint64_t{0} : ((std::uint64_t{1} << w) - 1)) << b;
+        rows[r] &= ~run;
+        int h = 1;
+        while (r + h < n && (rows[r + h] & down_[r + h - 1] & run) == run) {
+          rows[r + h] &= ~run;
+          ++h;
+        }
+        int x, y, z;
+        origin(F, kRowsAlongX, s, r, b, x, y, z);
+        *dst++ = PackedQuad{pack_word0(x, y, z, kRowsAreU ? h : w, kRowsAreU ? w : h), pack_word1(ids_r[b], F, 0xffu)};
+      }
+    }
+    return dst;
   }
 
   // Entry of the AO table (make_ao_table()) for a face at bit b (not an edge bit) of a row whose
@@ -706,24 +913,27 @@ class BitmaskMesher final : public Mesher {
   }
 
   // Bit x set when row[x + 1] == row[x], x in [0, n) (row[n] is the padding block, readable).
-  static std::uint64_t same_next_mask(const BlockId* row, int n) {
+  static std::uint64_t same_next_mask(const BlockId* row, int n) { return equal_mask(row, row + 1, n); }
+
+  // Bit x set when a[x] == b[x], x in [0, n).
+  static std::uint64_t equal_mask(const BlockId* a, const BlockId* b, int n) {
     std::uint64_t same = 0;
     int x = 0;
 #if defined(__SSE2__)
-    // 16 ids per step, the last step ending at row[n - 1] and overlapping the one before (equal
+    // 16 ids per step, the last step ending at id n - 1 and overlapping the one before (equal
     // bits OR-ed twice): a scalar tail made the open rows of 62^3 chunks cost 14 compares each.
     for (int c = 0; n >= 16 && c < n; c += 16) {
       x = std::min(c, n - 16);
-      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x));
-      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 8));
-      const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 1));
-      const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(row + x + 9));
+      const __m128i v0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + x));
+      const __m128i v1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + x + 8));
+      const __m128i w0 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + x));
+      const __m128i w1 = _mm_loadu_si128(reinterpret_cast<const __m128i*>(b + x + 8));
       const int eq = _mm_movemask_epi8(_mm_packs_epi16(_mm_cmpeq_epi16(v0, w0), _mm_cmpeq_epi16(v1, w1)));
       same |= static_cast<std::uint64_t>(eq & 0xffff) << x;
       x = n;
     }
 #endif
-    for (; x < n; ++x) same |= static_cast<std::uint64_t>(row[x + 1] == row[x]) << x;
+    for (; x < n; ++x) same |= static_cast<std::uint64_t>(a[x] == b[x]) << x;
     return same;
   }
 
@@ -796,6 +1006,7 @@ class BitmaskMesher final : public Mesher {
   std::uint64_t full_ = 0;
   IdSpread spread_;        // ids of the chunk proper, from the mask pass
   BlockId single_ = kAir;  // the chunk's one plain (opaque, all-sides) block id, or kAir
+  bool plain_ = false;     // every block id of the chunk is plain (no alpha cut, all sides)
   // Non-air / opaque masks over the padded P x P rows: bits along x indexed (y, z) (ax_, ox_)
   // and the same indexed (z, y) (az_, oz_); bits along y indexed (x, z) (ay_, oy_).
   std::vector<std::uint64_t> ax_, ox_, az_, oz_, ay_, oy_;
@@ -803,6 +1014,11 @@ class BitmaskMesher final : public Mesher {
   std::vector<std::uint64_t> rows_;
   std::vector<std::uint64_t> used_;
   alignas(16) std::uint64_t face_rows_[64];
+  // merge_by_id() / merge_dense(): per row of a slice, the faces with no face beside them and the
+  // same-id masks along the row and (merge_dense()) towards the next row.
+  std::uint64_t alone_[64];
+  std::uint64_t same_[64];
+  std::uint64_t down_[64];
   alignas(16) std::uint64_t zslice_[64];  // +-Z rows along x: the slice's and the layer's rows
   alignas(16) std::uint64_t zlayer_[66];
   // +-X quads of this chunk written as unit quads at once / out of the merge (mesh_faces()).
@@ -823,6 +1039,9 @@ class BitmaskMesher final : public Mesher {
   };
   std::vector<SlotRef> slot_index_;  // per (block, uniform AO value), see find_slot()
   std::uint32_t slice_stamp_ = 0;
+  // merge_dense(), bits along y: the merging faces' ids gathered per row (72: equal_mask() reads
+  // up to id n of a row).
+  alignas(64) BlockId id_rows_[64][72] = {};
 };
 
 }  // namespace
