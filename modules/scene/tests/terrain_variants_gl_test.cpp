@@ -117,4 +117,36 @@ TEST_F(TerrainVariantsGl, PaintingAnHqTerrainRebuildsTheWholeTree) {
   EXPECT_EQ(after["triangles"].get<std::uint64_t>(), 4u * 128u * 128u) << "still hq2, every leaf";
 }
 
+// Issue 18's per-chunk shading choices reach the module's stats (the player's and the bench's
+// --stats): far_material from the scene file's terrain.render, and chunks beyond every shadow map
+// drawn without the receiving code. The whole 128 m field ~600 m off: every chunk draws no detail
+// scale and its samples span far less than 4 px (far_material.hpp's criterion).
+nlohmann::json far_view_stats(const std::string& far_material, bool shadows) {
+  const std::string text = R"({"terrain": {"size": 128, "resolution": 129, "height": 24, "generator": "fbm",
+      "noise": {"frequency": 0.01, "octaves": 2, "seed": 4}, "render": {"far_material": ")" +
+                           far_material + R"("}},
+    "camera": {"position": [-420, 300, 420], "yaw_deg": -45, "pitch_deg": -25},
+    "render": {"shadows": {"enabled": )" + (shadows ? "true" : "false") + "}}}";
+  std::vector<std::string> warnings;
+  auto doc = SceneDocument::from_text(text, "far.json", warnings);
+  EXPECT_TRUE(doc.ok()) << doc.error().message;
+  if (!doc.ok()) return {};
+  auto scene = Scene::create(std::move(*doc));
+  EXPECT_TRUE(scene.ok()) << scene.error().message;
+  if (!scene.ok()) return {};
+  render_once(**scene);
+  return (*scene)->module_stats()["terrain"];
+}
+
+TEST_F(TerrainVariantsGl, FarMaterialFromTheSceneFileShowsInTheStats) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  const nlohmann::json baked = far_view_stats("baked", false), computed = far_view_stats("computed", false);
+  ASSERT_FALSE(baked.is_null() || computed.is_null());
+  EXPECT_GT(baked["chunks_drawn"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(baked["far_baked_chunks"].get<std::uint64_t>(), baked["chunks_drawn"].get<std::uint64_t>())
+      << "every chunk is far";
+  EXPECT_EQ(computed["far_baked_chunks"].get<std::uint64_t>(), 0u);
+  EXPECT_EQ(computed["beyond_shadow_chunks"].get<std::uint64_t>(), 0u) << "no shadow pass, nothing to skip";
+}
+
 }  // namespace

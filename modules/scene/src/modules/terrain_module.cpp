@@ -184,6 +184,9 @@ class TerrainInstance final : public ModuleInstance {
             {"chunks_visited", s.selection.visited},
             {"triangles", s.selection.triangles},
             {"seam_triangles", s.seam_triangles},
+            // issue 18: chunks shaded from the baked far material / without shadow receiving
+            {"far_baked_chunks", s.far_baked_chunks},
+            {"beyond_shadow_chunks", s.beyond_shadow_chunks},
             {"skirt_triangles", s.skirt_triangles},
             {"max_level_difference", s.selection.max_level_difference},
             {"uploads", s.uploads},
