@@ -28,6 +28,10 @@
 #ifndef SYLVA_VOXEL_SHADOWS
 #define SYLVA_VOXEL_SHADOWS 1
 #endif
+// SYLVA_VOXEL_FADE 0: geometry wholly nearer than the fade's start (mix by exactly 0 there).
+#ifndef SYLVA_VOXEL_FADE
+#define SYLVA_VOXEL_FADE 1
+#endif
 
 #if !defined(ALPHA_CUT) && !defined(TRANSLUCENT)
 layout(early_fragment_tests) in;
@@ -133,6 +137,10 @@ void main() {
 #ifdef TRANSLUCENT
   o_color = vec4(voxel_distance_fade(voxel_air(color), v_rel_pos), alpha);
 #else
+#if SYLVA_VOXEL_FADE
   o_color = vec4(voxel_distance_fade(voxel_air(color), v_rel_pos), 1.0);
+#else
+  o_color = vec4(voxel_air(color), 1.0);
+#endif
 #endif
 }

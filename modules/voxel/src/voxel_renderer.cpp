@@ -74,6 +74,13 @@ double horizontal_distance(const render::Aabb& box, const glm::dvec3& p) {
   return std::sqrt(dx * dx + dz * dz);
 }
 
+// Farthest horizontal (xz) distance from a point to a box's corners.
+double farthest_horizontal_distance(const render::Aabb& box, const glm::dvec3& p) {
+  const double dx = std::max(std::fabs(box.min.x - p.x), std::fabs(box.max.x - p.x));
+  const double dz = std::max(std::fabs(box.min.z - p.z), std::fabs(box.max.z - p.z));
+  return std::sqrt(dx * dx + dz * dz);
+}
+
 // Distance from a point to a box (0 inside).
 double distance(const render::Aabb& box, const glm::dvec3& p) {
   const glm::dvec3 d = glm::max(glm::max(box.min - p, glm::dvec3(0.0)), p - box.max);
@@ -270,6 +277,7 @@ Status VoxelRenderer::build_colour_programs(unsigned variant) {
   auto with_variant = [variant](render::ShaderDefines d) {
     d.emplace_back("SYLVA_VOXEL_POINT_LIGHTS", (variant & kPointLightLoops) != 0 ? "1" : "0");
     d.emplace_back("SYLVA_VOXEL_SHADOWS", (variant & kShadowLookup) != 0 ? "1" : "0");
+    d.emplace_back("SYLVA_VOXEL_FADE", (variant & kDistanceFade) != 0 ? "1" : "0");
     return d;
   };
   auto set = std::make_unique<ColourPrograms>();
@@ -291,7 +299,7 @@ const VoxelRenderer::ColourPrograms* VoxelRenderer::colour_programs(unsigned var
     // build_programs) draws and the log says why.
     if (Status built = build_colour_programs(variant); !built.ok()) {
       log_warn("voxel: colour shader variant {}: {}", variant, built.error().message);
-      return colour_[kPointLightLoops | kShadowLookup].get();
+      return colour_[kFullVariant].get();
     }
   }
   return colour_[variant].get();
@@ -304,10 +312,10 @@ Status VoxelRenderer::build_programs() {
   auto make = [air](std::initializer_list<std::string_view> stages, const render::ShaderDefines& defines,
                     render::Program& out) { return make_program(stages, defines, air, out); };
   for (auto& set : colour_) set.reset();  // rebuilt with the new air when next needed
-  SYLVA_TRY(build_colour_programs(kPointLightLoops | kShadowLookup));  // the fallback of every variant
+  SYLVA_TRY(build_colour_programs(kFullVariant));  // the fallback of every variant
   shadow_enabled_offset_ = -1;
   if (shadow_.glsl_source.empty() || shadow_.lit_when_core_shadows_disabled) {
-    const GLuint program = colour_[kPointLightLoops | kShadowLookup]->opaque.id();
+    const GLuint program = colour_[kFullVariant]->opaque.id();
     const GLuint params = glGetProgramResourceIndex(program, GL_UNIFORM, "sylva_shadow_params");
     if (params != GL_INVALID_INDEX) {
       const GLenum property = GL_OFFSET;
@@ -688,7 +696,7 @@ std::size_t VoxelRenderer::draw_baked(const BakedMesh& mesh, std::uint32_t group
 
 void VoxelRenderer::draw_far_meshes(const render::Program& program, const glm::dvec3& origin,
                                     const render::Frustum* culling, render::PassStats& stats) {
-  for (ChunkGpu* gpu : visible_) {
+  for (ChunkGpu* gpu : drawn_) {
     const BakedMesh& mesh = gpu->far_mesh;
     if (!mesh.ready || distance(gpu->box, origin) < settings_.plant_far_beyond) continue;
     if (culling && culling->classify(gpu->plant_box) == render::Containment::kOutside) continue;
@@ -709,7 +717,7 @@ void VoxelRenderer::draw_near_meshes(bool alpha_cut, const render::Program& prog
                                      double full_within, const render::Frustum* culling, render::PassStats& stats) {
   const int cut = alpha_cut ? 1 : 0;
   bool culled_faces = !alpha_cut;  // the opaque pass culls back faces already
-  for (ChunkGpu* gpu : visible_) {
+  for (ChunkGpu* gpu : drawn_) {
     const BakedMesh& mesh = gpu->near_mesh[cut];
     if (!mesh.ready) continue;
     const double d = distance(gpu->box, origin);
@@ -852,8 +860,10 @@ void VoxelRenderer::restore_block(const UboBinding& b) {
   }
 }
 
-void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::FrameContext* frame, const glm::mat4& vp,
-                                         const glm::dvec3& eye, const render::Frustum* culling, render::PassStats& stats) {
+void VoxelRenderer::draw_opaque_geometry(std::span<ChunkGpu* const> chunks, const OpaquePrograms& p,
+                                         const render::FrameContext* frame, const glm::mat4& vp, const glm::dvec3& eye,
+                                         const render::Frustum* culling, render::PassStats& stats) {
+  drawn_ = chunks;
   // Plants and tufts first, the ground after them: they stand in front of the ground they hide,
   // and llvmpipe's early depth test then skips shading the ground behind them, instead of
   // shading it and shading over it (without the pre-pass; chunks are front to back). Only
@@ -873,15 +883,15 @@ void VoxelRenderer::draw_opaque_geometry(const OpaquePrograms& p, const render::
     glDisable(GL_CULL_FACE);
   }
   bind_common(*p.tufts, frame);
-  draw_tufts(*p.tufts, visible_, vp, eye, stats);
+  draw_tufts(*p.tufts, chunks, vp, eye, stats);
   glEnable(GL_CULL_FACE);
   bind_common(*p.chunks, frame);
   bind_common(*p.plants, frame);
-  draw_chunks(visible_, *p.chunks, *p.plants, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats, true);
+  draw_chunks(chunks, *p.chunks, *p.plants, false, vp, eye, 0.0, settings_.plant_far_beyond, culling, stats, true);
   glDisable(GL_CULL_FACE);
   bind_common(*p.chunks_alpha, frame);
   bind_common(*p.plants_alpha, frame);
-  draw_chunks(visible_, *p.chunks_alpha, *p.plants_alpha, true, vp, eye, settings_.leaf_back_faces_within,
+  draw_chunks(chunks, *p.chunks_alpha, *p.plants_alpha, true, vp, eye, settings_.leaf_back_faces_within,
               settings_.plant_far_beyond, culling, stats, true);
 }
 
@@ -916,8 +926,8 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   // blocks (none) when it bound nothing; restored afterwards for the other drawables.
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
-  const ColourPrograms* colour = colour_programs((point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
-                                                 (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u));
+  const unsigned variant = (point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
+                           (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u);
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -942,14 +952,24 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
     glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     const VoxelFrameStats counted = stats_;
-    draw_opaque_geometry(depth_programs_, nullptr, vp, eye, culling, stats);
+    draw_opaque_geometry(visible_, depth_programs_, nullptr, vp, eye, culling, stats);
     stats_ = counted;
     glColorMask(color_mask[0], color_mask[1], color_mask[2], color_mask[3]);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
     glEnable(GL_CULL_FACE);
   }
-  draw_opaque_geometry(colour->opaque_pass(), &frame, vp, eye, culling, stats);
+  // Chunks wholly nearer than the fade's start (with a block to spare for float rounding) draw
+  // with the shaders without the fade, whose sky look-up llvmpipe would run for every pixel.
+  unfaded_.clear();
+  faded_.clear();
+  for (ChunkGpu* gpu : visible_) {
+    const bool near = farthest_horizontal_distance(gpu->box, eye) + 1.0 < static_cast<double>(fade_.x);
+    (near || fade_.y <= 0.0f ? unfaded_ : faded_).push_back(gpu);
+  }
+  stats_.chunks_faded = faded_.size();
+  draw_opaque_geometry(unfaded_, colour_programs(variant)->opaque_pass(), &frame, vp, eye, culling, stats);
+  draw_opaque_geometry(faded_, colour_programs(variant | kDistanceFade)->opaque_pass(), &frame, vp, eye, culling, stats);
   if (settings_.depth_prepass) {
     glDepthFunc(static_cast<GLenum>(depth_func));
     glDepthMask(depth_mask);
@@ -1012,7 +1032,7 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
   const render::Program& translucent_program =
       colour_programs((point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
-                      (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u))->translucent;
+                      (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u) | kDistanceFade)->translucent;
   const render::SavedBlendState saved;
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);

@@ -576,5 +576,60 @@ TEST_F(VoxelRenderGl, ShadowLookupLeftOutWhileTheHostsShadowsAreDisabled) {
   EXPECT_EQ(d.pixels, 0u);
 }
 
+// Chunks wholly nearer than the fade's start draw with the shaders without the fade (its sky
+// look-up would run for every pixel on llvmpipe; issue #18), the others with it: with a view
+// distance ending mid-view both kinds are drawn, without one none fades. The pictures of both
+// settings stay within 1/255 of themselves drawn a second time (deterministic split).
+TEST_F(VoxelRenderGl, OnlyChunksReachingPastTheFadesStartDrawTheFade) {
+  const auto g = generate_seed3();
+  ASSERT_TRUE(g);
+  VoxelRenderer& r = *g->renderer;
+  auto scene = testing::VoxelGlScene::create(256, 144);
+  scene.camera.set_position({16.0, 60.0, 16.0});  // inside the 5 x 5 chunk world
+  scene.camera.look_at({70.0, 25.0, 70.0});
+  r.settings().view_distance = 0.0f;
+  scene.render(r);
+  EXPECT_GT(r.frame_stats().chunks_drawn, 0u);
+  EXPECT_EQ(r.frame_stats().chunks_faded, 0u) << "no view distance: nothing fades";
+  r.settings().view_distance = 60.0f;  // the fade from 42 to 60 blocks, across the view
+  scene.render(r);
+  const Image split = scene.color();
+  const std::size_t drawn = r.frame_stats().chunks_drawn, faded = r.frame_stats().chunks_faded;
+  std::printf("fade 42-60 blocks: %zu of %zu drawn chunks fade\n", faded, drawn);
+  EXPECT_GT(faded, 0u);
+  EXPECT_LT(faded, drawn) << "the chunks under the camera lie nearer than the fade's start";
+  r.settings().fade_share = 1.0f;  // the fade from 0: every chunk reaches past its start
+  scene.render(r);
+  EXPECT_EQ(r.frame_stats().chunks_faded, r.frame_stats().chunks_drawn);
+  r.settings().fade_share = 0.3f;
+  scene.render(r);
+  EXPECT_EQ(count_exceeding(split, scene.color(), 0.0f).value().pixels, 0u);
+
+  // Straight down onto the chunk column under the eye: with the fade from 52 blocks it lies
+  // nearer (drawn without the fade), from 23 blocks every chunk reaches past the start (with the
+  // fade), but the middle of the picture (< 16 blocks away) lies nearer in both: no change.
+  scene.camera.set_position({16.0, 60.0, 16.0});
+  scene.camera.look_at({16.0, 0.0, 16.001});
+  r.settings().view_distance = 52.0f / 0.7f;
+  scene.render(r);
+  const Image unfaded_middle = scene.color();
+  const std::size_t unfaded_from_52 = r.frame_stats().chunks_drawn - r.frame_stats().chunks_faded;
+  r.settings().view_distance = 23.0f / 0.7f;
+  scene.render(r);
+  const Image faded_middle = scene.color();
+  EXPECT_GE(unfaded_from_52, 3u) << "the column under the eye and its neighbours lie nearer";
+  EXPECT_EQ(r.frame_stats().chunks_faded, r.frame_stats().chunks_drawn) << "from 23 blocks all reach past";
+  std::size_t middle = 0, differ = 0;
+  for (int y = 0; y < scene.target.size().y; ++y)
+    for (int x = 0; x < scene.target.size().x; ++x) {
+      if ((x - 128) * (x - 128) + (y - 72) * (y - 72) > 40 * 40) continue;
+      ++middle;
+      for (int c = 0; c < 3; ++c) differ += unfaded_middle.at(x, y, c) != faded_middle.at(x, y, c) ? 1 : 0;
+    }
+  std::printf("straight down: %zu chunks without the fade -> none, %zu channel values differ in the middle %zu pixels\n",
+              unfaded_from_52, differ, middle);
+  EXPECT_EQ(differ, 0u);
+}
+
 }  // namespace
 }  // namespace sylva::voxel

@@ -208,6 +208,7 @@ struct VoxelFrameStats {
   // 1 when the colour passes sampled the sun's shadows (shadow_lookups_needed), 0 when they
   // ran the variant without the look-up (lit everywhere, as the disabled block says).
   std::size_t shadow_lookup_shaders = 0;
+  std::size_t chunks_faded = 0;  // drawn with the fade into the sky; the others lie wholly nearer than its start
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
   std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
   std::size_t translucent_quads_drawn = 0;  // in draw(kTransparent), also counted in quads_drawn
@@ -260,7 +261,9 @@ class VoxelRenderer final : public render::Drawable {
   // shade.frag) and kShadowLookup (SYLVA_VOXEL_SHADOWS) bits; each is built on the first frame
   // that needs it.
   struct ColourPrograms;
-  static constexpr unsigned kPointLightLoops = 1u, kShadowLookup = 2u, kColourVariants = 4u;
+  // kDistanceFade: SYLVA_VOXEL_FADE, for chunks reaching past the fade's start.
+  static constexpr unsigned kPointLightLoops = 1u, kShadowLookup = 2u, kDistanceFade = 4u;
+  static constexpr unsigned kFullVariant = kPointLightLoops | kShadowLookup | kDistanceFade, kColourVariants = 8u;
   Status build_colour_programs(unsigned variant);
   const ColourPrograms* colour_programs(unsigned variant);
   void upload_chunk(const ChunkCoord& c, ChunkGpu& gpu);
@@ -280,7 +283,8 @@ class VoxelRenderer final : public render::Drawable {
   };
   // Chunks, plants (instanced and baked) and tufts of visible_, opaque then cut-out, with `p`
   // (`frame` null for the depth programs). Leaves back-face culling off.
-  void draw_opaque_geometry(const OpaquePrograms& p, const render::FrameContext* frame, const glm::mat4& vp,
+  void draw_opaque_geometry(std::span<ChunkGpu* const> chunks, const OpaquePrograms& p,
+                            const render::FrameContext* frame, const glm::mat4& vp,
                             const glm::dvec3& eye, const render::Frustum* culling, render::PassStats& stats);
   void draw_horizon(const glm::mat4& view_projection, const glm::dvec3& origin, render::PassStats& stats);
   void draw_translucent(const render::FrameContext& frame, render::PassStats& stats);
@@ -357,6 +361,8 @@ class VoxelRenderer final : public render::Drawable {
   std::uint64_t mesh_epoch_ = ~std::uint64_t{0};
   std::uint64_t plant_epoch_ = ~std::uint64_t{0};
   std::vector<ChunkGpu*> visible_;
+  std::vector<ChunkGpu*> unfaded_, faded_;  // visible_ split by the fade's start, this frame
+  std::span<ChunkGpu* const> drawn_;        // the chunks draw_opaque_geometry is drawing
   std::vector<std::uint8_t> plant_seen_;  // draw_near_meshes' per-plant flags, kept between chunks
   std::unique_ptr<PlantFaceCache> face_cache_;  // hidden-face masks per plant model
   std::vector<std::pair<float, PackedQuad>> sort_keys_;  // sort_translucent's scratch, kept between frames
