@@ -558,8 +558,8 @@ class BitmaskMesher final : public Mesher {
       const BlockId* row = slice_ids + r * row_ids;
       std::uint64_t unit = alone_[r];
       rows[r] &= ~unit;
-      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(std::popcount(unit));
       const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << kRowShift);
+      const PackedQuad* const units = dst;  // (counted by pointers: popcount is a libgcc call at -O2)
       if (single != kAir) {
         for (; unit; unit &= unit - 1) {
           *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(std::countr_zero(unit)) << kBitShift), single_word1};
@@ -569,6 +569,7 @@ class BitmaskMesher final : public Mesher {
         const int b = std::countr_zero(unit);
         *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(row[b * bit_stride], F, 0xffu)};
       }
+      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(dst - units);
       while (rows[r]) {
         const int b = std::countr_zero(rows[r]);
         const std::uint64_t from_b = rows[r] >> b;
@@ -652,7 +653,7 @@ class BitmaskMesher final : public Mesher {
       const int r = std::countr_zero(left);
       const BlockId* ids_r = row_of(r);
       same_[r] = equal_mask(ids_r, ids_r + 1, n);
-      down_[r] = (merging >> (r + 1)) & 1 ? equal_mask(ids_r, row_of(r + 1), n) : 0;
+      down_[r] = r + 1 < n && ((merging >> (r + 1)) & 1) ? equal_mask(ids_r, row_of(r + 1), n) : 0;
     }
     int x0, y0, z0;
     origin(F, kRowsAlongX, s, 0, 0, x0, y0, z0);
@@ -663,11 +664,12 @@ class BitmaskMesher final : public Mesher {
       const BlockId* src = slice_ids + r * row_ids;
       std::uint64_t unit = alone_[r];
       rows[r] &= ~unit;
-      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(std::popcount(unit));
+      const PackedQuad* const units = dst;
       for (; unit; unit &= unit - 1) {
         const int b = std::countr_zero(unit);
         *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(src[b * bit_stride], F, 0xffu)};
       }
+      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(dst - units);
       const BlockId* ids_r = row_of(r);
       const std::uint64_t same = same_[r];
       while (rows[r]) {
