@@ -33,6 +33,11 @@
 //    farther, so the edge of the loaded area and the void behind it never show.
 //  * Plant cubes draw only the three faces turned to the eye (18 vertices) when the rest cannot
 //    show: opaque parts always, leaf parts beyond leaf_back_faces_within.
+//  * Colour shader variants per frame for what it lacks (issue #18: llvmpipe runs both sides of
+//    a branch and an empty loop's body for every pixel): no point-light loops without lights, no
+//    shadow look-up while the host's shadows are disabled, no fade for chunks nearer than its
+//    start (stats point_light_shaders, shadow_lookup_shaders, chunks_faded). Plants and tufts
+//    are drawn before the chunks, so early depth tests keep shading off the ground they hide.
 // One block = 1 world unit (metre).
 
 #include <sylva/core/result.hpp>
