@@ -115,6 +115,18 @@ constexpr std::uint8_t kFlagAlpha = 1;     // alpha-cut block
 constexpr std::uint8_t kFlagSidesOnly = 2;  // no faces along y
 constexpr std::uint8_t kFlagCullSame = 4;   // alpha-cut block hiding faces towards itself
 
+// Axes of one face direction's slices (F, and for +-Z whether rows run along x, see
+// mesh_faces()): bits run along y for +-X faces and +-Z rows along x, else along x; rows are the
+// quad's u axis for +-Y faces and +-Z rows along x. Shifts: PackedQuad word0 of the bit and row axes.
+template <int F, bool kRowsAlongX>
+struct SliceAxes {
+  static constexpr int kAxis = F >> 1;
+  static constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
+  static constexpr bool kRowsAreU = kAxis == 1 || kRowsAlongX;
+  static constexpr int kBitShift = kBitsAlongY ? 6 : 0;
+  static constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
+};
+
 class BitmaskMesher final : public Mesher {
  public:
   explicit BitmaskMesher(const MesherOptions& options) : options_(options), avx2_(use_avx2()) {}
@@ -239,12 +251,13 @@ class BitmaskMesher final : public Mesher {
     // Stride between consecutive bits of a row, in the padded id array: bits run along y for
     // +-X faces and along x otherwise.
     constexpr bool kRowsAlongX = kAxis == 2 && kZRowsX;
-    constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
+    using Axes = SliceAxes<F, kRowsAlongX>;
+    constexpr bool kBitsAlongY = Axes::kBitsAlongY;
     const int bit_stride = kBitsAlongY ? p * p : 1;
-    constexpr int kBitShift = kBitsAlongY ? 6 : 0;  // PackedQuad word0 shift of the bit axis
+    constexpr int kBitShift = Axes::kBitShift;  // PackedQuad word0 shift of the bit axis
     // Rows run along z (+-X, +-Y faces) or y (+-Z faces): their id stride and word0 shift.
     const int row_ids = kRowsAlongX ? 1 : kAxis == 2 ? p * p : p;
-    constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
+    constexpr int kRowShift = Axes::kRowShift;
     // Raw pointers: stores into the output vectors would otherwise force reloads of every
     // member vector's data pointer inside the loops.
     // Non-air masks of the slices and opaque masks of the layers in front, rows contiguous:
@@ -514,9 +527,9 @@ class BitmaskMesher final : public Mesher {
   template <int F, bool kRowsAlongX>
   PackedQuad* merge_by_id(const BlockId* slice_ids, int s, int row_ids, int bit_stride, std::uint64_t nonempty,
                           PackedQuad* dst, std::size_t& alone) {
-    constexpr int kAxis = F >> 1;
-    constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
-    constexpr bool kRowsAreU = kAxis == 1 || kRowsAlongX;
+    using Axes = SliceAxes<F, kRowsAlongX>;
+    constexpr int kAxis = Axes::kAxis;
+    constexpr bool kBitsAlongY = Axes::kBitsAlongY;
     const int n = n_;
     const BlockId single = single_;
     std::uint64_t* rows = face_rows_;
@@ -537,8 +550,8 @@ class BitmaskMesher final : public Mesher {
     if (single == kAir && 2 * std::popcount(alone_rows) > std::popcount(nonempty)) {
       return merge_dense<F, kRowsAlongX>(slice_ids, s, row_ids, bit_stride, nonempty, dst, alone);
     }
-    constexpr int kBitShift = kBitsAlongY ? 6 : 0;  // PackedQuad word0 shifts of the bit and row axes
-    constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
+    constexpr int kBitShift = Axes::kBitShift;
+    constexpr int kRowShift = Axes::kRowShift;
     int x0, y0, z0;
     origin(F, kRowsAlongX, s, 0, 0, x0, y0, z0);
     const std::uint32_t slice_word0 = pack_word0(x0, y0, z0, 1, 1);
@@ -606,7 +619,7 @@ class BitmaskMesher final : public Mesher {
         }
         int x, y, z;
         origin(F, kRowsAlongX, s, r, b, x, y, z);
-        *dst++ = PackedQuad{pack_word0(x, y, z, kRowsAreU ? h : w, kRowsAreU ? w : h), pack_word1(id, F, 0xffu)};
+        *dst++ = PackedQuad{pack_word0(x, y, z, Axes::kRowsAreU ? h : w, Axes::kRowsAreU ? w : h), pack_word1(id, F, 0xffu)};
       }
     }
     return dst;
@@ -620,11 +633,8 @@ class BitmaskMesher final : public Mesher {
   template <int F, bool kRowsAlongX>
   PackedQuad* merge_dense(const BlockId* slice_ids, int s, int row_ids, int bit_stride, std::uint64_t nonempty,
                           PackedQuad* dst, std::size_t& alone) {
-    constexpr int kAxis = F >> 1;
-    constexpr bool kBitsAlongY = kAxis == 0 || kRowsAlongX;
-    constexpr bool kRowsAreU = kAxis == 1 || kRowsAlongX;
-    constexpr int kBitShift = kBitsAlongY ? 6 : 0;
-    constexpr int kRowShift = kRowsAlongX ? 0 : kAxis == 2 ? 6 : 12;
+    using Axes = SliceAxes<F, kRowsAlongX>;
+    constexpr bool kBitsAlongY = Axes::kBitsAlongY;
     const int n = n_;
     std::uint64_t* rows = face_rows_;
     std::uint64_t merging = 0;  // bit r: row r has faces that may merge
@@ -660,16 +670,16 @@ class BitmaskMesher final : public Mesher {
     const std::uint32_t slice_word0 = pack_word0(x0, y0, z0, 1, 1);
     for (std::uint64_t left = nonempty; left; left &= left - 1) {
       const int r = std::countr_zero(left);
-      const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << kRowShift);
+      const std::uint32_t row_word0 = slice_word0 + (static_cast<std::uint32_t>(r) << Axes::kRowShift);
       const BlockId* src = slice_ids + r * row_ids;
       std::uint64_t unit = alone_[r];
       rows[r] &= ~unit;
       const PackedQuad* const units = dst;
       for (; unit; unit &= unit - 1) {
         const int b = std::countr_zero(unit);
-        *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << kBitShift), pack_word1(src[b * bit_stride], F, 0xffu)};
+        *dst++ = PackedQuad{row_word0 + (static_cast<std::uint32_t>(b) << Axes::kBitShift), pack_word1(src[b * bit_stride], F, 0xffu)};
       }
-      if constexpr (kAxis == 0) alone += static_cast<std::size_t>(dst - units);
+      if constexpr (Axes::kAxis == 0) alone += static_cast<std::size_t>(dst - units);
       const BlockId* ids_r = row_of(r);
       const std::uint64_t same = same_[r];
       while (rows[r]) {
@@ -684,7 +694,7 @@ class BitmaskMesher final : public Mesher {
         }
         int x, y, z;
         origin(F, kRowsAlongX, s, r, b, x, y, z);
-        *dst++ = PackedQuad{pack_word0(x, y, z, kRowsAreU ? h : w, kRowsAreU ? w : h), pack_word1(ids_r[b], F, 0xffu)};
+        *dst++ = PackedQuad{pack_word0(x, y, z, Axes::kRowsAreU ? h : w, Axes::kRowsAreU ? w : h), pack_word1(ids_r[b], F, 0xffu)};
       }
     }
     return dst;
