@@ -20,7 +20,9 @@
 //    rows in runs of one block id, one update per run) and merged into rectangles with
 //    count-trailing-zeros / count-trailing-ones on the rows. Faces whose AO differs between
 //    corners stay unit quads, so every mesher shades identically; so do faces with no face
-//    beside them in the slice (they could merge with nothing), without a slot.
+//    beside them in the slice (they could merge with nothing), without a slot. Without AO, chunks
+//    of plain opaque blocks skip the slot planes: the same rectangles straight from the face rows,
+//    block ids compared in place (merge_by_id(), merge_dense()).
 // 5. Whole-chunk shortcuts (issue #18): an all-air chunk is found by a scan and costs no masks;
 //    slabs of only empty and full rows are not transposed; +-Z slices take rows along x instead
 //    of y when the chunk's +-X faces mostly merged (terrain without AO, see mesh_faces()).
