@@ -461,6 +461,7 @@ void VoxelRenderer::upload_plants(const ChunkCoord& c, ChunkGpu& gpu) {
 void VoxelRenderer::update(const render::FrameContext& frame) {
   stats_ = {};
   cast_context_ = nullptr;
+  shadow_pass_ran_ = false;
   const bool meshes_changed = world_->mesh_epoch() != mesh_epoch_;
   const bool plants_changed = world_->plant_epoch() != plant_epoch_;
   if (meshes_changed || plants_changed) {
@@ -824,13 +825,16 @@ VoxelRenderer::UboBinding VoxelRenderer::bind_fallback_block(GLuint index, const
 bool VoxelRenderer::shadow_lookups_needed(const UboBinding& host_shadows) {
   bool needed = true;  // a custom hook: only it knows
   if (shadow_.glsl_source.empty() || shadow_.lit_when_core_shadows_disabled) {
-    needed = settings_.receive_shadows && !host_shadows.replaced && host_shadows_enabled(host_shadows);
+    // A shadow pass this frame means enabled cascades, known without touching the GPU; only
+    // otherwise (shadows off, or maps the host keeps from an earlier frame) is the flag read.
+    needed = settings_.receive_shadows && !host_shadows.replaced &&
+             (shadow_pass_ran_ || host_shadows_enabled(host_shadows));
   }
   stats_.shadow_lookup_shaders = needed ? 1 : 0;
   return needed;
 }
 
-bool VoxelRenderer::host_shadows_enabled(const UboBinding& host_shadows) const {
+bool VoxelRenderer::host_shadows_enabled(const UboBinding& host_shadows) {
   // sylva_shadow_params.z of the host's block (render/lib/shadows.glsl: 0 = disabled), at the
   // offset the linker gave it in a program that samples the shadows (no copy of the layout).
   if (shadow_enabled_offset_ < 0) return true;
@@ -840,6 +844,7 @@ bool VoxelRenderer::host_shadows_enabled(const UboBinding& host_shadows) const {
   const GLint64 at = host_shadows.start + shadow_enabled_offset_;
   if (at + static_cast<GLint64>(sizeof(GLint)) > host_shadows.start + size) return true;
   GLint enabled = 1;
+  ++stats_.shadow_flag_reads;
   glGetNamedBufferSubData(buffer, static_cast<GLintptr>(at), sizeof(GLint), &enabled);
   return enabled != 0;
 }
@@ -905,6 +910,7 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
     }
   }
   if (pass == render::Pass::kShadow) {
+    shadow_pass_ran_ = true;
     // Inside ShadowMaps::render (the scene's shadow pass): cast into the cascade being drawn.
     if (const render::ShadowCasterContext* c = render::active_shadow_cascade(); c != nullptr && c->camera != nullptr) {
       render::ShadowCasterContext local = *c;
@@ -1091,6 +1097,7 @@ void VoxelRenderer::draw_depth_list(std::span<ChunkGpu* const> chunks, const glm
 }
 
 void VoxelRenderer::draw_shadow(const render::ShadowCasterContext& context) {
+  shadow_pass_ran_ = true;  // receiving does not depend on casting (other casters' shadows)
   if (!settings_.cast_shadows || context.camera == nullptr) return;
   render::PassStats local;
   render::PassStats& stats = context.stats != nullptr ? *context.stats : local;
@@ -1113,6 +1120,7 @@ render::ShadowCaster& VoxelRenderer::shadow_caster() { return *caster_; }
 
 void VoxelRenderer::draw_depth(const glm::mat4& relative_view_projection, const glm::dvec3& origin,
                                render::PassStats& stats) {
+  if (render::active_shadow_cascade() != nullptr) shadow_pass_ran_ = true;
   if (const render::ShadowCasterContext* c = render::active_shadow_cascade();
       c != nullptr && c == cast_context_ && c->cascade == cast_cascade_ && c->relative_view_projection == cast_matrix_ &&
       relative_view_projection == cast_matrix_) {

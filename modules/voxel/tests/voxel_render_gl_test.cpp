@@ -525,10 +525,12 @@ TEST_F(VoxelRenderGl, ShadersWithoutPointLightLoopsDrawTheSamePictureWhenNoLight
   EXPECT_EQ(r.frame_stats().point_light_shaders, 0u) << "back to the shaders without loops";
 }
 
-// The shadow look-up runs only where it can change a pixel: with the render core's hook, a host
-// block that says "disabled" (the scene's when its shadows are off) selects the shaders without
-// it (llvmpipe runs the look-up under a mask otherwise; issue #18), enabled cascades the ones
-// with it. The same picture as the look-up through a custom hook of the same text.
+// The shadow look-up runs only where it can change a pixel: with the render core's hook, a frame
+// without a shadow pass (the scene's when its shadows are off: its block says "disabled") selects
+// the shaders without it (llvmpipe runs the look-up under a mask otherwise; issue #18), a frame
+// whose shadow pass ran the ones with it, known on the CPU without a read-back (the block's flag
+// is read only in frames without a pass). The same picture as the look-up through a custom hook
+// of the same text.
 TEST_F(VoxelRenderGl, ShadowLookupLeftOutWhileTheHostsShadowsAreDisabled) {
   const auto g = generate_seed3();
   ASSERT_TRUE(g);
@@ -539,34 +541,39 @@ TEST_F(VoxelRenderGl, ShadowLookupLeftOutWhileTheHostsShadowsAreDisabled) {
   ss.resolution = 256;
   auto maps = render::ShadowMaps::create(ss);
   ASSERT_TRUE(maps.ok()) << maps.error().describe();
-  const render::FrameContext frame{scene.camera, 0.0, 0.0f, scene.wind, scene.lighting, scene.target.size(), 0};
-  r.update(frame);
-  render::apply_reversed_z_state();
-  maps->add_caster(&r.shadow_caster());
-  ASSERT_TRUE(maps->render(scene.camera, scene.lighting.sun_direction, &frame, nullptr).ok());
-  maps->remove_caster(&r.shadow_caster());
-  maps->bind();
-  scene.render(r);
+  // The host's frame: update, then its shadow pass (casters drawn only while enabled), then the
+  // colour passes with the maps' block bound.
+  const auto shadow_pass = [&](const render::FrameContext& frame) {
+    maps->add_caster(&r.shadow_caster());
+    ASSERT_TRUE(maps->render(scene.camera, scene.lighting.sun_direction, &frame, nullptr).ok());
+    maps->remove_caster(&r.shadow_caster());
+    maps->bind();
+  };
+  scene.render(r, 0.0, shadow_pass);
   EXPECT_EQ(r.frame_stats().shadow_lookup_shaders, 1u) << "enabled cascades: the look-up";
+  EXPECT_EQ(r.frame_stats().shadow_flag_reads, 0u) << "the shadow pass ran: nothing read back";
+  const Image with_shadows = scene.color();
+  scene.render(r);
+  EXPECT_EQ(r.frame_stats().shadow_lookup_shaders, 1u) << "maps kept from an earlier frame, still enabled";
+  EXPECT_GT(r.frame_stats().shadow_flag_reads, 0u) << "no pass this frame: the block's flag is read";
 
   // The scene's path with its shadows off: the maps upload "disabled" (cascade count 0, the
-  // resolution and PCF radius still set) and stay bound.
+  // resolution and PCF radius still set), call no caster, and stay bound.
   maps->settings().enabled = false;
-  ASSERT_TRUE(maps->render(scene.camera, scene.lighting.sun_direction, &frame, nullptr).ok());
-  maps->bind();
-  scene.render(r);
+  scene.render(r, 0.0, shadow_pass);
   const Image without_lookup = scene.color();
   EXPECT_EQ(r.frame_stats().shadow_lookup_shaders, 0u) << "a disabled block: no look-up";
+  EXPECT_GT(r.frame_stats().shadow_flag_reads, 0u);
   EXPECT_GT(r.frame_stats().plant_triangles, 0u);
   ShadowReceiver same_hook;
   same_hook.glsl_source = render::shader_source("voxel/shadow_hook_default.glsl").value();
   ASSERT_TRUE(r.set_shadow_receiver(same_hook).ok());
-  scene.render(r);
+  scene.render(r, 0.0, shadow_pass);
   const Image with_lookup = scene.color();
   EXPECT_EQ(r.frame_stats().shadow_lookup_shaders, 1u) << "a custom hook is called in every frame";
   same_hook.lit_when_core_shadows_disabled = true;  // what the scene's hook says of itself
   ASSERT_TRUE(r.set_shadow_receiver(same_hook).ok());
-  scene.render(r);
+  scene.render(r, 0.0, shadow_pass);
   EXPECT_EQ(r.frame_stats().shadow_lookup_shaders, 0u) << "a hook lit where the core's shadows are disabled";
   ASSERT_TRUE(r.set_shadow_receiver({}).ok());
   glBindBufferBase(GL_UNIFORM_BUFFER, render::kShadowUniformBinding, 0);
@@ -574,6 +581,8 @@ TEST_F(VoxelRenderGl, ShadowLookupLeftOutWhileTheHostsShadowsAreDisabled) {
   std::printf("shadow look-up left out: %zu of %zu pixels differ, max %.2f/255\n", d.pixels, d.total,
               d.max_difference * 255.0f);
   EXPECT_EQ(d.pixels, 0u);
+  EXPECT_GT(count_exceeding(with_shadows, without_lookup, 2.0f / 255.0f).value().pixels, 100u)
+      << "the enabled frame did sample shadows";
 }
 
 // Chunks wholly nearer than the fade's start draw with the shaders without the fade (its sky

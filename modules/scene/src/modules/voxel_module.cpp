@@ -149,6 +149,7 @@ class VoxelInstance final : public ModuleInstance {
             {"plant_mesh_groups_skipped", s.plant_mesh_groups_skipped},
             {"view_distance", s.view_distance}, {"point_lights", s.point_lights},
             {"point_light_shaders", s.point_light_shaders}, {"shadow_lookup_shaders", s.shadow_lookup_shaders},
+            {"shadow_flag_reads", s.shadow_flag_reads},
             {"shadow_chunks_cast", s.shadow_chunks_cast}, {"translucent_quads_drawn", s.translucent_quads_drawn},
             {"translucent_sorts", s.translucent_sorts},
             {"generation_ms", generation_ms_},

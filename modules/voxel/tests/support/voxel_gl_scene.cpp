@@ -18,7 +18,8 @@ VoxelGlScene VoxelGlScene::create(int width, int height) {
   return s;
 }
 
-void VoxelGlScene::render(VoxelRenderer& renderer, double time) {
+void VoxelGlScene::render(VoxelRenderer& renderer, double time,
+                          const std::function<void(const render::FrameContext&)>& after_update) {
   render::apply_reversed_z_state();
   target.bind();
   target.clear(clear_color, 0.0f);
@@ -26,6 +27,11 @@ void VoxelGlScene::render(VoxelRenderer& renderer, double time) {
   lighting_ubo.bind();
   const render::FrameContext frame{camera, time, 0.0f, wind, lighting, target.size(), 0};
   renderer.update(frame);
+  if (after_update) {
+    after_update(frame);
+    render::apply_reversed_z_state();  // a shadow pass leaves its own viewport and FBO bound
+    target.bind();
+  }
   last_stats = {};
   renderer.draw(render::Pass::kOpaque, frame, last_stats);
   renderer.draw(render::Pass::kTransparent, frame, last_stats);

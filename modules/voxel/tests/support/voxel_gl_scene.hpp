@@ -10,6 +10,7 @@
 #include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/voxel/voxel_renderer.hpp>
 
+#include <functional>
 #include <string>
 
 namespace sylva::voxel::testing {
@@ -24,8 +25,10 @@ struct VoxelGlScene {
   render::PassStats last_stats;
 
   static VoxelGlScene create(int width = 256, int height = 144);
-  // update() + draw(kOpaque) + draw(kTransparent) into the target.
-  void render(VoxelRenderer& renderer, double time = 0.0);
+  // update() + draw(kOpaque) + draw(kTransparent) into the target; `after_update` runs between
+  // update() and the colour passes, where a host runs its shadow pass.
+  void render(VoxelRenderer& renderer, double time = 0.0,
+              const std::function<void(const render::FrameContext&)>& after_update = {});
   Image color() const;
   Image depth() const;
 };

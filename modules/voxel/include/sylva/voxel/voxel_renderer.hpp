@@ -213,6 +213,9 @@ struct VoxelFrameStats {
   // 1 when the colour passes sampled the sun's shadows (shadow_lookups_needed), 0 when they
   // ran the variant without the look-up (lit everywhere, as the disabled block says).
   std::size_t shadow_lookup_shaders = 0;
+  // Read-backs of the host block's "enabled" flag this frame: 0 in frames whose shadow pass ran
+  // (a read-back waits for the GPU on hardware drivers).
+  std::size_t shadow_flag_reads = 0;
   std::size_t chunks_faded = 0;  // drawn with the fade into the sky; the others lie wholly nearer than its start
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
   std::size_t shadow_chunks_cast = 0;  // chunks drawn into shadow cascades since the last update, summed over cascades
@@ -331,11 +334,13 @@ class VoxelRenderer final : public render::Drawable {
   bool point_lights_shaded(const UboBinding& host_lights);
   // Whether this frame's colour passes sample the sun's shadows: always with a custom
   // ShadowReceiver (unless lit_when_core_shadows_disabled); with the render core's (the
-  // default) only when receive_shadows is on and
-  // the host bound a shadow block that is enabled (the scene binds one saying "disabled" when
-  // its shadows are off; read back, 4 bytes a pass). Records it in stats_.shadow_lookup_shaders.
+  // default) only when receive_shadows is on and the host bound a shadow block that is
+  // enabled: known on the CPU when a shadow pass ran since update() (the scene's frames with
+  // shadows on: no read-back, which would stall a hardware GPU's pipeline), else its flag is
+  // read back, 4 bytes a pass (the scene binds a block saying "disabled" when its shadows are
+  // off; a host may keep maps from an earlier frame). Records it in stats_.shadow_lookup_shaders.
   bool shadow_lookups_needed(const UboBinding& host_shadows);
-  bool host_shadows_enabled(const UboBinding& host_shadows) const;
+  bool host_shadows_enabled(const UboBinding& host_shadows);
 
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
@@ -344,6 +349,7 @@ class VoxelRenderer final : public render::Drawable {
   // body at least once per pixel, so an empty light loop costs as much as one light and a
   // disabled shadow look-up as an enabled one: the shipped spawn has neither (issue #18).
   std::unique_ptr<ColourPrograms> colour_[kColourVariants];
+  bool shadow_pass_ran_ = false;  // a shadow pass (any cast path) ran since update()
   GLint shadow_enabled_offset_ = -1;  // bytes: sylva_shadow_params.z in SylvaShadows (-1: unknown)
   render::Program horizon_program_;
   render::Program depth_program_, depth_alpha_program_, plant_depth_program_, plant_depth_opaque_program_;
