@@ -48,7 +48,9 @@
 //   wait_stream [MAX_FRAMES]     render frames until the streamed (baked) terrain has every chunk its
 //                                view asks for (stats stream_pending and stream_misses_frame 0), so a
 //                                screenshot is the settled picture, or until the budget holds what it can
-//                                (stream_budget_limited 1; says so); fails after MAX_FRAMES (default 2000)
+//                                (stream_budget_limited 1; says so); fails after MAX_FRAMES (default 2000),
+//                                or as soon as a chunk the view asked for cannot be read (corrupt
+//                                file: the error names it; its parent stays drawn)
 //   quit                         stop (unsaved changes are discarded: scripts are explicit)
 //
 // Parsing checks every line before anything runs: unknown commands, wrong argument counts and

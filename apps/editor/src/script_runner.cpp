@@ -193,7 +193,10 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
   }
   if (c.name == "wait_stream") {
     const int max_frames = a.size() == 1 ? c.count : 2000;
-    nlohmann::json t;
+    nlohmann::json t = s.scene().module_stats().value("terrain", nlohmann::json::object());
+    // A chunk that cannot be read is not asked for again (its parent is drawn): waiting for it
+    // would only run out the frames, so the first new failure ends the wait with its reason.
+    const std::uint64_t failures_before = t.value("stream_failures", std::uint64_t{0});
     const auto settled = [&] {
       t = s.scene().module_stats().value("terrain", nlohmann::json::object());
       return t.value("stream_pending", 0) == 0 &&
@@ -201,7 +204,14 @@ Status run_one(EditorSession& s, const ScriptCommand& c, const std::filesystem::
     };
     for (int k = 0; k < max_frames; ++k) {
       SYLVA_TRY(s.render_frame(1.0 / 30.0));
-      if (settled()) {
+      const bool done = settled();
+      if (const std::uint64_t failed = t.value("stream_failures", std::uint64_t{0}) - failures_before;
+          failed > 0 && t.value("stream_pending", 0) == 0) {
+        return make_error(ErrorCode::kCorrupt,
+                          fmt::format("{} terrain chunk(s) could not be read; coarser parents are drawn there: {}", failed,
+                                      t.value("stream_last_error", std::string("(no message)"))));
+      }
+      if (done) {
         if (t.value("stream_budget_limited", 0) == 1) {
           out << fmt::format("sylva-editor: wait_stream: terrain.stream.budget_mb ({:.2f} MiB) limits the view: {} "
                              "chunks do not fit, coarser parents are drawn there\n",

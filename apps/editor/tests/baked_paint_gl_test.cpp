@@ -16,6 +16,8 @@
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <unistd.h>
 
@@ -176,6 +178,65 @@ quit
   EXPECT_EQ(stats["stream_pending"].get<std::size_t>(), 0u) << stats.dump();
   EXPECT_LE(stats["stream_resident_bytes"].get<std::size_t>(), stats["stream_budget_bytes"].get<std::size_t>())
       << stats.dump();
+  fs::remove_all(dir);
+}
+
+// Flips one byte in the middle of every chunk blob of a baked terrain but the root's (slot 0,
+// read when the file opens): the layout of chunk_file.hpp, header bytes 80-95 the directory's
+// offset and size, 64-byte entries with presence at 0 and the blob's offset and size at 40 / 48.
+// Returns the chunks corrupted.
+std::size_t corrupt_chunks_but_the_root(const fs::path& file) {
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  const auto u64 = [&](std::size_t at) {
+    std::uint64_t v = 0;
+    for (int b = 7; b >= 0; --b) v = (v << 8) | static_cast<unsigned char>(bytes.at(at + b));
+    return v;
+  };
+  const std::uint64_t dir = u64(80), dir_bytes = u64(88);
+  std::size_t corrupted = 0;
+  for (std::uint64_t e = dir + 64; e + 64 <= dir + dir_bytes; e += 64) {
+    if (bytes.at(e) == 0) continue;
+    const std::uint64_t offset = u64(e + 40), size = u64(e + 48);
+    if (size == 0) continue;
+    bytes.at(offset + size / 2) ^= 0x10;
+    ++corrupted;
+  }
+  std::ofstream(file, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  return corrupted;
+}
+
+// A baked terrain whose chunk blobs are damaged after the bake: the scene opens (the header,
+// directory and root are sound), the damaged chunks are never drawn (their parents are), and
+// wait_stream fails at once with the reason, the file and the chunk named, instead of waiting out
+// its frames and exiting 0 with a coarser picture than the file promises.
+TEST(EditorBakedPaint, WaitStreamNamesAChunkThatCannotBeRead) {
+  const fs::path dir = make_hills_scene("sylva_editor_stream_corrupt");
+  sylva::Image relief(257, 257, 1, sylva::PixelFormat::kF32);
+  for (int y = 0; y < 257; ++y)
+    for (int x = 0; x < 257; ++x) relief.at(x, y) = static_cast<float>(60.0 * std::sin(x * 0.05) * std::cos(y * 0.07));
+  ASSERT_TRUE(sylva::write_image(dir / "relief.tif", relief, sylva::PixelFormat::kF32).ok());
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "bake.sylva", R"(load scene.json
+import_terrain relief.tif bake relief.sylvaterrain
+wait_import
+wait_stream 600
+save baked.json
+quit
+)").ok());
+  const auto baked = run_editor(dir / "bake.sylva");
+  ASSERT_EQ(baked.exit_code, 0) << baked.output;
+  ASSERT_GT(corrupt_chunks_but_the_root(dir / "relief.sylvaterrain"), 4u);
+  ASSERT_TRUE(sylva::write_file_atomic(dir / "open.sylva", "load baked.json\nwait_stream 600\nscreenshot never.png\nquit\n").ok());
+  const auto run = run_editor(dir / "open.sylva");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("open.sylva:2:"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("could not be read"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("checksum mismatch"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("relief.sylvaterrain"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir / "never.png")) << "the script stops at the failed wait";
   fs::remove_all(dir);
 }
 

@@ -220,6 +220,7 @@ class TerrainInstance final : public ModuleInstance {
       out["stream_budget_refused"] = st.budget_refused;
       out["stream_budget_limited"] = st.budget_limited ? 1 : 0;
       out["stream_failures"] = st.failures;
+      if (!st.last_error.empty()) out["stream_last_error"] = st.last_error;  // names the file and chunk
       out["stream_edited_chunks"] = streamer->edited_chunks();
       out["baked_file_bytes"] = baked_bytes_;
       out["baked_ground_matches"] = ground_matches_ ? 1 : 0;
