@@ -56,9 +56,14 @@ Result<MapGrid> read_baked_ground(const std::filesystem::path& file, std::uint64
   const std::uint32_t overview = (*chunks)->height_overview();
   const bool from_overview = overview != 0 && stride % static_cast<int>(overview) == 0;
   if (stride > 1 && overview == 0) {
+    // Only a version-2 file lacks the overview because of its version; a current bake leaves it
+    // out when the field fits the ground limit it was baked under (a lowered limit reads it here).
     log_info("{}: reading every {}th ground sample from all of the field's height tiles (chunk file version {}, "
-             "no overview of its ground): re-baking it with `sylva-bake terrain` makes opening it faster",
-             file.string(), stride, (*chunks)->version());
+             "no overview of its ground){}",
+             file.string(), stride, (*chunks)->version(),
+             (*chunks)->version() < terrain::kChunkFileVersion
+                 ? ": re-baking it with `sylva-bake terrain` makes opening it faster"
+                 : std::string(" (baked for a ground limit it fits)"));
   }
   auto field = (*chunks)->read_heights(stride);
   if (!field) return field.error();

@@ -377,6 +377,23 @@ TEST_F(BakedTerrainGl, AGroundAboveTheLimitIsReadFromTheOverviewOnly) {
   EXPECT_FALSE(read.overview);
   EXPECT_EQ(read.bytes, 513u * 513u * 4u);
   EXPECT_EQ(finer->values.back(), source.sample(512, 512));
+
+  // A current bake without an overview (its field fitted the limit it was baked for), read at a
+  // stride: every tile is read, and the log does not advise a re-bake that would change nothing.
+  options.overview_max_samples = 513 * 513;
+  const fs::path plain = baked.dir.path / "plain.sylvaterrain";
+  ASSERT_TRUE(terrain::bake_chunk_file(source, plain, options).ok());
+  std::vector<std::string> lines;
+  set_log_sink([&](LogLevel, std::string_view m) { lines.emplace_back(m); });
+  auto strided = read_baked_ground(plain, 129 * 129, &read);
+  set_log_sink(nullptr);
+  ASSERT_TRUE(strided.ok()) << strided.error().message;
+  EXPECT_FALSE(read.overview);
+  const auto said = [&](const char* text) {
+    return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+  };
+  EXPECT_TRUE(said("every 4th ground sample from all of the field's height tiles"));
+  EXPECT_FALSE(said("re-bak")) << "version 3 already writes an overview where the limit needs one";
 }
 
 // A user who names only terrain.baked_file: the scene's ground is the baked field (the file
