@@ -52,6 +52,16 @@ fs::path make_hills_scene(const std::string& name) {
   return dir;
 }
 
+// relief.tif in `dir`: the same hills in metres (a float raster is read as metres; hills.png would
+// be 0.2-0.8 m high, flat enough for the root chunk alone to meet the error bound), so a bake of
+// it streams many chunks.
+bool write_relief(const fs::path& dir) {
+  sylva::Image relief(257, 257, 1, sylva::PixelFormat::kF32);
+  for (int y = 0; y < 257; ++y)
+    for (int x = 0; x < 257; ++x) relief.at(x, y) = static_cast<float>(60.0 * std::sin(x * 0.05) * std::cos(y * 0.07));
+  return sylva::write_image(dir / "relief.tif", relief, sylva::PixelFormat::kF32).ok();
+}
+
 // The terrain stats a script's last `print_stats terrain` printed.
 nlohmann::json last_terrain_stats(const std::string& output) {
   const std::size_t at = output.rfind("terrain {");
@@ -153,12 +163,7 @@ quit
 // budget limits the view, and the stats report it (stream_budget_limited 1, within the budget).
 TEST(EditorBakedPaint, WaitStreamSettlesWhenTheBudgetLimitsTheView) {
   const fs::path dir = make_hills_scene("sylva_editor_stream_budget");
-  // The same hills in metres (a float raster is read as metres; hills.png would be 0.2-0.8 m high,
-  // flat enough for the root chunk alone to meet the error bound).
-  sylva::Image relief(257, 257, 1, sylva::PixelFormat::kF32);
-  for (int y = 0; y < 257; ++y)
-    for (int x = 0; x < 257; ++x) relief.at(x, y) = static_cast<float>(60.0 * std::sin(x * 0.05) * std::cos(y * 0.07));
-  ASSERT_TRUE(sylva::write_image(dir / "relief.tif", relief, sylva::PixelFormat::kF32).ok());
+  ASSERT_TRUE(write_relief(dir));
   ASSERT_TRUE(sylva::write_file_atomic(dir / "tiny.sylva", R"(load scene.json
 import_terrain relief.tif bake relief.sylvaterrain
 wait_import
@@ -215,10 +220,7 @@ std::size_t corrupt_chunks_but_the_root(const fs::path& file) {
 // its frames and exiting 0 with a coarser picture than the file promises.
 TEST(EditorBakedPaint, WaitStreamNamesAChunkThatCannotBeRead) {
   const fs::path dir = make_hills_scene("sylva_editor_stream_corrupt");
-  sylva::Image relief(257, 257, 1, sylva::PixelFormat::kF32);
-  for (int y = 0; y < 257; ++y)
-    for (int x = 0; x < 257; ++x) relief.at(x, y) = static_cast<float>(60.0 * std::sin(x * 0.05) * std::cos(y * 0.07));
-  ASSERT_TRUE(sylva::write_image(dir / "relief.tif", relief, sylva::PixelFormat::kF32).ok());
+  ASSERT_TRUE(write_relief(dir));
   ASSERT_TRUE(sylva::write_file_atomic(dir / "bake.sylva", R"(load scene.json
 import_terrain relief.tif bake relief.sylvaterrain
 wait_import
