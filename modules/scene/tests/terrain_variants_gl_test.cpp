@@ -121,7 +121,7 @@ TEST_F(TerrainVariantsGl, PaintingAnHqTerrainRebuildsTheWholeTree) {
 // --stats): far_material from the scene file's terrain.render, and chunks beyond every shadow map
 // drawn without the receiving code. The whole 128 m field ~600 m off: every chunk draws no detail
 // scale and its samples span far less than 4 px (far_material.hpp's criterion).
-nlohmann::json far_view_stats(const std::string& far_material, bool shadows) {
+std::unique_ptr<Scene> far_view_scene(const std::string& far_material, bool shadows) {
   const std::string text = R"({"terrain": {"size": 128, "resolution": 129, "height": 24, "generator": "fbm",
       "noise": {"frequency": 0.01, "octaves": 2, "seed": 4}, "render": {"far_material": ")" +
                            far_material + R"("}},
@@ -133,9 +133,14 @@ nlohmann::json far_view_stats(const std::string& far_material, bool shadows) {
   if (!doc.ok()) return {};
   auto scene = Scene::create(std::move(*doc));
   EXPECT_TRUE(scene.ok()) << scene.error().message;
-  if (!scene.ok()) return {};
-  render_once(**scene);
-  return (*scene)->module_stats()["terrain"];
+  return scene.ok() ? std::move(*scene) : nullptr;
+}
+
+nlohmann::json far_view_stats(const std::string& far_material, bool shadows) {
+  auto scene = far_view_scene(far_material, shadows);
+  if (!scene) return {};
+  render_once(*scene);
+  return scene->module_stats()["terrain"];
 }
 
 TEST_F(TerrainVariantsGl, FarMaterialFromTheSceneFileShowsInTheStats) {
@@ -147,6 +152,28 @@ TEST_F(TerrainVariantsGl, FarMaterialFromTheSceneFileShowsInTheStats) {
       << "every chunk is far";
   EXPECT_EQ(computed["far_baked_chunks"].get<std::uint64_t>(), 0u);
   EXPECT_EQ(computed["beyond_shadow_chunks"].get<std::uint64_t>(), 0u) << "no shadow pass, nothing to skip";
+}
+
+// A paint through the scene's path (Scene::map_changed, what every editor stroke and undo calls)
+// re-bakes the far material under the stroke only: the bake after opening holds every field
+// sample, a 10 x 10 sample edit adds its (grown) rectangle and not the whole field again.
+TEST_F(TerrainVariantsGl, APaintedMapReBakesTheFarMaterialUnderTheStrokeOnly) {
+  if (!find_module("terrain")) GTEST_SKIP() << "terrain is built out";
+  auto scene = far_view_scene("baked", false);
+  ASSERT_TRUE(scene);
+  render_once(*scene);
+  const auto baked = [&] { return scene->module_stats()["terrain"]["far_material_texels_baked"].get<std::int64_t>(); };
+  const std::int64_t opened = baked();
+  EXPECT_EQ(opened, 129 * 129) << "the whole field once";
+  SceneMap* map = scene->map("terrain.height");
+  ASSERT_NE(map, nullptr);
+  for (int j = 60; j < 70; ++j)
+    for (int i = 60; i < 70; ++i) map->grid.at(i, j) += 12.0f;
+  ASSERT_TRUE(scene->map_changed("terrain.height", {60, 60, 70, 70}).ok());
+  render_once(*scene);
+  const std::int64_t stroke = baked() - opened;
+  EXPECT_GE(stroke, 10 * 10) << "the painted samples";
+  EXPECT_LT(stroke, 129 * 129 / 4) << "not the whole field";
 }
 
 }  // namespace

@@ -187,6 +187,7 @@ class TerrainInstance final : public ModuleInstance {
             // issue 18: chunks shaded from the baked far material / without shadow receiving
             {"far_baked_chunks", s.far_baked_chunks},
             {"beyond_shadow_chunks", s.beyond_shadow_chunks},
+            {"far_material_texels_baked", renderer_->far_material_texels_baked()},
             {"skirt_triangles", s.skirt_triangles},
             {"max_level_difference", s.selection.max_level_difference},
             {"uploads", s.uploads},
