@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <unordered_map>
 
 namespace sylva::render {
 namespace {
@@ -29,7 +30,40 @@ static_assert(sizeof(ShadowBlock) == kMaxShadowCascades * 64 + (3 * kCascadeVec4
 
 const ShadowCasterContext* g_active_cascade = nullptr;
 
+// shadow_block_enabled's registry: GL buffer name -> the last upload's flag. GL is used from one
+// thread (as g_active_cascade), so a plain global of the rendering thread; never destroyed, so a
+// ShadowMaps destroyed during static destruction still finds it.
+std::unordered_map<GLuint, bool>& shadow_blocks() {
+  static auto* blocks = new std::unordered_map<GLuint, bool>();
+  return *blocks;
+}
+
 }  // namespace
+
+std::optional<bool> shadow_block_enabled(GLuint buffer) {
+  const auto it = shadow_blocks().find(buffer);
+  if (it == shadow_blocks().end()) return std::nullopt;
+  return it->second;
+}
+
+namespace detail {
+
+ShadowBlockBuffer& ShadowBlockBuffer::operator=(ShadowBlockBuffer&& other) noexcept {
+  if (this != &other) {
+    shadow_blocks().erase(buffer_.id());
+    buffer_ = std::move(other.buffer_);
+  }
+  return *this;
+}
+
+ShadowBlockBuffer::~ShadowBlockBuffer() { shadow_blocks().erase(buffer_.id()); }
+
+void ShadowBlockBuffer::upload(const void* block, std::size_t bytes, bool enabled) {
+  buffer_.update(0, bytes, block);
+  shadow_blocks()[buffer_.id()] = enabled;
+}
+
+}  // namespace detail
 
 Buffer make_disabled_shadow_block() {
   const ShadowBlock disabled{};  // params.z = 0: disabled
@@ -49,7 +83,7 @@ Result<ShadowMaps> ShadowMaps::create(const ShadowSettings& settings) {
   desc.compare_func = GL_GEQUAL;  // reversed depth: lit when receiver depth >= stored depth
   // Border depth 0 = "farthest": everything outside a map compares lit (seed §3.1).
   maps.compare_sampler_ = Sampler::create(desc);
-  maps.uniforms_ = Buffer::immutable(sizeof(ShadowBlock), nullptr, true);
+  maps.uniforms_ = detail::ShadowBlockBuffer(Buffer::immutable(sizeof(ShadowBlock), nullptr, true));
   const int count = std::clamp(settings.cascade_count, 1, kMaxShadowCascades);
   SYLVA_TRY(maps.allocate(count, settings.resolution));
   maps.upload_uniforms(false);
@@ -157,11 +191,11 @@ void ShadowMaps::upload_uniforms(bool enabled) {
   b.bias = glm::vec4(std::max(settings_.slope_bias, 0.0f), std::max(settings_.min_bias, 0.0f),
                      std::max(settings_.normal_offset, 0.0f), 0.0f);
   b.params = glm::ivec4(count, std::clamp(settings_.pcf_radius, 0, 3), enabled && count > 0 ? 1 : 0, depth_.width());
-  uniforms_.update(0, sizeof(b), &b);
+  uniforms_.upload(&b, sizeof(b), b.params.z != 0);
 }
 
 void ShadowMaps::bind() const {
-  uniforms_.bind_base(GL_UNIFORM_BUFFER, kShadowUniformBinding);
+  uniforms_.buffer().bind_base(GL_UNIFORM_BUFFER, kShadowUniformBinding);
   if (depth_) {
     glBindTextureUnit(kShadowTextureUnit, depth_.id());
     compare_sampler_.bind(kShadowTextureUnit);

@@ -648,5 +648,48 @@ TEST_F(ShadowMapsGl, DisabledShadowsAreLitAndCastersUnregister) {
   }
 }
 
+// Receivers can tell a ShadowMaps' block enabled or disabled on the CPU (no read-back, which
+// waits for a hardware GPU): the flag follows every upload, a move keeps it with the buffer, and a
+// destroyed or overwritten ShadowMaps forgets its (reusable) GL name.
+TEST_F(ShadowMapsGl, ItsBlockSaysOnTheCpuWhetherItIsEnabled) {
+  const auto bound_block = [] {
+    GLint id = 0;
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kShadowUniformBinding, &id);
+    return static_cast<GLuint>(id);
+  };
+  ShadowScene scene({{-2, 0, -2}, {2, 3, 2}});
+  Result<ShadowMaps> created = ShadowMaps::create(test_settings());
+  ASSERT_TRUE(created.ok());
+  ShadowMaps maps = std::move(*created);
+  maps.bind();
+  const GLuint id = bound_block();
+  ASSERT_NE(id, 0u);
+  EXPECT_EQ(shadow_block_enabled(id), false) << "created: disabled until a render";
+  maps.add_caster(scene.caster());
+  const Camera cam = make_camera({2.0, 6.0, 8.0}, {0.0, 0.0, -2.0});
+  ASSERT_TRUE(maps.render(cam, sun_direction(-1.9f, 0.7f)).ok());
+  EXPECT_EQ(shadow_block_enabled(id), true);
+  maps.settings().enabled = false;
+  ASSERT_TRUE(maps.render(cam, sun_direction(-1.9f, 0.7f)).ok());
+  EXPECT_EQ(shadow_block_enabled(id), false);
+  maps.remove_caster(scene.caster());
+  const Buffer own = make_disabled_shadow_block();
+  EXPECT_EQ(shadow_block_enabled(own.id()), std::nullopt) << "a host's own block: unknown";
+  GLuint other_id = 0;
+  {
+    ShadowMaps moved = std::move(maps);
+    EXPECT_EQ(shadow_block_enabled(id), false) << "the entry moves with the buffer";
+    Result<ShadowMaps> other = ShadowMaps::create(test_settings());
+    ASSERT_TRUE(other.ok());
+    other->bind();
+    other_id = bound_block();
+    moved = std::move(*other);  // moved's first buffer is deleted here
+    EXPECT_EQ(shadow_block_enabled(id), std::nullopt) << "a deleted name is forgotten";
+    EXPECT_EQ(shadow_block_enabled(other_id), false);
+  }
+  ASSERT_NE(other_id, 0u);
+  EXPECT_EQ(shadow_block_enabled(other_id), std::nullopt) << "destroyed: forgotten";
+}
+
 }  // namespace
 }  // namespace sylva::render

@@ -825,8 +825,8 @@ VoxelRenderer::UboBinding VoxelRenderer::bind_fallback_block(GLuint index, const
 bool VoxelRenderer::shadow_lookups_needed(const UboBinding& host_shadows) {
   bool needed = true;  // a custom hook: only it knows
   if (shadow_.glsl_source.empty() || shadow_.lit_when_core_shadows_disabled) {
-    // A shadow pass this frame means enabled cascades, known without touching the GPU; only
-    // otherwise (shadows off, or maps the host keeps from an earlier frame) is the flag read.
+    // A shadow pass this frame means enabled cascades, known without touching the GPU; else a
+    // render::ShadowMaps block's flag is known on the CPU too; only a host's own block is read.
     needed = settings_.receive_shadows && !host_shadows.replaced &&
              (shadow_pass_ran_ || host_shadows_enabled(host_shadows));
   }
@@ -837,8 +837,9 @@ bool VoxelRenderer::shadow_lookups_needed(const UboBinding& host_shadows) {
 bool VoxelRenderer::host_shadows_enabled(const UboBinding& host_shadows) {
   // sylva_shadow_params.z of the host's block (render/lib/shadows.glsl: 0 = disabled), at the
   // offset the linker gave it in a program that samples the shadows (no copy of the layout).
-  if (shadow_enabled_offset_ < 0) return true;
   const auto buffer = static_cast<GLuint>(host_shadows.buffer);
+  if (const std::optional<bool> known = render::shadow_block_enabled(buffer)) return *known;  // a ShadowMaps'
+  if (shadow_enabled_offset_ < 0) return true;
   GLint64 size = host_shadows.size;
   if (size == 0) glGetNamedBufferParameteri64v(buffer, GL_BUFFER_SIZE, &size);
   const GLint64 at = host_shadows.start + shadow_enabled_offset_;

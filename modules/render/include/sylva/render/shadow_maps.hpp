@@ -30,6 +30,7 @@
 #include <sylva/render/texture.hpp>
 
 #include <functional>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -79,6 +80,33 @@ class CallbackShadowCaster final : public ShadowCaster {
 // GL is used from one thread, so this is a plain global of the rendering thread.
 const ShadowCasterContext* active_shadow_cascade();
 
+// Whether the shadow block in `buffer` says "enabled", known on the CPU: the flag of the last
+// upload into it by a live ShadowMaps (render() with shadows on: true; disabled or failed: false).
+// std::nullopt for any other buffer (a host's own block, make_disabled_shadow_block's): a receiver
+// that must know reads it back, which on hardware drivers waits for the GPU.
+std::optional<bool> shadow_block_enabled(GLuint buffer);
+
+namespace detail {
+// A ShadowMaps' uniform buffer, registered for shadow_block_enabled with its last upload's flag
+// and unregistered when destroyed or overwritten by a move (a deleted GL name may be reused).
+class ShadowBlockBuffer {
+ public:
+  ShadowBlockBuffer() = default;
+  explicit ShadowBlockBuffer(Buffer buffer) : buffer_(std::move(buffer)) {}
+  ShadowBlockBuffer(ShadowBlockBuffer&&) noexcept = default;  // the name moves with its entry
+  ShadowBlockBuffer& operator=(ShadowBlockBuffer&& other) noexcept;
+  ShadowBlockBuffer(const ShadowBlockBuffer&) = delete;
+  ShadowBlockBuffer& operator=(const ShadowBlockBuffer&) = delete;
+  ~ShadowBlockBuffer();
+
+  void upload(const void* block, std::size_t bytes, bool enabled);
+  const Buffer& buffer() const { return buffer_; }
+
+ private:
+  Buffer buffer_;
+};
+}  // namespace detail
+
 class ShadowMaps {
  public:
   // Needs a current GL 4.5 context. Errors: kLimit when the resolution exceeds
@@ -121,7 +149,7 @@ class ShadowMaps {
   Texture depth_;
   std::vector<GlHandle<FramebufferDeleter>> layer_fbos_;
   Sampler compare_sampler_;
-  Buffer uniforms_;
+  detail::ShadowBlockBuffer uniforms_;
   std::vector<ShadowCaster*> casters_;
 };
 

@@ -213,8 +213,8 @@ struct VoxelFrameStats {
   // 1 when the colour passes sampled the sun's shadows (shadow_lookups_needed), 0 when they
   // ran the variant without the look-up (lit everywhere, as the disabled block says).
   std::size_t shadow_lookup_shaders = 0;
-  // Read-backs of the host block's "enabled" flag this frame: 0 in frames whose shadow pass ran
-  // (a read-back waits for the GPU on hardware drivers).
+  // Read-backs of the host block's "enabled" flag this frame: 0 unless the host bound a block of
+  // its own (not a render::ShadowMaps') and ran no shadow pass (a read-back waits for a GPU).
   std::size_t shadow_flag_reads = 0;
   std::size_t chunks_faded = 0;  // drawn with the fade into the sky; the others lie wholly nearer than its start
   std::size_t uploads = 0;  // chunk buffers (re)built in the last update
@@ -335,10 +335,10 @@ class VoxelRenderer final : public render::Drawable {
   // Whether this frame's colour passes sample the sun's shadows: always with a custom
   // ShadowReceiver (unless lit_when_core_shadows_disabled); with the render core's (the
   // default) only when receive_shadows is on and the host bound a shadow block that is
-  // enabled: known on the CPU when a shadow pass ran since update() (the scene's frames with
-  // shadows on: no read-back, which would stall a hardware GPU's pipeline), else its flag is
-  // read back, 4 bytes a pass (the scene binds a block saying "disabled" when its shadows are
-  // off; a host may keep maps from an earlier frame). Records it in stats_.shadow_lookup_shaders.
+  // enabled: known on the CPU when a shadow pass ran since update() or the block is a
+  // render::ShadowMaps' (render::shadow_block_enabled: the scene's, with shadows on or off); only
+  // a host's own block is read back, 4 bytes a pass (a read-back waits for a hardware GPU).
+  // Records it in stats_.shadow_lookup_shaders.
   bool shadow_lookups_needed(const UboBinding& host_shadows);
   bool host_shadows_enabled(const UboBinding& host_shadows);
 
