@@ -462,6 +462,7 @@ void VoxelRenderer::update(const render::FrameContext& frame) {
   stats_ = {};
   cast_context_ = nullptr;
   shadow_pass_ran_ = false;
+  colour_variant_.reset();
   const bool meshes_changed = world_->mesh_epoch() != mesh_epoch_;
   const bool plants_changed = world_->plant_epoch() != plant_epoch_;
   if (meshes_changed || plants_changed) {
@@ -850,6 +851,14 @@ bool VoxelRenderer::host_shadows_enabled(const UboBinding& host_shadows) {
   return enabled != 0;
 }
 
+unsigned VoxelRenderer::frame_colour_variant(const UboBinding& host_lights, const UboBinding& host_shadows) {
+  if (!colour_variant_) {
+    colour_variant_ = (point_lights_shaded(host_lights) ? kPointLightLoops : 0u) |
+                      (shadow_lookups_needed(host_shadows) ? kShadowLookup : 0u);
+  }
+  return *colour_variant_;
+}
+
 bool VoxelRenderer::point_lights_shaded(const UboBinding& host_lights) {
   const bool lit = !light_pos_.empty() || !host_lights.replaced;
   stats_.point_light_shaders = lit ? 1 : 0;
@@ -933,8 +942,7 @@ void VoxelRenderer::draw(render::Pass pass, const render::FrameContext& frame, r
   // blocks (none) when it bound nothing; restored afterwards for the other drawables.
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
-  const unsigned variant = (point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
-                           (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u);
+  const unsigned variant = frame_colour_variant(light_block, shadow_block);
   const GLboolean cull_was = glIsEnabled(GL_CULL_FACE);
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);
@@ -1038,8 +1046,7 @@ void VoxelRenderer::draw_translucent(const render::FrameContext& frame, render::
   const UboBinding shadow_block = bind_fallback_block(render::kShadowUniformBinding, no_shadows_ubo_, settings_.receive_shadows);
   const UboBinding light_block = bind_fallback_block(render::kPointLightBinding, no_point_lights_ubo_, true);
   const render::Program& translucent_program =
-      colour_programs((point_lights_shaded(light_block) ? kPointLightLoops : 0u) |
-                      (shadow_lookups_needed(shadow_block) ? kShadowLookup : 0u) | kDistanceFade)->translucent;
+      colour_programs(frame_colour_variant(light_block, shadow_block) | kDistanceFade)->translucent;
   const render::SavedBlendState saved;
   glEnable(GL_DEPTH_TEST);
   glEnable(GL_CULL_FACE);

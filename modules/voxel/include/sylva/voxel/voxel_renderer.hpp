@@ -57,6 +57,7 @@
 #include <functional>
 #include <array>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <unordered_map>
@@ -341,6 +342,11 @@ class VoxelRenderer final : public render::Drawable {
   // Records it in stats_.shadow_lookup_shaders.
   bool shadow_lookups_needed(const UboBinding& host_shadows);
   bool host_shadows_enabled(const UboBinding& host_shadows);
+  // This frame's colour variant (kPointLightLoops | kShadowLookup), decided once after update()
+  // by the first colour pass (opaque, then translucent reuses it): the host's blocks do not
+  // change within a frame, and a host's own shadow block costs a read-back per decision.
+  unsigned frame_colour_variant(const UboBinding& host_lights, const UboBinding& host_shadows);
+  std::optional<unsigned> colour_variant_;
 
   const World* world_ = nullptr;
   std::shared_ptr<const WorldGenerator> generator_;
