@@ -1,5 +1,7 @@
 #include "far_material.hpp"
 
+#include <sylva/render/saved_target_state.hpp>
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -12,36 +14,6 @@ render::GlHandle<render::FramebufferDeleter> make_fbo() {
   glCreateFramebuffers(1, &id);
   return render::GlHandle<render::FramebufferDeleter>(id);
 }
-
-// The GL state bake() changes, restored on scope exit. Not the program (the caller's may be
-// deleted already, and every caller uses its own next) nor the vertex array (left unbound).
-class SavedState {
- public:
-  SavedState() {
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo_);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo_);
-    glGetIntegerv(GL_VIEWPORT, viewport_);
-    glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
-    for (std::size_t i = 0; i < kCaps.size(); ++i) enabled_[i] = glIsEnabled(kCaps[i]);
-  }
-  ~SavedState() {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_fbo_));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_fbo_));
-    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
-    glBindVertexArray(0);
-    glDepthMask(depth_mask_);
-    for (std::size_t i = 0; i < kCaps.size(); ++i) (enabled_[i] ? glEnable : glDisable)(kCaps[i]);
-  }
-  SavedState(const SavedState&) = delete;
-  SavedState& operator=(const SavedState&) = delete;
-
- private:
-  static constexpr std::array<GLenum, 5> kCaps = {GL_FRAMEBUFFER_SRGB, GL_SCISSOR_TEST, GL_DEPTH_TEST, GL_BLEND,
-                                                  GL_CULL_FACE};
-  GLint draw_fbo_ = 0, read_fbo_ = 0, viewport_[4] = {};
-  GLboolean depth_mask_ = GL_TRUE;
-  std::array<GLboolean, kCaps.size()> enabled_{};
-};
 
 }  // namespace
 
@@ -92,7 +64,7 @@ void FarMaterialBake::bake(const render::Texture& heights, const render::Texture
   const int w = texture_.width(), h = texture_.height();
   int x0 = std::max(rect.x0, 0), z0 = std::max(rect.z0, 0), x1 = std::min(rect.x1, w), z1 = std::min(rect.z1, h);
   if (x0 >= x1 || z0 >= z1) return;
-  SavedState saved;
+  const render::SavedTargetState saved;
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);

@@ -38,8 +38,8 @@ class FarMaterialBake {
   // Brings the bake up to date with `heights` (make_height_texture) and `shape`
   // (make_shape_texture) of the same size and the material: everything on the
   // first call and whenever `material` differs from the last bake's, else the dirty rectangle
-  // only, then the mips over the re-evaluated rectangle only. Restores the framebuffers, viewport,
-  // scissor, sRGB, depth, blend and cull state it touches; leaves its program bound and no vertex array.
+  // only, then the mips over the re-evaluated rectangle only. Restores the target state it
+  // touches (render::SavedTargetState); leaves no program and no vertex array bound.
   void refresh(const render::Texture& heights, const render::Texture& shape, const MaterialUniforms& material);
 
   const render::Texture& texture() const { return texture_; }

@@ -4,6 +4,7 @@
 #include <sylva/core/cache_directory.hpp>
 #include <sylva/core/log.hpp>
 #include <sylva/render/framebuffer.hpp>
+#include <sylva/render/saved_target_state.hpp>
 #include <sylva/render/shader_library.hpp>
 #include <sylva/vegetation/animation.hpp>
 #include <sylva/vegetation/tree_renderer.hpp>
@@ -29,45 +30,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr char kMagic[8] = {'S', 'Y', 'L', 'V', 'S', 'L', 'C', 'E'};
 constexpr std::uint32_t kFormatVersion = 2;  // 2: leaves baked with the hashed alpha test
-
-// GL state the bake changes, restored on every exit.
-class BakeStateGuard {
- public:
-  BakeStateGuard() {
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo_);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo_);
-    glGetIntegerv(GL_VIEWPORT, viewport_);
-    glGetIntegerv(GL_CLIP_ORIGIN, &clip_origin_);
-    glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_);
-    glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
-    glGetFloatv(GL_DEPTH_CLEAR_VALUE, &clear_depth_);
-    depth_test_ = glIsEnabled(GL_DEPTH_TEST);
-    multisample_ = glIsEnabled(GL_MULTISAMPLE);
-    cull_ = glIsEnabled(GL_CULL_FACE);
-    glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask_);
-  }
-  ~BakeStateGuard() {
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, static_cast<GLuint>(draw_fbo_));
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(read_fbo_));
-    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
-    glClipControl(static_cast<GLenum>(clip_origin_), static_cast<GLenum>(clip_depth_));
-    glDepthFunc(static_cast<GLenum>(depth_func_));
-    glClearDepth(static_cast<double>(clear_depth_));
-    if (depth_test_) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
-    if (multisample_) glEnable(GL_MULTISAMPLE); else glDisable(GL_MULTISAMPLE);
-    if (cull_) glEnable(GL_CULL_FACE); else glDisable(GL_CULL_FACE);
-    glDepthMask(depth_mask_);
-    glBindVertexArray(0);
-    glUseProgram(0);
-  }
-  BakeStateGuard(const BakeStateGuard&) = delete;
-  BakeStateGuard& operator=(const BakeStateGuard&) = delete;
-
- private:
-  GLint draw_fbo_ = 0, read_fbo_ = 0, viewport_[4] = {0, 0, 0, 0}, clip_origin_ = 0, clip_depth_ = 0, depth_func_ = 0;
-  GLfloat clear_depth_ = 0.0f;
-  GLboolean depth_test_ = GL_FALSE, multisample_ = GL_FALSE, cull_ = GL_FALSE, depth_mask_ = GL_TRUE;
-};
 
 // Writes uncovered texels of one slice from their nearest covered texel.
 void propagate_slice(SliceImages& im, int slice, const std::vector<std::int32_t>& nearest) {
@@ -237,7 +199,7 @@ Result<BakedTree> bake_tree_slices(const TreeAsset& asset, const TreeMesh& mesh,
   Result<render::Framebuffer> fb = render::Framebuffer::create(desc);
   if (!fb.ok()) return fb.error();
 
-  BakeStateGuard guard;
+  const render::SavedTargetState saved;  // restored on every exit
   // The identity instance at rest, and calm blocks (the static program reads no animation).
   InstanceGpu identity{};
   identity.translation_scale = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
