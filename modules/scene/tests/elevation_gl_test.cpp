@@ -20,6 +20,8 @@
 #include <set>
 #include <string>
 
+#include <unistd.h>
+
 using namespace sylva;
 using namespace sylva::scene;
 namespace fs = std::filesystem;
@@ -28,8 +30,10 @@ namespace {
 
 using ElevationGl = render::GlTest;
 
+// One folder per process: ctest runs each test as its own process, two at a time, and a folder
+// shared between them let one test rewrite dem/hills.tif while another read it.
 fs::path scene_dir() {
-  const fs::path dir = fs::temp_directory_path() / "sylva_elevation_gl_test";
+  const fs::path dir = fs::temp_directory_path() / ("sylva_elevation_gl_test_" + std::to_string(::getpid()));
   fs::create_directories(dir / "dem");
   return dir;
 }

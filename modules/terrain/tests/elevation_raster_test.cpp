@@ -16,13 +16,16 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace sylva {
 namespace {
 
 namespace fs = std::filesystem;
 
 fs::path temp(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "sylva_elevation_raster_test";
+  // One folder per process: ctest runs the tests of this file in parallel processes.
+  const fs::path dir = fs::temp_directory_path() / ("sylva_elevation_raster_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir / name;
 }
