@@ -1,13 +1,9 @@
 // Sky renderer and the sky-derived lighting (sky.hpp). sky_radiance mirrors shaders/lib/sky.glsl.
 #include <sylva/render/sky.hpp>
 
-#include <sylva/render/sky_dome.hpp>
-
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <cstring>
-#include <span>
 
 namespace sylva::render {
 namespace {
@@ -77,47 +73,25 @@ Result<SkyRenderer> SkyRenderer::create() {
   embedded::register_render_shaders();
   Result<Program> program = Program::create({"render/sky.vert", "render/sky.frag"});
   if (!program.ok()) return program.error();
-  Result<Program> nadir = Program::create({"render/sky.vert", "render/sky_nadir.frag"});
-  if (!nadir.ok()) return nadir.error();
   SkyRenderer sky;
   sky.program_ = std::move(program).value();
-  sky.nadir_program_ = std::move(nadir).value();
-  const SkyDomeMesh dome = build_sky_dome();
-  sky.vertices_ = Buffer::immutable(std::span<const glm::vec3>(dome.directions));
-  sky.indices_ = Buffer::immutable(std::span<const std::uint32_t>(dome.indices));
-  sky.index_count_ = static_cast<int>(dome.indices.size());
-  sky.nadir_cap_indices_ = dome.nadir_cap_indices;
   sky.vao_ = VertexArray::create();
-  sky.vao_.attribute(0, 0, 3, GL_FLOAT, 0);
-  sky.vao_.vertex_buffer(0, sky.vertices_, sizeof(glm::vec3));
-  sky.vao_.index_buffer(sky.indices_);
   sky.uniforms_ = LightingUniforms::create();
   return sky;
 }
 
 void SkyRenderer::draw(const Camera& camera, const Lighting& lighting, double time) {
   program_.reload_if_changed();
-  nadir_program_.reload_if_changed();
   uniforms_.update(lighting, camera.position().y, time);
   uniforms_.bind();
-  program_.set("u_view_projection", camera.view_projection());
-  nadir_program_.set("u_view_projection", camera.view_projection());
+  program_.set("u_inv_view_projection", glm::inverse(camera.view_projection()));
+  program_.use();
   vao_.bind();
   GLboolean depth_mask = GL_TRUE;
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depth_mask);
-  const GLboolean cull = glIsEnabled(GL_CULL_FACE);
-  const GLboolean clip = glIsEnabled(GL_CLIP_DISTANCE0);
   glDepthMask(GL_FALSE);
   glDepthFunc(GL_GEQUAL);
-  glDisable(GL_CULL_FACE);  // seen from inside
-  glEnable(GL_CLIP_DISTANCE0);  // sky.vert: directions behind the camera
-  nadir_program_.use();
-  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(nadir_cap_indices_), GL_UNSIGNED_INT, nullptr);
-  program_.use();
-  glDrawElements(GL_TRIANGLES, index_count_ - static_cast<GLsizei>(nadir_cap_indices_), GL_UNSIGNED_INT,
-                 reinterpret_cast<const void*>(nadir_cap_indices_ * sizeof(std::uint32_t)));
-  if (!clip) glDisable(GL_CLIP_DISTANCE0);
-  if (cull) glEnable(GL_CULL_FACE);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
   glDepthFunc(GL_GREATER);
   glDepthMask(depth_mask);
 }

@@ -31,17 +31,7 @@ const float SYLVA_SKY_NADIR_FADE = 0.5;
 // 0.5) the azimuth fades out: the column goes to the 90-degree one and the phase direction from
 // the horizon's to dir itself, by smoothstep(0, 0.5, h). Straight up needs nothing: the top row
 // is one direction, the same value in every column.
-//
-// Split in two so the sky dome (sky.vert) can look the table up per vertex and apply the sharp
-// phase functions per pixel: the table's Rayleigh and Mie colours and the unit direction the
-// phase functions see (dir itself above the horizon), then atmosphere_phase_radiance.
-struct SkySample {
-  vec3 rayleigh;
-  vec3 mie;
-  vec3 phase_dir;
-};
-
-SkySample atmosphere_sample(vec3 dir) {
+vec3 atmosphere_radiance(vec3 dir) {
   vec3 sun = sun_direction();
   float azimuth_weight = 1.0;
   if (dir.y < 0.0) {
@@ -64,18 +54,8 @@ SkySample atmosphere_sample(vec3 dir) {
                  mix(sylva_sky_table[i10].rgb, sylva_sky_table[i10 + 2].rgb, fc), fr);
   vec3 mie = mix(mix(sylva_sky_table[i00 + 1].rgb, sylva_sky_table[i00 + 3].rgb, fc),
                  mix(sylva_sky_table[i10 + 1].rgb, sylva_sky_table[i10 + 3].rgb, fc), fr);
-  return SkySample(ray, mie, dir);
-}
-
-// The table's colours times the phase functions for the angle between phase_dir and the sun.
-vec3 atmosphere_phase_radiance(vec3 rayleigh, vec3 mie, vec3 phase_dir) {
-  float mu = dot(phase_dir, sun_direction());
-  return rayleigh * rayleigh_phase(mu) + mie * mie_phase(mu, sylva_mie.z);
-}
-
-vec3 atmosphere_radiance(vec3 dir) {
-  SkySample s = atmosphere_sample(dir);
-  return atmosphere_phase_radiance(s.rayleigh, s.mie, s.phase_dir);
+  float mu = dot(dir, sun);
+  return ray * rayleigh_phase(mu) + mie * mie_phase(mu, sylva_mie.z);
 }
 
 // Kept for callers of the old gradient: now the atmosphere's radiance.

@@ -1,16 +1,15 @@
 #pragma once
-// The physically based sky (atmosphere.hpp) with a limb-darkened sun disk, drawn as a dome
-// around the camera at the far plane (reversed-Z depth 0, so it is drawn after opaque geometry
-// with GL_GEQUAL and only where nothing was drawn). The dome's vertices look the sky table up
-// and its pixels apply the phase functions and the sun disk (sky_dome.hpp, shaders/sky.vert):
-// the same render/lib/sky.glsl every module's aerial perspective (fog.glsl) fades into. The CPU side derives the frame's ambient and sky colours from the same model.
+// The physically based sky (atmosphere.hpp) with a limb-darkened sun disk, drawn as one
+// full-screen triangle at the far plane (reversed-Z depth 0, so it is drawn after opaque
+// geometry with GL_GEQUAL and only where nothing was drawn). The shader uses
+// render/lib/sky.glsl, so every module's aerial perspective (fog.glsl) fades into exactly
+// this sky. The CPU side derives the frame's ambient and sky colours from the same model.
 
 #include <sylva/core/result.hpp>
 #include <sylva/render/camera.hpp>
 #include <sylva/render/lighting.hpp>
 #include <sylva/render/lighting_uniforms.hpp>
 #include <sylva/render/shader_library.hpp>
-#include <sylva/render/buffer.hpp>
 #include <sylva/render/vertex_array.hpp>
 
 #include <glm/glm.hpp>
@@ -37,15 +36,12 @@ void derive_sky_lighting(Lighting& lighting, float ambient_scale = 1.0f);
 
 class SkyRenderer {
  public:
-  // Builds the programs ("render/sky.vert" with "render/sky.frag", and with
-  // "render/sky_nadir.frag" for the cap around the nadir) and the dome's buffers. Errors: kGl
-  // from the compiler.
+  // Builds the program ("render/sky.vert", "render/sky.frag"). Errors: kGl from the compiler.
   static Result<SkyRenderer> create();
   SkyRenderer() = default;
 
   // Draws into the bound framebuffer (viewport already set) with GL_GEQUAL and no depth
-  // writes (face culling off, clip distance 0 on for the draw), then restores GL_GREATER, depth
-  // writes, culling and clip distance 0. Updates its own LightingUniforms from
+  // writes, then restores GL_GREATER and depth writes. Updates its own LightingUniforms from
   // `lighting` and leaves them bound at kLightingBinding.
   void draw(const Camera& camera, const Lighting& lighting, double time = 0.0);
 
@@ -53,12 +49,7 @@ class SkyRenderer {
 
  private:
   Program program_;
-  Program nadir_program_;
-  std::size_t nadir_cap_indices_ = 0;
   VertexArray vao_;
-  Buffer vertices_;
-  Buffer indices_;
-  int index_count_ = 0;
   LightingUniforms uniforms_;
 };
 
